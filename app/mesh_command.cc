@@ -1,0 +1,114 @@
+// `flexmbs mesh`: the FE model of a body alone.
+#include <chrono>
+#include <fmt/format.h>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/matrix_market.h"
+#include "core/error.h"
+#include "fem/assembly.h"
+#include "fem/body_spec.h"
+#include "fem/mass_properties.h"
+
+namespace flexmbs::app {
+namespace {
+
+struct MeshOptions {
+  std::string body_file;
+  bool json = false;
+  std::string matrix_prefix;
+};
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A vector as a JSON array, a matrix as an array of rows.
+nlohmann::json ToJson(const Eigen::MatrixXd& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
+    rows.push_back(m.cols() == 1 ? row[0] : row);
+  }
+  return rows;
+}
+
+void RunMesh(const MeshOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const fem::BodySpec spec = fem::LoadBodySpec(options.body_file);
+  if (!options.json) fmt::print(stderr, "meshing {} ...\n", spec.geometry_file.string());
+  const fem::Mesh mesh = fem::BuildBodyMesh(spec);
+  const double mesh_seconds = SecondsSince(start);
+  if (!options.json) fmt::print(stderr, "assembling {} DOF ...\n", mesh.num_dofs());
+  const auto assembly_start = std::chrono::steady_clock::now();
+  fem::SystemMatrices system;
+  try {
+    system = fem::AssembleSystem(mesh, spec.mass_matrix);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", spec.geometry_file.string(), e.what()));
+  }
+  const double assembly_seconds = SecondsSince(assembly_start);
+  const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes);
+
+  std::map<std::string, Eigen::Index> elements_by_type;
+  for (const fem::ElementBlock& b : mesh.blocks) {
+    elements_by_type[std::string(fem::Traits(b.type).name)] += b.num_elements();
+  }
+
+  if (!options.matrix_prefix.empty()) {
+    WriteSymmetricMatrixMarket(options.matrix_prefix + "_K.mtx", system.stiffness);
+    WriteSymmetricMatrixMarket(options.matrix_prefix + "_M.mtx", system.mass);
+  }
+
+  if (options.json) {
+    nlohmann::json j;
+    j["body"] = spec.name;
+    j["geometry_file"] = spec.geometry_file.string();
+    j["nodes"] = mesh.num_nodes();
+    j["elements"] = elements_by_type;
+    j["dofs"] = mesh.num_dofs();
+    j["mass_matrix"] = spec.mass_matrix == fem::MassMatrixKind::kLumped ? "lumped" : "consistent";
+    j["mass_kg"] = props.mass_kg;
+    j["center_of_mass_m"] = ToJson(props.p_BoCm_B);
+    j["inertia_about_com_kg_m2"] = ToJson(props.I_Cm_B);
+    j["stiffness_nonzeros"] = system.stiffness.nonZeros();
+    j["mass_nonzeros"] = system.mass.nonZeros();
+    nlohmann::json sets = nlohmann::json::object();
+    for (const auto& [name, nodes] : mesh.node_sets) sets[name] = nodes.size();
+    j["node_sets"] = sets;
+    j["seconds"] = {{"mesh", mesh_seconds}, {"assembly", assembly_seconds}};
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("body            {}\n", spec.name);
+  fmt::print("geometry        {}\n", spec.geometry_file.string());
+  fmt::print("nodes           {}\n", mesh.num_nodes());
+  for (const auto& [type, count] : elements_by_type) fmt::print("elements        {} {}\n", count, type);
+  fmt::print("DOF             {}\n", mesh.num_dofs());
+  fmt::print("mass            {:.6g} kg\n", props.mass_kg);
+  fmt::print("centre of mass  [{:.6g}, {:.6g}, {:.6g}] m\n", props.p_BoCm_B(0), props.p_BoCm_B(1),
+             props.p_BoCm_B(2));
+  fmt::print("inertia at CoM  [{:.6g}, {:.6g}, {:.6g}; {:.6g}, {:.6g}, {:.6g}; {:.6g}, {:.6g}, {:.6g}] kg m^2\n",
+             props.I_Cm_B(0, 0), props.I_Cm_B(0, 1), props.I_Cm_B(0, 2), props.I_Cm_B(1, 0),
+             props.I_Cm_B(1, 1), props.I_Cm_B(1, 2), props.I_Cm_B(2, 0), props.I_Cm_B(2, 1),
+             props.I_Cm_B(2, 2));
+  fmt::print("nonzeros        K {}, M {}\n", system.stiffness.nonZeros(), system.mass.nonZeros());
+  for (const auto& [name, nodes] : mesh.node_sets) fmt::print("node set        {} ({} nodes)\n", name, nodes.size());
+  fmt::print("time            mesh {:.3f} s, assembly {:.3f} s\n", mesh_seconds, assembly_seconds);
+}
+
+}  // namespace
+
+void AddMeshCommand(CLI::App& app) {
+  auto options = std::make_shared<MeshOptions>();
+  CLI::App* cmd = app.add_subcommand("mesh", "Mesh a body and report its FE model (nodes, elements, DOF, mass properties)");
+  cmd->add_option("body", options->body_file, "Body file (YAML)")->required();
+  cmd->add_flag("--json", options->json, "Print the report as JSON (keys documented in docs/cli.md)");
+  cmd->add_option("--matrix-market", options->matrix_prefix,
+                  "Also write K and M as PREFIX_K.mtx and PREFIX_M.mtx (Matrix Market)");
+  cmd->callback([options] { RunMesh(*options); });
+}
+
+}  // namespace flexmbs::app

@@ -1,0 +1,28 @@
+# Finds every third-party library and exposes each as an imported target.
+# How each is found on Debian 12 is documented in ../shared/STACK.md.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(yaml-cpp REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(nlohmann_json REQUIRED)
+find_package(fmt REQUIRED)
+find_package(Threads REQUIRED)
+find_package(PkgConfig REQUIRED)
+
+# gmsh: no CMake config and no .pc on Debian; header and library by hand.
+find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
+find_library(GMSH_LIBRARY gmsh REQUIRED)
+add_library(flexmbs_ext_gmsh INTERFACE)
+target_include_directories(flexmbs_ext_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
+target_link_libraries(flexmbs_ext_gmsh INTERFACE ${GMSH_LIBRARY})
+add_library(ext::gmsh ALIAS flexmbs_ext_gmsh)
+
+# Eigen's headers trigger -Wshadow and friends: include them as system headers.
+get_target_property(_eigen_inc Eigen3::Eigen INTERFACE_INCLUDE_DIRECTORIES)
+set_target_properties(Eigen3::Eigen PROPERTIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_eigen_inc}")
+
+if(FLEXMBS_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(FLEXMBS_BUILD_BENCH)
+  find_package(benchmark QUIET)
+endif()

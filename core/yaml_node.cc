@@ -1,0 +1,124 @@
+#include "core/yaml_node.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <yaml-cpp/yaml.h>
+
+#include "core/error.h"
+
+namespace flexmbs {
+
+YamlNode::YamlNode(std::filesystem::path file, std::string item, const YAML::Node& node)
+    : file_(std::move(file)), item_(std::move(item)), node_(std::make_unique<YAML::Node>(node)) {}
+
+YamlNode::~YamlNode() = default;
+
+YamlNode::YamlNode(const YamlNode& other)
+    : file_(other.file_), item_(other.item_), node_(std::make_unique<YAML::Node>(*other.node_)) {}
+
+YamlNode& YamlNode::operator=(const YamlNode& other) {
+  file_ = other.file_;
+  item_ = other.item_;
+  node_ = std::make_unique<YAML::Node>(*other.node_);
+  return *this;
+}
+
+YamlNode YamlNode::LoadFile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot open the file", file.string()));
+  try {
+    YAML::Node root = YAML::Load(in);
+    if (!root.IsMap()) {
+      throw InputError(fmt::format("{}: expected a map of keys at the top level", file.string()));
+    }
+    return YamlNode(file, "", root);
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", file.string(), e.mark.line + 1,
+                                 e.mark.column + 1, e.msg));
+  }
+}
+
+std::string YamlNode::Where() const {
+  const YAML::Mark mark = node_->Mark();
+  std::string where = file_.string();
+  if (!mark.is_null()) where += fmt::format(":{}:{}", mark.line + 1, mark.column + 1);
+  if (!item_.empty()) where += ": " + item_;
+  return where;
+}
+
+void YamlNode::Fail(std::string_view problem) const {
+  throw InputError(fmt::format("{}: {}", Where(), problem));
+}
+
+bool YamlNode::Has(std::string_view key) const {
+  return node_->IsMap() && (*node_)[std::string(key)].IsDefined();
+}
+
+YamlNode YamlNode::Required(std::string_view key) const {
+  if (!node_->IsMap()) Fail("expected a map");
+  const YAML::Node child = (*node_)[std::string(key)];
+  const std::string item = item_.empty() ? std::string(key) : item_ + "." + std::string(key);
+  if (!child.IsDefined() || child.IsNull()) {
+    Fail(fmt::format("missing key '{}'", key));
+  }
+  return YamlNode(file_, item, child);
+}
+
+double YamlNode::AsDouble() const {
+  if (!node_->IsScalar()) Fail("expected a number");
+  double value;
+  if (!YAML::convert<double>::decode(*node_, value) || !std::isfinite(value)) {
+    Fail(fmt::format("'{}' is not a finite number", node_->Scalar()));
+  }
+  return value;
+}
+
+int YamlNode::AsInt() const {
+  if (!node_->IsScalar()) Fail("expected an integer");
+  int value;
+  if (!YAML::convert<int>::decode(*node_, value)) {
+    Fail(fmt::format("'{}' is not an integer", node_->Scalar()));
+  }
+  return value;
+}
+
+std::string YamlNode::AsString() const {
+  if (!node_->IsScalar()) Fail("expected a string");
+  return node_->Scalar();
+}
+
+std::vector<std::string> YamlNode::AsStringList() const {
+  if (node_->IsScalar()) return {node_->Scalar()};
+  if (!node_->IsSequence()) Fail("expected a list of names");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < node_->size(); ++i) {
+    out.push_back(YamlNode(file_, fmt::format("{}[{}]", item_, i), (*node_)[i]).AsString());
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, YamlNode>> YamlNode::AsMap() const {
+  if (!node_->IsMap()) Fail("expected a map");
+  std::vector<std::pair<std::string, YamlNode>> out;
+  for (const auto& entry : *node_) {
+    const std::string key = entry.first.as<std::string>();
+    out.emplace_back(key, YamlNode(file_, item_.empty() ? key : item_ + "." + key, entry.second));
+  }
+  return out;
+}
+
+void YamlNode::RejectUnknownKeys(std::initializer_list<std::string_view> known) const {
+  if (!node_->IsMap()) Fail("expected a map");
+  for (const auto& entry : *node_) {
+    const std::string key = entry.first.as<std::string>();
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      std::string list;
+      for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      YamlNode(file_, item_.empty() ? key : item_ + "." + key, entry.first)
+          .Fail(fmt::format("unknown key '{}' (expected one of: {})", key, list));
+    }
+  }
+}
+
+}  // namespace flexmbs

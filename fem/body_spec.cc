@@ -1,0 +1,109 @@
+#include "fem/body_spec.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/yaml_node.h"
+
+namespace flexmbs::fem {
+namespace {
+
+IsotropicMaterial ReadMaterial(const std::string& name, const YamlNode& node) {
+  node.RejectUnknownKeys({"youngs_modulus", "poisson_ratio", "density"});
+  IsotropicMaterial m;
+  m.name = name;
+  m.youngs_modulus_pa = node.Required("youngs_modulus").AsDouble();
+  m.poisson_ratio = node.Required("poisson_ratio").AsDouble();
+  m.density_kg_m3 = node.Required("density").AsDouble();
+  ValidateMaterial(m, node.file().string());
+  return m;
+}
+
+}  // namespace
+
+BodySpec LoadBodySpec(const std::filesystem::path& file) {
+  const YamlNode root = YamlNode::LoadFile(file);
+  root.RejectUnknownKeys({"name", "geometry", "materials", "material", "regions", "node_sets",
+                          "mass_matrix", "reduction", "damping", "surfaces", "interfaces"});
+  BodySpec spec;
+  spec.file = file;
+  spec.name = root.Has("name") ? root.Required("name").AsString() : file.stem().string();
+
+  const YamlNode geometry = root.Required("geometry");
+  geometry.RejectUnknownKeys({"file", "mesh_size", "element_order"});
+  const YamlNode geometry_file = geometry.Required("file");
+  spec.geometry_file = (file.parent_path() / geometry_file.AsString()).lexically_normal();
+  if (geometry.Has("mesh_size")) {
+    const YamlNode size = geometry.Required("mesh_size");
+    spec.meshing.mesh_size_m = size.AsDouble();
+    if (spec.meshing.mesh_size_m <= 0.0) {
+      size.Fail(fmt::format("mesh size {:g} m must be > 0", spec.meshing.mesh_size_m));
+    }
+  }
+  if (geometry.Has("element_order")) {
+    const YamlNode order = geometry.Required("element_order");
+    spec.meshing.element_order = order.AsInt();
+    if (spec.meshing.element_order != 1 && spec.meshing.element_order != 2) {
+      order.Fail(fmt::format("element order {} must be 1 or 2", spec.meshing.element_order));
+    }
+  }
+
+  for (const auto& [name, node] : root.Required("materials").AsMap()) {
+    spec.materials[name] = ReadMaterial(name, node);
+  }
+  auto check_material = [&](const YamlNode& node) {
+    const std::string name = node.AsString();
+    if (!spec.materials.contains(name)) node.Fail(fmt::format("unknown material '{}'", name));
+    return name;
+  };
+  if (root.Has("material")) spec.default_material = check_material(root.Required("material"));
+  if (root.Has("regions")) {
+    for (const auto& [region, node] : root.Required("regions").AsMap()) {
+      spec.region_materials[region] = check_material(node);
+    }
+  }
+  if (spec.default_material.empty() && spec.region_materials.empty()) {
+    if (spec.materials.size() != 1) {
+      root.Fail("name the material of each region ('regions') or of the whole body ('material')");
+    }
+    spec.default_material = spec.materials.begin()->first;
+  }
+
+  if (root.Has("node_sets")) spec.node_sets = root.Required("node_sets").AsStringList();
+  if (root.Has("mass_matrix")) {
+    const YamlNode kind = root.Required("mass_matrix");
+    const std::string value = kind.AsString();
+    if (value == "consistent") {
+      spec.mass_matrix = MassMatrixKind::kConsistent;
+    } else if (value == "lumped") {
+      spec.mass_matrix = MassMatrixKind::kLumped;
+    } else {
+      kind.Fail(fmt::format("'{}' must be 'consistent' or 'lumped'", value));
+    }
+  }
+  return spec;
+}
+
+Mesh BuildBodyMesh(const BodySpec& spec) {
+  Mesh mesh = ImportMesh(spec.geometry_file, spec.meshing, spec.node_sets);
+  for (const auto& [region, material] : spec.region_materials) {
+    const bool found = std::any_of(mesh.blocks.begin(), mesh.blocks.end(),
+                                   [&](const ElementBlock& b) { return b.region == region; });
+    if (!found) {
+      throw InputError(fmt::format("{}: regions: '{}' is not a physical volume of {}",
+                                   spec.file.string(), region, spec.geometry_file.string()));
+    }
+  }
+  for (ElementBlock& block : mesh.blocks) {
+    const auto it = spec.region_materials.find(block.region);
+    const std::string& material = it != spec.region_materials.end() ? it->second : spec.default_material;
+    if (material.empty()) {
+      throw InputError(fmt::format("{}: regions: region '{}' of {} has no material",
+                                   spec.file.string(), block.region, spec.geometry_file.string()));
+    }
+    block.material = spec.materials.at(material);
+  }
+  return mesh;
+}
+
+}  // namespace flexmbs::fem

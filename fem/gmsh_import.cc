@@ -1,0 +1,241 @@
+#include "fem/gmsh_import.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <gmsh.h>
+#include <map>
+#include <mutex>
+
+#include "core/error.h"
+
+namespace flexmbs::fem {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kGmshNoSizeLimit = 1e22;  // gmsh's default Mesh.MeshSizeMax
+
+// gmsh is one global state: initialise it once per process, quietly, without reading the
+// command line (it would exit on options it does not know).
+std::mutex& GmshMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+void EnsureGmshInitialized() {
+  static const bool initialized = [] {
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    return true;
+  }();
+  (void)initialized;
+}
+
+// Runs a gmsh call, turning gmsh's errors (thrown as strings or logged) into an InputError.
+template <typename F>
+void CallGmsh(const fs::path& path, std::string_view action, F&& f) {
+  std::string message;
+  try {
+    gmsh::logger::start();
+    f();
+    gmsh::logger::getLastError(message);
+  } catch (const std::string& error) {
+    message = error;
+  } catch (const std::exception& error) {
+    message = error.what();
+  } catch (...) {
+    message = "unknown gmsh error";
+  }
+  gmsh::logger::stop();
+  if (!message.empty()) {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    throw InputError(fmt::format("{}: gmsh could not {}: {}", path.string(), action, message));
+  }
+}
+
+std::string PhysicalName(int dim, int tag) {
+  std::string name;
+  gmsh::model::getPhysicalName(dim, tag, name);
+  return name;
+}
+
+// Named physical groups of every dimension: name -> (dim, tag).
+std::map<std::string, std::pair<int, int>> NamedGroups() {
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups);
+  std::map<std::string, std::pair<int, int>> named;
+  for (const auto& [dim, tag] : groups) {
+    const std::string name = PhysicalName(dim, tag);
+    if (!name.empty()) named[name] = {dim, tag};
+  }
+  return named;
+}
+
+struct RawBlock {
+  int gmsh_type;
+  std::string region;
+  std::vector<std::size_t> element_tags;
+  std::vector<std::size_t> node_tags;
+};
+
+// The volume entities to mesh and their region names.
+std::vector<std::pair<int, std::string>> VolumeRegions() {
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, 3);
+  std::vector<std::pair<int, std::string>> regions;
+  if (groups.empty()) {
+    gmsh::vectorpair volumes;
+    gmsh::model::getEntities(volumes, 3);
+    for (const auto& [dim, tag] : volumes) regions.emplace_back(tag, fmt::format("volume {}", tag));
+    return regions;
+  }
+  for (const auto& [dim, tag] : groups) {
+    std::string name = PhysicalName(dim, tag);
+    if (name.empty()) name = fmt::format("physical volume {}", tag);
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+    for (int entity : entities) regions.emplace_back(entity, name);
+  }
+  return regions;
+}
+
+std::vector<RawBlock> ReadVolumeElements() {
+  std::vector<RawBlock> blocks;
+  for (const auto& [entity, region] : VolumeRegions()) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, node_tags;
+    gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, entity);
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      if (element_tags[k].empty()) continue;
+      blocks.push_back({types[k], region, std::move(element_tags[k]), std::move(node_tags[k])});
+    }
+  }
+  return blocks;
+}
+
+Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
+               const std::vector<std::string>& node_set_names) {
+  if (raw.empty()) {
+    throw InputError(fmt::format("{}: the mesh has no volume (3-D) elements", path.string()));
+  }
+  // Supported types only.
+  for (const RawBlock& b : raw) {
+    if (!FromGmshType(b.gmsh_type)) {
+      std::vector<std::string_view> supported;
+      for (const ElementTraits& t : kElementTraits) supported.push_back(t.name);
+      throw InputError(fmt::format(
+          "{}: region '{}': element type {} (gmsh type {}) is not supported; use one of {}",
+          path.string(), b.region, GmshTypeName(b.gmsh_type), b.gmsh_type,
+          fmt::join(supported, ", ")));
+    }
+  }
+  // All node coordinates, indexed by tag.
+  std::vector<std::size_t> all_tags;
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(all_tags, coords, parametric, -1, -1, false, false);
+  const std::size_t max_tag = all_tags.empty() ? 0 : *std::max_element(all_tags.begin(), all_tags.end());
+  std::vector<std::size_t> position(max_tag + 1, SIZE_MAX);
+  for (std::size_t i = 0; i < all_tags.size(); ++i) position[all_tags[i]] = i;
+
+  // Compact numbering of the nodes used by volume elements, in tag order.
+  std::vector<int> index(max_tag + 1, -1);
+  for (const RawBlock& b : raw) {
+    for (std::size_t tag : b.node_tags) index[tag] = 0;
+  }
+  Mesh mesh;
+  for (std::size_t tag = 0; tag <= max_tag; ++tag) {
+    if (index[tag] < 0) continue;
+    index[tag] = static_cast<int>(mesh.node_ids.size());
+    mesh.node_ids.push_back(tag);
+  }
+  mesh.nodes.resize(3, static_cast<Eigen::Index>(mesh.node_ids.size()));
+  for (std::size_t i = 0; i < mesh.node_ids.size(); ++i) {
+    const std::size_t p = position[mesh.node_ids[i]];
+    FLEXMBS_CHECK(p != SIZE_MAX, "element node without coordinates");
+    mesh.nodes.col(static_cast<Eigen::Index>(i)) =
+        Eigen::Vector3d(coords[3 * p], coords[3 * p + 1], coords[3 * p + 2]);
+  }
+
+  for (RawBlock& b : raw) {
+    ElementBlock block;
+    block.type = *FromGmshType(b.gmsh_type);
+    block.region = b.region;
+    const int n = Traits(block.type).num_nodes;
+    block.connectivity.resize(n, static_cast<Eigen::Index>(b.element_tags.size()));
+    for (std::size_t k = 0; k < b.node_tags.size(); ++k) {
+      block.connectivity.data()[k] = index[b.node_tags[k]];
+    }
+    block.element_ids = std::move(b.element_tags);
+    mesh.blocks.push_back(std::move(block));
+  }
+
+  const auto groups = NamedGroups();
+  for (const std::string& name : node_set_names) {
+    const auto it = groups.find(name);
+    if (it == groups.end()) {
+      std::vector<std::string> available;
+      for (const auto& [n, g] : groups) available.push_back(n);
+      throw InputError(fmt::format("{}: node set '{}': no physical group of that name (the file has: {})",
+                                   path.string(), name,
+                                   available.empty() ? "none" : fmt::format("{}", fmt::join(available, ", "))));
+    }
+    std::vector<std::size_t> tags;
+    std::vector<double> xyz;
+    gmsh::model::mesh::getNodesForPhysicalGroup(it->second.first, it->second.second, tags, xyz);
+    std::vector<int> nodes;
+    for (std::size_t tag : tags) {
+      if (tag <= max_tag && index[tag] >= 0) nodes.push_back(index[tag]);
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    if (nodes.empty()) {
+      throw InputError(fmt::format("{}: node set '{}': the physical group has no nodes on the solid mesh",
+                                   path.string(), name));
+    }
+    mesh.node_sets[name] = std::move(nodes);
+  }
+  return mesh;
+}
+
+}  // namespace
+
+Mesh ImportMesh(const fs::path& path, const MeshingOptions& options,
+                const std::vector<std::string>& node_set_names) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    throw InputError(fmt::format("{}: no such file", path.string()));
+  }
+  if (options.element_order != 1 && options.element_order != 2) {
+    throw InputError(fmt::format("{}: element order {} must be 1 or 2", path.string(),
+                                 options.element_order));
+  }
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const bool is_mesh = extension == ".msh";
+  if (!is_mesh && extension != ".geo" && extension != ".step" && extension != ".stp") {
+    throw InputError(fmt::format("{}: unsupported geometry file type '{}' (use .geo, .step, .stp or .msh)",
+                                 path.string(), extension));
+  }
+
+  const std::lock_guard lock(GmshMutex());
+  EnsureGmshInitialized();
+  gmsh::clear();
+  CallGmsh(path, "read the file", [&] { gmsh::open(path.string()); });
+  if (!is_mesh) {
+    CallGmsh(path, "mesh the geometry", [&] {
+      // Options persist in gmsh's global state: set every one on each call.
+      gmsh::option::setNumber("Mesh.MeshSizeMax",
+                              options.mesh_size_m > 0.0 ? options.mesh_size_m : kGmshNoSizeLimit);
+      gmsh::option::setNumber("Mesh.ElementOrder", options.element_order);
+      gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
+      gmsh::model::mesh::generate(3);
+    });
+  }
+  Mesh mesh = BuildMesh(path, ReadVolumeElements(), node_set_names);
+  gmsh::clear();
+  return mesh;
+}
+
+}  // namespace flexmbs::fem
