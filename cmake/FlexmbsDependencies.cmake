@@ -16,6 +16,13 @@ target_include_directories(flexmbs_ext_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR}
 target_link_libraries(flexmbs_ext_gmsh INTERFACE ${GMSH_LIBRARY})
 add_library(ext::gmsh ALIAS flexmbs_ext_gmsh)
 
+# PETSc (and SLEPc) through pkg-config; the .pc files lack MPI, so link MPI::MPI_C too.
+find_package(MPI REQUIRED COMPONENTS C)
+pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)
+add_library(flexmbs_ext_petsc INTERFACE)
+target_link_libraries(flexmbs_ext_petsc INTERFACE PkgConfig::PETSC MPI::MPI_C)
+add_library(ext::petsc ALIAS flexmbs_ext_petsc)
+
 # Eigen's headers trigger -Wshadow and friends: include them as system headers.
 get_target_property(_eigen_inc Eigen3::Eigen INTERFACE_INCLUDE_DIRECTORIES)
 set_target_properties(Eigen3::Eigen PROPERTIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_eigen_inc}")

@@ -1,0 +1,138 @@
+#include "fem/distributed_assembly.h"
+
+#include <fmt/format.h>
+#include <petscmat.h>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "fem/assembly.h"
+
+namespace flexmbs::fem {
+namespace {
+
+void Check(PetscErrorCode code, const char* call) {
+  if (code != 0) throw InternalError(fmt::format("PETSc call {} failed with error {}", call, static_cast<int>(code)));
+}
+#define FLEXMBS_PETSC(call) Check((call), #call)
+
+// The element's DOF indices, 3 a + i.
+void ElementDofs(std::span<const int> nodes, std::vector<PetscInt>* dofs) {
+  dofs->resize(3 * nodes.size());
+  for (std::size_t a = 0; a < nodes.size(); ++a) {
+    for (int i = 0; i < 3; ++i) (*dofs)[3 * a + static_cast<std::size_t>(i)] = 3 * nodes[a] + i;
+  }
+}
+
+// Adds element matrices into PETSc matrices (values are symmetric, so storage order does not
+// matter).
+class PetscScatter final : public ElementMatrixVisitor {
+ public:
+  PetscScatter(Mat K, Mat M) : K_(K), M_(M) {}
+
+  void Visit(std::span<const int> nodes, const Eigen::MatrixXd& K_e,
+             const Eigen::MatrixXd& m_e) override {
+    ElementDofs(nodes, &dofs_);
+    const auto n = static_cast<PetscInt>(dofs_.size());
+    M_e_.setZero(n, n);
+    for (Eigen::Index a = 0; a < m_e.rows(); ++a) {
+      for (Eigen::Index b = 0; b < m_e.cols(); ++b) {
+        for (int i = 0; i < 3; ++i) M_e_(3 * a + i, 3 * b + i) = m_e(a, b);
+      }
+    }
+    FLEXMBS_PETSC(MatSetValues(K_, n, dofs_.data(), n, dofs_.data(), K_e.data(), ADD_VALUES));
+    FLEXMBS_PETSC(MatSetValues(M_, n, dofs_.data(), n, dofs_.data(), M_e_.data(), ADD_VALUES));
+  }
+
+ private:
+  Mat K_, M_;
+  std::vector<PetscInt> dofs_;
+  Eigen::MatrixXd M_e_;
+};
+
+// A PETSc AIJ matrix with block size 3 whose owned rows are the DOF of `nodes`.
+Mat CreateMatrix(Eigen::Index num_nodes, IndexRange nodes) {
+  Mat A;
+  const auto local = static_cast<PetscInt>(3 * (nodes.end - nodes.begin));
+  const auto global = static_cast<PetscInt>(3 * num_nodes);
+  FLEXMBS_PETSC(MatCreate(PETSC_COMM_WORLD, &A));
+  FLEXMBS_PETSC(MatSetSizes(A, local, local, global, global));
+  FLEXMBS_PETSC(MatSetType(A, MATAIJ));
+  FLEXMBS_PETSC(MatSetBlockSize(A, 3));
+  return A;
+}
+
+// Exact preallocation of `targets` from the element patterns of `elements`.
+void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes,
+                 std::initializer_list<Mat> targets) {
+  Mat pattern;
+  const auto local = static_cast<PetscInt>(3 * (nodes.end - nodes.begin));
+  const auto global = static_cast<PetscInt>(3 * mesh.num_nodes());
+  FLEXMBS_PETSC(MatCreate(PETSC_COMM_WORLD, &pattern));
+  FLEXMBS_PETSC(MatSetSizes(pattern, local, local, global, global));
+  FLEXMBS_PETSC(MatSetType(pattern, MATPREALLOCATOR));
+  FLEXMBS_PETSC(MatSetBlockSize(pattern, 3));
+  FLEXMBS_PETSC(MatSetUp(pattern));
+  std::vector<PetscInt> dofs;
+  std::vector<PetscScalar> zeros;
+  Eigen::Index offset = 0;
+  for (const ElementBlock& block : mesh.blocks) {
+    const Eigen::Index first = std::max<Eigen::Index>(elements.begin - offset, 0);
+    const Eigen::Index last = std::min<Eigen::Index>(elements.end - offset, block.num_elements());
+    offset += block.num_elements();
+    for (Eigen::Index e = first; e < last; ++e) {
+      const auto col = block.connectivity.col(e);
+      ElementDofs(std::span<const int>(col.data(), static_cast<std::size_t>(col.size())), &dofs);
+      zeros.assign(dofs.size() * dofs.size(), 0.0);
+      const auto n = static_cast<PetscInt>(dofs.size());
+      FLEXMBS_PETSC(MatSetValues(pattern, n, dofs.data(), n, dofs.data(), zeros.data(), INSERT_VALUES));
+    }
+  }
+  FLEXMBS_PETSC(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
+  FLEXMBS_PETSC(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
+  for (Mat target : targets) FLEXMBS_PETSC(MatPreallocatorPreallocate(pattern, PETSC_TRUE, target));
+  FLEXMBS_PETSC(MatDestroy(&pattern));
+}
+
+}  // namespace
+
+IndexRange EvenPartition(Eigen::Index count, int parts, int part) {
+  FLEXMBS_CHECK(parts > 0 && part >= 0 && part < parts, "part must be in [0, parts)");
+  const Eigen::Index base = count / parts;
+  const Eigen::Index extra = count % parts;
+  const Eigen::Index begin = part * base + std::min<Eigen::Index>(part, extra);
+  return {begin, begin + base + (part < extra ? 1 : 0)};
+}
+
+DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_kind) {
+  PetscMPIInt size = 0, rank = 0;
+  FLEXMBS_PETSC(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  FLEXMBS_PETSC(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  const IndexRange elements = EvenPartition(mesh.num_elements(), size, rank);
+  const IndexRange nodes = EvenPartition(mesh.num_nodes(), size, rank);
+
+  DistributedMatrices out{CreateMatrix(mesh.num_nodes(), nodes), CreateMatrix(mesh.num_nodes(), nodes)};
+  Preallocate(mesh, elements, nodes, {out.stiffness, out.mass});
+  PetscScatter scatter(out.stiffness, out.mass);
+  // An element error on one rank must stop every rank, or the others would wait forever in
+  // the collective assembly below.
+  std::string error;
+  try {
+    VisitElementMatrices(mesh, mass_kind, elements.begin, elements.end, scatter);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  PetscMPIInt failed_rank = error.empty() ? -1 : rank;
+  FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &failed_rank, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD));
+  if (failed_rank >= 0) {
+    for (Mat A : {out.stiffness, out.mass}) MatDestroy(&A);
+    throw InputError(error.empty() ? fmt::format("the assembly failed on rank {}", failed_rank) : error);
+  }
+  for (Mat A : {out.stiffness, out.mass}) {
+    FLEXMBS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    FLEXMBS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  return out;
+}
+
+}  // namespace flexmbs::fem
