@@ -1,11 +1,16 @@
 // `flexmbs mesh`: the FE model of a body alone.
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <string_view>
+#include <unistd.h>
 
 #include "app/commands.h"
 #include "app/matrix_market.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "fem/assembly.h"
 #include "fem/body_spec.h"
@@ -19,6 +24,75 @@ struct MeshOptions {
   bool json = false;
   std::string matrix_prefix;
 };
+
+// Progress on stderr, only when stderr is a terminal: each message replaces the previous
+// one on a single line, and the line is erased when the work ends (or fails), so that an
+// error is the only line left and redirected stderr holds nothing but errors.
+class Progress {
+ public:
+  Progress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
+  ~Progress() { Clear(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void Show(std::string_view message) {
+    if (!enabled_) return;
+    fmt::print(stderr, "\r\033[K{}", message);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  void Clear() {
+    if (!shown_) return;
+    fmt::print(stderr, "\r\033[K");
+    std::fflush(stderr);
+    shown_ = false;
+  }
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+};
+
+// Fails early, before any meshing, if PREFIX_K.mtx cannot be created in its folder.
+void CheckMatrixPrefix(const std::string& prefix) {
+  const std::filesystem::path folder = std::filesystem::path(prefix).parent_path();
+  const std::filesystem::path dir = folder.empty() ? std::filesystem::path(".") : folder;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw InputError(
+        fmt::format("--matrix-market {}: folder '{}' does not exist", prefix, dir.string()));
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw InputError(
+        fmt::format("--matrix-market {}: cannot write in folder '{}'", prefix, dir.string()));
+  }
+}
+
+// Writes K and M as PREFIX_K.mtx and PREFIX_M.mtx: both files or neither.
+void WriteMatrices(const std::string& prefix, const fem::SystemMatrices& system) {
+  const std::filesystem::path K_path = prefix + "_K.mtx", M_path = prefix + "_M.mtx";
+  const std::filesystem::path K_temporary = TemporaryPathFor(K_path);
+  const std::filesystem::path M_temporary = TemporaryPathFor(M_path);
+  auto remove = [](const std::filesystem::path& path) {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  };
+  try {
+    WriteSymmetricMatrixMarket(K_temporary, system.stiffness);
+    WriteSymmetricMatrixMarket(M_temporary, system.mass);
+    CommitTemporaryFile(K_temporary, K_path);
+  } catch (...) {
+    remove(K_temporary);
+    remove(M_temporary);
+    throw;
+  }
+  try {
+    CommitTemporaryFile(M_temporary, M_path);
+  } catch (...) {
+    remove(K_path);
+    throw;
+  }
+}
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -37,17 +111,21 @@ nlohmann::json ToJson(const Eigen::MatrixXd& m) {
 
 void RunMesh(const MeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  if (!options.matrix_prefix.empty()) CheckMatrixPrefix(options.matrix_prefix);
+  Progress progress;
   const fem::BodySpec spec = fem::LoadBodySpec(options.body_file);
-  if (!options.json) fmt::print(stderr, "meshing {} ...\n", spec.geometry_file.string());
+  progress.Show(fmt::format("meshing {} ...", spec.geometry_file.string()));
   const fem::Mesh mesh = fem::BuildBodyMesh(spec);
   const double mesh_seconds = SecondsSince(start);
-  if (!options.json) fmt::print(stderr, "assembling {} DOF ...\n", mesh.num_dofs());
+  progress.Show(fmt::format("assembling {} DOF ...", mesh.num_dofs()));
   const auto assembly_start = std::chrono::steady_clock::now();
   fem::SystemMatrices system;
   try {
     system = fem::AssembleSystem(mesh, spec.mass_matrix);
   } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", spec.geometry_file.string(), e.what()));
+    // "region 'r': tet4 element 7 with nodes [...] ...": name the body and the mesh file.
+    throw InputError(fmt::format("{}: {}: {}", spec.file.string(), spec.geometry_file.string(),
+                                 e.what()));
   }
   const double assembly_seconds = SecondsSince(assembly_start);
   const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes);
@@ -58,9 +136,11 @@ void RunMesh(const MeshOptions& options) {
   }
 
   if (!options.matrix_prefix.empty()) {
-    WriteSymmetricMatrixMarket(options.matrix_prefix + "_K.mtx", system.stiffness);
-    WriteSymmetricMatrixMarket(options.matrix_prefix + "_M.mtx", system.mass);
+    progress.Show(fmt::format("writing {}_K.mtx and {}_M.mtx ...", options.matrix_prefix,
+                              options.matrix_prefix));
+    WriteMatrices(options.matrix_prefix, system);
   }
+  progress.Clear();
 
   if (options.json) {
     nlohmann::json j;

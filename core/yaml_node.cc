@@ -1,13 +1,43 @@
 #include "core/yaml_node.h"
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.h"
 
 namespace flexmbs {
+namespace {
+
+// A map key as a string; keys that are lists or maps are an input error at `map`'s location.
+std::string KeyOf(const YAML::Node& key, const YamlNode& map) {
+  if (!key.IsScalar()) map.Fail("every key must be a plain name, not a list or a map");
+  return key.Scalar();
+}
+
+// yaml-cpp accepts a key twice and lookups see only the first: reject the second.
+void RejectDuplicateKeys(const YAML::Node& node, const YamlNode& map) {
+  std::map<std::string, YAML::Mark> seen;
+  for (const auto& entry : node) {
+    const std::string key = KeyOf(entry.first, map);
+    const auto [it, inserted] = seen.emplace(key, entry.first.Mark());
+    if (!inserted) {
+      const YAML::Mark mark = entry.first.Mark();
+      throw InputError(fmt::format("{}:{}:{}: {}: duplicate key '{}' (first at line {})",
+                                   map.file().string(), mark.line + 1, mark.column + 1,
+                                   map.item().empty() ? key : map.item() + "." + key, key,
+                                   it->second.line + 1));
+    }
+  }
+}
+
+}  // namespace
 
 YamlNode::YamlNode(std::filesystem::path file, std::string item, const YAML::Node& node)
     : file_(std::move(file)), item_(std::move(item)), node_(std::make_unique<YAML::Node>(node)) {}
@@ -25,18 +55,45 @@ YamlNode& YamlNode::operator=(const YamlNode& other) {
 }
 
 YamlNode YamlNode::LoadFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(fmt::format("{}: cannot open the file", file.string()));
-  try {
-    YAML::Node root = YAML::Load(in);
-    if (!root.IsMap()) {
-      throw InputError(fmt::format("{}: expected a map of keys at the top level", file.string()));
-    }
-    return YamlNode(file, "", root);
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", file.string(), e.mark.line + 1,
-                                 e.mark.column + 1, e.msg));
+  // Read the whole file first, so that I/O errors and YAML errors get their own messages.
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) {
+    throw InputError(fmt::format("{}: is a directory, not a YAML file", file.string()));
   }
+  std::string text;
+  {
+    errno = 0;
+    std::ifstream in(file, std::ios::binary);
+    if (!in) {
+      throw InputError(fmt::format("{}: cannot open the file: {}", file.string(),
+                                   errno != 0 ? std::strerror(errno) : "unknown error"));
+    }
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(fmt::format("{}: cannot read the file", file.string()));
+    text = std::move(buffer).str();
+  }
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    std::string message = e.msg;
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    if (e.mark.is_null()) {
+      throw InputError(fmt::format("{}: malformed YAML: {}", file.string(), message));
+    }
+    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", file.string(), e.mark.line + 1,
+                                 e.mark.column + 1, message));
+  }
+  if (!root.IsDefined() || root.IsNull()) {
+    throw InputError(fmt::format("{}: the file is empty", file.string()));
+  }
+  if (!root.IsMap()) {
+    const YAML::Mark mark = root.Mark();
+    throw InputError(fmt::format("{}:{}:{}: expected a map of keys at the top level",
+                                 file.string(), mark.line + 1, mark.column + 1));
+  }
+  return YamlNode(file, "", root);
 }
 
 std::string YamlNode::Where() const {
@@ -100,9 +157,10 @@ std::vector<std::string> YamlNode::AsStringList() const {
 
 std::vector<std::pair<std::string, YamlNode>> YamlNode::AsMap() const {
   if (!node_->IsMap()) Fail("expected a map");
+  RejectDuplicateKeys(*node_, *this);
   std::vector<std::pair<std::string, YamlNode>> out;
   for (const auto& entry : *node_) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = KeyOf(entry.first, *this);
     out.emplace_back(key, YamlNode(file_, item_.empty() ? key : item_ + "." + key, entry.second));
   }
   return out;
@@ -110,8 +168,9 @@ std::vector<std::pair<std::string, YamlNode>> YamlNode::AsMap() const {
 
 void YamlNode::RejectUnknownKeys(std::initializer_list<std::string_view> known) const {
   if (!node_->IsMap()) Fail("expected a map");
+  RejectDuplicateKeys(*node_, *this);
   for (const auto& entry : *node_) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = KeyOf(entry.first, *this);
     if (std::find(known.begin(), known.end(), key) == known.end()) {
       std::string list;
       for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);

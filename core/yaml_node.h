@@ -37,10 +37,10 @@ class YamlNode {
   std::string AsString() const;
   /// A sequence of strings (a single string counts as a one-element list).
   std::vector<std::string> AsStringList() const;
-  /// The entries of a map node, in file order.
+  /// The entries of a map node, in file order; throws InputError for a key given twice.
   std::vector<std::pair<std::string, YamlNode>> AsMap() const;
 
-  /// Throws InputError naming the first key of this map not in `known`.
+  /// Throws InputError naming the first key of this map not in `known`, or a key given twice.
   void RejectUnknownKeys(std::initializer_list<std::string_view> known) const;
   /// Throws InputError "<file>:<line>:<col>: <item>: <problem>".
   [[noreturn]] void Fail(std::string_view problem) const;

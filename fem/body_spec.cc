@@ -1,6 +1,10 @@
 #include "fem/body_spec.h"
 
+#include <algorithm>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <set>
+#include <system_error>
 
 #include "core/error.h"
 #include "core/yaml_node.h"
@@ -32,7 +36,22 @@ BodySpec LoadBodySpec(const std::filesystem::path& file) {
   const YamlNode geometry = root.Required("geometry");
   geometry.RejectUnknownKeys({"file", "mesh_size", "element_order"});
   const YamlNode geometry_file = geometry.Required("file");
-  spec.geometry_file = (file.parent_path() / geometry_file.AsString()).lexically_normal();
+  const std::string geometry_name = geometry_file.AsString();
+  if (geometry_name.empty()) geometry_file.Fail("the file name is empty");
+  spec.geometry_file = (file.parent_path() / geometry_name).lexically_normal();
+  {
+    std::error_code ec;
+    const std::string resolved =
+        spec.geometry_file == std::filesystem::path(geometry_name)
+            ? std::string()
+            : fmt::format(" (resolved to '{}')", spec.geometry_file.string());
+    if (!std::filesystem::exists(spec.geometry_file, ec)) {
+      geometry_file.Fail(fmt::format("'{}' does not exist{}", geometry_name, resolved));
+    }
+    if (std::filesystem::is_directory(spec.geometry_file, ec)) {
+      geometry_file.Fail(fmt::format("'{}' is a directory{}", geometry_name, resolved));
+    }
+  }
   if (geometry.Has("mesh_size")) {
     const YamlNode size = geometry.Required("mesh_size");
     spec.meshing.mesh_size_m = size.AsDouble();
@@ -48,12 +67,18 @@ BodySpec LoadBodySpec(const std::filesystem::path& file) {
     }
   }
 
-  for (const auto& [name, node] : root.Required("materials").AsMap()) {
+  const YamlNode materials = root.Required("materials");
+  for (const auto& [name, node] : materials.AsMap()) {
     spec.materials[name] = ReadMaterial(name, node);
   }
+  if (spec.materials.empty()) materials.Fail("define at least one material");
   auto check_material = [&](const YamlNode& node) {
     const std::string name = node.AsString();
-    if (!spec.materials.contains(name)) node.Fail(fmt::format("unknown material '{}'", name));
+    if (!spec.materials.contains(name)) {
+      std::vector<std::string> known;
+      for (const auto& [known_name, m] : spec.materials) known.push_back(known_name);
+      node.Fail(fmt::format("unknown material '{}' (defined: {})", name, fmt::join(known, ", ")));
+    }
     return name;
   };
   if (root.Has("material")) spec.default_material = check_material(root.Required("material"));
@@ -85,13 +110,22 @@ BodySpec LoadBodySpec(const std::filesystem::path& file) {
 }
 
 Mesh BuildBodyMesh(const BodySpec& spec) {
-  Mesh mesh = ImportMesh(spec.geometry_file, spec.meshing, spec.node_sets);
+  Mesh mesh;
+  try {
+    mesh = ImportMesh(spec.geometry_file, spec.meshing, spec.node_sets);
+  } catch (const InputError& e) {
+    // "<geometry>: <problem>" from the import; say which body file asked for it.
+    throw InputError(fmt::format("{}: {}", spec.file.string(), e.what()));
+  }
   for (const auto& [region, material] : spec.region_materials) {
     const bool found = std::any_of(mesh.blocks.begin(), mesh.blocks.end(),
                                    [&](const ElementBlock& b) { return b.region == region; });
     if (!found) {
-      throw InputError(fmt::format("{}: regions: '{}' is not a physical volume of {}",
-                                   spec.file.string(), region, spec.geometry_file.string()));
+      std::set<std::string> available;
+      for (const ElementBlock& b : mesh.blocks) available.insert(b.region);
+      throw InputError(fmt::format("{}: regions: '{}' is not a physical volume of {} (it has: {})",
+                                   spec.file.string(), region, spec.geometry_file.string(),
+                                   fmt::join(available, ", ")));
     }
   }
   for (ElementBlock& block : mesh.blocks) {

@@ -40,12 +40,13 @@ struct BodySpec {
 };
 
 /// Reads and validates a body file. Throws InputError "<file>: <item>: <problem>" for an
-/// unreadable file, malformed YAML (with line and column), a missing or mistyped key, an
-/// unknown material, or invalid material constants.
+/// unreadable file, malformed YAML (with line and column), a missing, unknown or mistyped
+/// key, a geometry file that does not exist, an unknown material, or invalid material
+/// constants.
 BodySpec LoadBodySpec(const std::filesystem::path& file);
 
 /// Meshes the body's geometry and assigns each region its material. Throws InputError for a
-/// region without a material, or any import error.
+/// region without a material, or any import error ("<body file>: <geometry file>: ...").
 Mesh BuildBodyMesh(const BodySpec& spec);
 
 }  // namespace flexmbs::fem

@@ -1,11 +1,17 @@
 #include "fem/gmsh_import.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <gmsh.h>
+#include <iostream>
 #include <map>
 #include <mutex>
+#include <unistd.h>
 
 #include "core/error.h"
 
@@ -16,6 +22,40 @@ namespace fs = std::filesystem;
 
 constexpr double kGmshNoSizeLimit = 1e22;  // gmsh's default Mesh.MeshSizeMax
 
+// While alive, the process's stdout and stderr (file descriptors 1 and 2) go to /dev/null.
+// gmsh itself is quiet with General.Terminal = 0, but OpenCASCADE's STEP reader prints its
+// parse errors straight to stdout; flexmbs reports gmsh's errors itself, as one line.
+class SilenceStdStreams {
+ public:
+  SilenceStdStreams() {
+    std::fflush(nullptr);
+    std::cout.flush();
+    std::cerr.flush();
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null < 0) return;
+    for (int i = 0; i < 2; ++i) {
+      saved_[i] = ::dup(i + 1);
+      if (saved_[i] >= 0) ::dup2(null, i + 1);
+    }
+    ::close(null);
+  }
+  ~SilenceStdStreams() {
+    std::fflush(nullptr);
+    std::cout.flush();
+    std::cerr.flush();
+    for (int i = 0; i < 2; ++i) {
+      if (saved_[i] < 0) continue;
+      ::dup2(saved_[i], i + 1);
+      ::close(saved_[i]);
+    }
+  }
+  SilenceStdStreams(const SilenceStdStreams&) = delete;
+  SilenceStdStreams& operator=(const SilenceStdStreams&) = delete;
+
+ private:
+  int saved_[2] = {-1, -1};
+};
+
 // gmsh is one global state: initialise it once per process, quietly, without reading the
 // command line (it would exit on options it does not know).
 std::mutex& GmshMutex() {
@@ -25,33 +65,66 @@ std::mutex& GmshMutex() {
 
 void EnsureGmshInitialized() {
   static const bool initialized = [] {
+    const SilenceStdStreams silence;
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
+    // gmsh 4.8's API default (2) throws std::string out of the .geo parser on the first
+    // error and leaves gmsh locked: every later gmsh::open in the process is then ignored
+    // ("I'm busy! Ask me that later..."). With 0 gmsh only logs errors, and CallGmsh reads
+    // them from the logger.
+    gmsh::option::setNumber("General.AbortOnError", 0);
     return true;
   }();
   (void)initialized;
 }
 
-// Runs a gmsh call, turning gmsh's errors (thrown as strings or logged) into an InputError.
+// Runs a gmsh call, turning gmsh's errors (logged, or thrown as strings) into one InputError
+// "<path>: gmsh could not <action>: <first error> (and N more errors)".
 template <typename F>
 void CallGmsh(const fs::path& path, std::string_view action, F&& f) {
-  std::string message;
-  try {
+  std::vector<std::string> errors;
+  bool locked = false;
+  {
+    const SilenceStdStreams silence;
     gmsh::logger::start();
-    f();
-    gmsh::logger::getLastError(message);
-  } catch (const std::string& error) {
-    message = error;
-  } catch (const std::exception& error) {
-    message = error.what();
-  } catch (...) {
-    message = "unknown gmsh error";
+    try {
+      f();
+    } catch (const std::string& error) {
+      errors.push_back(error);
+    } catch (const std::exception& error) {
+      errors.push_back(error.what());
+    } catch (...) {
+      errors.push_back("unknown gmsh error");
+    }
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    gmsh::logger::stop();
+    constexpr std::string_view kError = "Error: ";
+    std::vector<std::string> logged;
+    for (const std::string& line : log) {
+      if (line.starts_with(kError)) logged.push_back(line.substr(kError.size()));
+      if (line.find("I'm busy!") != std::string::npos) locked = true;
+    }
+    // The logged errors come first: a thrown one repeats the last of them.
+    if (!logged.empty()) errors.insert(errors.begin(), logged.begin(), logged.end());
+    if (errors.size() > 1 && errors.back() == errors[errors.size() - 2]) errors.pop_back();
   }
-  gmsh::logger::stop();
-  if (!message.empty()) {
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    throw InputError(fmt::format("{}: gmsh could not {}: {}", path.string(), action, message));
+  if (locked) {
+    throw InternalError(fmt::format("{}: gmsh refused to {}: it is locked by an earlier error",
+                                    path.string(), action));
   }
+  if (errors.empty()) return;
+  std::string message = errors.front();
+  // "'<path>', line 3: syntax error (1)": the path is already at the front of the message.
+  const std::string quoted_path = fmt::format("'{}', ", path.string());
+  if (message.starts_with(quoted_path)) message.erase(0, quoted_path.size());
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::replace(message.begin(), message.end(), '\r', ' ');
+  if (errors.size() > 1) {
+    message += fmt::format(" (and {} more error{})", errors.size() - 1,
+                           errors.size() > 2 ? "s" : "");
+  }
+  throw InputError(fmt::format("{}: gmsh could not {}: {}", path.string(), action, message));
 }
 
 std::string PhysicalName(int dim, int tag) {
@@ -114,10 +187,29 @@ std::vector<RawBlock> ReadVolumeElements() {
   return blocks;
 }
 
+// Why a model has no volume elements, for the message: "the mesh has no elements" or "the
+// mesh is 2-D (24 surface elements, no volume elements)".
+std::string DescribeMeshWithoutVolumes() {
+  constexpr std::string_view kKinds[] = {"point", "line", "surface"};
+  for (int dim = 2; dim >= 0; --dim) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, node_tags;
+    gmsh::model::mesh::getElements(types, element_tags, node_tags, dim, -1);
+    std::size_t count = 0;
+    for (const auto& tags : element_tags) count += tags.size();
+    if (count > 0) {
+      return fmt::format("the mesh is {}-D ({} {} element{}, no volume elements)", dim, count,
+                         kKinds[dim], count == 1 ? "" : "s");
+    }
+  }
+  return "the mesh has no elements";
+}
+
 Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
                const std::vector<std::string>& node_set_names) {
   if (raw.empty()) {
-    throw InputError(fmt::format("{}: the mesh has no volume (3-D) elements", path.string()));
+    throw InputError(fmt::format("{}: {}; flexmbs needs a solid (3-D) mesh", path.string(),
+                                 DescribeMeshWithoutVolumes()));
   }
   // Supported types only.
   for (const RawBlock& b : raw) {
@@ -125,9 +217,10 @@ Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
       std::vector<std::string_view> supported;
       for (const ElementTraits& t : kElementTraits) supported.push_back(t.name);
       throw InputError(fmt::format(
-          "{}: region '{}': element type {} (gmsh type {}) is not supported; use one of {}",
-          path.string(), b.region, GmshTypeName(b.gmsh_type), b.gmsh_type,
-          fmt::join(supported, ", ")));
+          "{}: region '{}': element {} is a {} (gmsh type {}), which flexmbs does not support "
+          "(supported: {})",
+          path.string(), b.region, b.element_tags.front(), GmshTypeName(b.gmsh_type),
+          b.gmsh_type, fmt::join(supported, ", ")));
     }
   }
   // All node coordinates, indexed by tag.
@@ -141,7 +234,16 @@ Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
   // Compact numbering of the nodes used by volume elements, in tag order.
   std::vector<int> index(max_tag + 1, -1);
   for (const RawBlock& b : raw) {
-    for (std::size_t tag : b.node_tags) index[tag] = 0;
+    const auto n = static_cast<std::size_t>(Traits(*FromGmshType(b.gmsh_type)).num_nodes);
+    for (std::size_t k = 0; k < b.node_tags.size(); ++k) {
+      const std::size_t tag = b.node_tags[k];
+      if (tag > max_tag || position[tag] == SIZE_MAX) {
+        throw InputError(
+            fmt::format("{}: region '{}': element {} uses node {}, which has no coordinates",
+                        path.string(), b.region, b.element_tags[k / n], tag));
+      }
+      index[tag] = 0;
+    }
   }
   Mesh mesh;
   for (std::size_t tag = 0; tag <= max_tag; ++tag) {
@@ -202,9 +304,17 @@ Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
 
 Mesh ImportMesh(const fs::path& path, const MeshingOptions& options,
                 const std::vector<std::string>& node_set_names) {
+  // gmsh 4.8 silently opens nothing for a missing or unreadable .geo: check first.
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    throw InputError(fmt::format("{}: no such file", path.string()));
+  if (fs::is_directory(path, ec)) {
+    throw InputError(fmt::format("{}: is a directory, not a geometry or mesh file", path.string()));
+  }
+  if (!fs::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path.string()));
+  if (std::FILE* file = std::fopen(path.c_str(), "rb")) {
+    std::fclose(file);
+  } else {
+    throw InputError(
+        fmt::format("{}: cannot open the file: {}", path.string(), std::strerror(errno)));
   }
   if (options.element_order != 1 && options.element_order != 2) {
     throw InputError(fmt::format("{}: element order {} must be 1 or 2", path.string(),
@@ -221,6 +331,15 @@ Mesh ImportMesh(const fs::path& path, const MeshingOptions& options,
 
   const std::lock_guard lock(GmshMutex());
   EnsureGmshInitialized();
+  // Leave gmsh empty however this ends: the model can be large.
+  struct ClearGmsh {
+    ~ClearGmsh() {
+      try {
+        gmsh::clear();
+      } catch (...) {  // nothing left to report: the import already succeeded or failed
+      }
+    }
+  } clear_on_exit;
   gmsh::clear();
   CallGmsh(path, "read the file", [&] { gmsh::open(path.string()); });
   if (!is_mesh) {
@@ -233,9 +352,7 @@ Mesh ImportMesh(const fs::path& path, const MeshingOptions& options,
       gmsh::model::mesh::generate(3);
     });
   }
-  Mesh mesh = BuildMesh(path, ReadVolumeElements(), node_set_names);
-  gmsh::clear();
-  return mesh;
+  return BuildMesh(path, ReadVolumeElements(), node_set_names);
 }
 
 }  // namespace flexmbs::fem
