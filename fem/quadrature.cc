@@ -53,6 +53,13 @@ QuadratureRule Tet(int degree) {
     TetOrbit4(0.5854101966249685, 1.0 / 24.0, &pts);
     return FromPoints(pts, 2);
   }
+  if (degree == 3) {
+    // Witherden & Vincent (2015) 8-point rule, degree 3, positive weights (their [-1, 1]
+    // tetrahedron mapped to the unit one: points (x + 1) / 2, weights / 8).
+    TetOrbit4(0.01551009245085493963, 0.18162379004944980942 / 8.0, &pts);
+    TetOrbit4(0.67585825030471418765, 0.15170954328388352391 / 8.0, &pts);
+    return FromPoints(pts, 3);
+  }
   // Walkington's 14-point rule, degree 5, positive weights.
   TetOrbit4(0.7217942490673264, 0.01224884051939366, &pts);
   TetOrbit4(0.06734224221009817, 0.01878132095300264, &pts);
@@ -108,7 +115,8 @@ QuadratureRule Hex(int gauss_points) {
 QuadratureRule Rule(ElementType type, bool for_mass) {
   switch (type) {
     case ElementType::kTet4: return Tet(for_mass ? 2 : 1);
-    case ElementType::kTet10: return Tet(for_mass ? 5 : 2);
+    case ElementType::kTet10:  // degree 3 for stiffness: see StiffnessRule in quadrature.h
+      return Tet(for_mass ? 5 : 3);
     case ElementType::kHex8: return Hex(2);
     case ElementType::kHex20: return Hex(3);
     case ElementType::kWedge6: return Wedge(2, 2);

@@ -14,8 +14,11 @@ struct QuadratureRule {
 };
 
 /// The rule used for the stiffness matrix of `type`: exact for B^T D B on an affine
-/// (tetrahedra, wedges in-plane) or parallelepiped (hexahedra) element.
-///   tet4: 1 point (degree 1); tet10: 4 points (degree 2);
+/// (tetrahedra, wedges in-plane) or parallelepiped (hexahedra) element, and exact for det J of
+/// any isoparametric (also curved) element, which is what makes every type pass the
+/// constant-strain patch test on distorted and curved meshes (the quadrature volume must not
+/// depend on interior node positions). Hence degree 3, not 2, for tet10 (det J is cubic).
+///   tet4: 1 point (degree 1); tet10: 8 points (degree 3, Witherden & Vincent 2015);
 ///   hex8: 2x2x2 Gauss; hex20: 3x3x3 Gauss;
 ///   wedge6: 3-point triangle (degree 2) x 2-point Gauss; wedge15: 6-point triangle (degree 4)
 ///   x 3-point Gauss.
