@@ -62,9 +62,8 @@ Mat CreateMatrix(Eigen::Index num_nodes, IndexRange nodes) {
   return A;
 }
 
-// Exact preallocation of `targets` from the element patterns of `elements`.
-void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes,
-                 std::initializer_list<Mat> targets) {
+// Exact preallocation of `target` from the element patterns of `elements`.
+void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes, Mat target) {
   Mat pattern;
   const auto local = static_cast<PetscInt>(3 * (nodes.end - nodes.begin));
   const auto global = static_cast<PetscInt>(3 * mesh.num_nodes());
@@ -90,7 +89,7 @@ void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes,
   }
   FLEXMBS_PETSC(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
   FLEXMBS_PETSC(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
-  for (Mat target : targets) FLEXMBS_PETSC(MatPreallocatorPreallocate(pattern, PETSC_TRUE, target));
+  FLEXMBS_PETSC(MatPreallocatorPreallocate(pattern, PETSC_TRUE, target));
   FLEXMBS_PETSC(MatDestroy(&pattern));
 }
 
@@ -111,8 +110,11 @@ DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_ki
   const IndexRange elements = EvenPartition(mesh.num_elements(), size, rank);
   const IndexRange nodes = EvenPartition(mesh.num_nodes(), size, rank);
 
-  DistributedMatrices out{CreateMatrix(mesh.num_nodes(), nodes), CreateMatrix(mesh.num_nodes(), nodes)};
-  Preallocate(mesh, elements, nodes, {out.stiffness, out.mass});
+  // K and M share one pattern: preallocate K (a preallocator serves once), then copy its
+  // structure for M.
+  DistributedMatrices out{CreateMatrix(mesh.num_nodes(), nodes), nullptr};
+  Preallocate(mesh, elements, nodes, out.stiffness);
+  FLEXMBS_PETSC(MatDuplicate(out.stiffness, MAT_DO_NOT_COPY_VALUES, &out.mass));
   PetscScatter scatter(out.stiffness, out.mass);
   // An element error on one rank must stop every rank, or the others would wait forever in
   // the collective assembly below.
