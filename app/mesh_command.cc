@@ -119,14 +119,7 @@ void RunMesh(const MeshOptions& options) {
   const double mesh_seconds = SecondsSince(start);
   progress.Show(fmt::format("assembling {} DOF ...", mesh.num_dofs()));
   const auto assembly_start = std::chrono::steady_clock::now();
-  fem::SystemMatrices system;
-  try {
-    system = fem::AssembleSystem(mesh, spec.mass_matrix);
-  } catch (const InputError& e) {
-    // "region 'r': tet4 element 7 with nodes [...] ...": name the body and the mesh file.
-    throw InputError(fmt::format("{}: {}: {}", spec.file.string(), spec.geometry_file.string(),
-                                 e.what()));
-  }
+  const fem::SystemMatrices system = fem::AssembleBodySystem(spec, mesh);
   const double assembly_seconds = SecondsSince(assembly_start);
   const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes);
 

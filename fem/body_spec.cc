@@ -140,4 +140,12 @@ Mesh BuildBodyMesh(const BodySpec& spec) {
   return mesh;
 }
 
+SystemMatrices AssembleBodySystem(const BodySpec& spec, const Mesh& mesh) {
+  try {
+    return AssembleSystem(mesh, spec.mass_matrix);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}: {}", spec.file.string(), spec.geometry_file.string(), e.what()));
+  }
+}
+
 }  // namespace flexmbs::fem

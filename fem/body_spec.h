@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/assembly.h"
 #include "fem/element_integrator.h"
 #include "fem/gmsh_import.h"
 #include "fem/material.h"
@@ -48,5 +49,9 @@ BodySpec LoadBodySpec(const std::filesystem::path& file);
 /// Meshes the body's geometry and assigns each region its material. Throws InputError for a
 /// region without a material, or any import error ("<body file>: <geometry file>: ...").
 Mesh BuildBodyMesh(const BodySpec& spec);
+
+/// Assembles K and M of the body's mesh with the body's mass matrix kind. An element error
+/// names the body file and the mesh file: "<body>: <mesh>: region 'r': tet10 element 7 ...".
+SystemMatrices AssembleBodySystem(const BodySpec& spec, const Mesh& mesh);
 
 }  // namespace flexmbs::fem
