@@ -8,8 +8,8 @@
 
 namespace flexmbs::fem {
 
-ElementIntegrator::Tabulation ElementIntegrator::Tabulate(ElementType type, bool for_mass) {
-  const QuadratureRule& rule = for_mass ? MassRule(type) : StiffnessRule(type);
+ElementIntegrator::Tabulation ElementIntegrator::Tabulate(ElementType type,
+                                                         const QuadratureRule& rule) {
   const ReferenceElement& ref = ReferenceElement::Of(type);
   Tabulation tab;
   tab.weights = rule.weights;
@@ -24,24 +24,38 @@ ElementIntegrator::Tabulation ElementIntegrator::Tabulate(ElementType type, bool
 ElementIntegrator::ElementIntegrator(ElementType type)
     : type_(type),
       num_nodes_(Traits(type).num_nodes),
-      stiffness_tab_(Tabulate(type, false)),
-      mass_tab_(Tabulate(type, true)),
+      stiffness_tab_(Tabulate(type, StiffnessRule(type))),
+      affine_stiffness_tab_(Tabulate(type, AffineStiffnessRule(type))),
+      mass_tab_(Tabulate(type, MassRule(type))),
       grad_(3, Traits(type).num_nodes) {}
+
+bool ElementIntegrator::IsAffineTet10(const Eigen::Matrix3Xd& X) const {
+  if (type_ != ElementType::kTet10) return false;
+  // Mid-edge node m of edge (a, b), gmsh order; "at the midpoint" to round-off of the edge.
+  constexpr int kEdges[6][3] = {{4, 0, 1}, {5, 1, 2}, {6, 0, 2}, {7, 0, 3}, {8, 2, 3}, {9, 1, 3}};
+  constexpr double kRelativeTolerance = 1e-12;
+  for (const auto& [m, a, b] : kEdges) {
+    const Eigen::Vector3d offset = X.col(m) - 0.5 * (X.col(a) + X.col(b));
+    if (offset.norm() > kRelativeTolerance * (X.col(b) - X.col(a)).norm()) return false;
+  }
+  return true;
+}
 
 double ElementIntegrator::Stiffness(const Eigen::Matrix3Xd& X, const IsotropicMaterial& material,
                                     Eigen::MatrixXd* K_e) {
+  const Tabulation& tab = IsAffineTet10(X) ? affine_stiffness_tab_ : stiffness_tab_;
   const int n = num_nodes_;
   const double lambda = material.LameLambdaPa();
   const double mu = material.ShearModulusPa();
   K_e->setZero(3 * n, 3 * n);
   double min_det = std::numeric_limits<double>::infinity();
-  for (std::size_t q = 0; q < stiffness_tab_.N.size(); ++q) {
-    const Eigen::Matrix3Xd& dN = stiffness_tab_.dN[q];
+  for (std::size_t q = 0; q < tab.N.size(); ++q) {
+    const Eigen::Matrix3Xd& dN = tab.dN[q];
     const Eigen::Matrix3d J = dN * X.transpose();  // J(i, j) = dx_j / dxi_i
     const double det = J.determinant();
     min_det = std::min(min_det, det);
     grad_.noalias() = J.inverse() * dN;  // grad_(j, a) = dN_a / dx_j
-    const double w = stiffness_tab_.weights(static_cast<Eigen::Index>(q)) * det;
+    const double w = tab.weights(static_cast<Eigen::Index>(q)) * det;
     // K_ab(i, j) = lambda g_ai g_bj + mu g_aj g_bi + mu delta_ij g_a . g_b  (B^T D B, isotropic)
     for (int b = 0; b < n; ++b) {
       const Eigen::Vector3d gb = grad_.col(b);

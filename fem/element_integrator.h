@@ -8,6 +8,8 @@
 
 namespace flexmbs::fem {
 
+struct QuadratureRule;
+
 /// How the element mass matrix is formed.
 enum class MassMatrixKind {
   kConsistent,  ///< M_ab = int rho N_a N_b dV
@@ -47,11 +49,14 @@ class ElementIntegrator {
     std::vector<Eigen::VectorXd> N;
     std::vector<Eigen::Matrix3Xd> dN;  ///< reference gradients
   };
-  static Tabulation Tabulate(ElementType type, bool for_mass);
+  static Tabulation Tabulate(ElementType type, const QuadratureRule& rule);
+  /// True for a tet10 whose mid-edge nodes sit at their edge midpoints (an affine element).
+  bool IsAffineTet10(const Eigen::Matrix3Xd& X) const;
 
   ElementType type_;
   int num_nodes_;
   Tabulation stiffness_tab_;
+  Tabulation affine_stiffness_tab_;  ///< the cheaper exact rule for affine tet10
   Tabulation mass_tab_;
   Eigen::Matrix3Xd grad_;  ///< scratch: physical gradients at one point
 };

@@ -166,6 +166,11 @@ QuadratureRule GaussLine(int n) {
 }
 
 const QuadratureRule& StiffnessRule(ElementType type) { return CachedRule<false>(type); }
+
+const QuadratureRule& AffineStiffnessRule(ElementType type) {
+  static const QuadratureRule kAffineTet10 = Tet(2);
+  return type == ElementType::kTet10 ? kAffineTet10 : StiffnessRule(type);
+}
 const QuadratureRule& MassRule(ElementType type) { return CachedRule<true>(type); }
 
 }  // namespace flexmbs::fem

@@ -24,6 +24,12 @@ struct QuadratureRule {
 ///   x 3-point Gauss.
 const QuadratureRule& StiffnessRule(ElementType type);
 
+/// The stiffness rule for an element of `type` whose edges are straight with mid-edge nodes at
+/// their midpoints (an affine tet10): there det J is constant and B^T D B of degree 2, so the
+/// 4-point degree-2 rule is exact and half the cost of StiffnessRule. Equal to StiffnessRule
+/// for every other type.
+const QuadratureRule& AffineStiffnessRule(ElementType type);
+
 /// The rule used for the consistent mass matrix (and for volume integrals) of `type`: exact
 /// for N_a N_b on undistorted elements.
 ///   tet4: 4 points (degree 2); tet10: 14 points (degree 5, Walkington);
