@@ -1,6 +1,7 @@
 // Body files: every bad input is an InputError whose message is one line naming the file,
 // the item and the value.
 #include "fem/body_spec.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -263,43 +264,8 @@ TEST_F(BodySpecTest, UnknownMassMatrixKindIsAnError) {
 
 // --- meshing a body: errors of the mesh name the body file too ---
 
-// Two tetrahedra in MSH 4.1 on physical volume "solid" with a physical surface "base".
-constexpr char kTwoTets[] = R"($MeshFormat
-4.1 0 8
-$EndMeshFormat
-$PhysicalNames
-2
-2 1 "base"
-3 2 "solid"
-$EndPhysicalNames
-$Entities
-0 0 1 1
-1 0 0 0 1 1 0 1 1 0
-1 0 0 -1 1 1 1 1 2 0
-$EndEntities
-$Nodes
-1 5 1 5
-3 1 0 5
-1
-2
-3
-4
-5
-0 0 0
-1 0 0
-0 1 0
-0 0 1
-0 0 -1
-$EndNodes
-$Elements
-2 3 1 3
-2 1 2 1
-1 1 2 3
-3 1 4 2
-2 1 2 3 4
-3 1 3 2 5
-$EndElements
-)";
+// Two tetrahedra on physical volume "solid" with a physical surface "base".
+const std::string kTwoTets = testing::ReadTestData("two_tets.msh");
 
 constexpr char kTwoTetsBody[] = R"(geometry: {file: two_tets.msh}
 materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}

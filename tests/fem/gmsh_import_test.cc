@@ -1,6 +1,7 @@
 // Mesh import: hand-written meshes and geometries, good and bad. Every bad one is an
 // InputError whose message is one line naming the file and what is wrong with it.
 #include "fem/gmsh_import.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -19,46 +20,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Two tetrahedra sharing the face 1-2-3 (z = 0) in MSH 4.1, in physical volume "solid", with
-// the triangle 1-2-3 in physical surface "base". Element 2 (nodes 1 2 3 4) lies above the
-// face, element 3 below it. kTwoTets lists element 3 as 1 3 2 5: positive orientation.
-// kInvertedTet lists it as 1 2 3 5: the same tetrahedron turned inside out, det J = -1.
-constexpr char kTwoTetsHead[] = R"($MeshFormat
-4.1 0 8
-$EndMeshFormat
-$PhysicalNames
-2
-2 1 "base"
-3 2 "solid"
-$EndPhysicalNames
-$Entities
-0 0 1 1
-1 0 0 0 1 1 0 1 1 0
-1 0 0 -1 1 1 1 1 2 0
-$EndEntities
-$Nodes
-1 5 1 5
-3 1 0 5
-1
-2
-3
-4
-5
-0 0 0
-1 0 0
-0 1 0
-0 0 1
-0 0 -1
-$EndNodes
-$Elements
-2 3 1 3
-2 1 2 1
-1 1 2 3
-3 1 4 2
-2 1 2 3 4
-)";
-const std::string kTwoTets = std::string(kTwoTetsHead) + "3 1 3 2 5\n$EndElements\n";
-const std::string kInvertedTet = std::string(kTwoTetsHead) + "3 1 2 3 5\n$EndElements\n";
+// tests/data/two_tets.msh: two tetrahedra sharing the face 1-2-3 (z = 0) in MSH 4.1, in
+// physical volume "solid", with the triangle 1-2-3 in physical surface "base"; element 3 is
+// listed 1 3 2 5 (positive orientation). tests/data/inverted_tet.msh lists it 1 2 3 5: the
+// same tetrahedron turned inside out, det J = -1.
+const std::string kTwoTets = testing::ReadTestData("two_tets.msh");
+const std::string kInvertedTet = testing::ReadTestData("inverted_tet.msh");
 
 // One pyramid (gmsh type 7) in MSH 2.2, physical volume 1 "solid".
 constexpr char kPyramid[] = R"($MeshFormat
