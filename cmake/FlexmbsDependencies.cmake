@@ -33,3 +33,34 @@ endif()
 if(FLEXMBS_BUILD_BENCH)
   find_package(benchmark QUIET)
 endif()
+
+# CHOLMOD (SuiteSparse): no CMake config and no .pc on Debian; header (under suitesparse/)
+# and library by hand. Sources include <cholmod.h>.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+find_library(SUITESPARSECONFIG_LIBRARY suitesparseconfig REQUIRED)
+add_library(ext::cholmod INTERFACE IMPORTED)
+target_include_directories(ext::cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DIR})
+target_link_libraries(ext::cholmod INTERFACE ${CHOLMOD_LIBRARY} ${SUITESPARSECONFIG_LIBRARY})
+
+# Spectra (header-only): Debian ships a CMake config; fall back to the header by hand.
+find_package(Spectra 1.0 QUIET CONFIG)
+if(TARGET Spectra::Spectra)
+  get_target_property(_spectra_inc Spectra::Spectra INTERFACE_INCLUDE_DIRECTORIES)
+  if(_spectra_inc)
+    set_target_properties(Spectra::Spectra PROPERTIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_spectra_inc}")
+  endif()
+else()
+  find_path(SPECTRA_INCLUDE_DIR Spectra/SymGEigsShiftSolver.h REQUIRED)
+  add_library(Spectra::Spectra INTERFACE IMPORTED)
+  target_include_directories(Spectra::Spectra SYSTEM INTERFACE ${SPECTRA_INCLUDE_DIR})
+  target_link_libraries(Spectra::Spectra INTERFACE Eigen3::Eigen)
+endif()
+
+# HDF5: the Open MPI build through pkg-config, the one PETSc already links (see STACK.md);
+# CMake's FindHDF5 would mix the serial and parallel libraries. The .pc also gives Open MPI's
+# include directories, which <hdf5.h> needs for <mpi.h>. Include directories of an imported
+# target are SYSTEM for its consumers, so -Werror builds stay clean.
+pkg_check_modules(FLEXMBS_HDF5 REQUIRED IMPORTED_TARGET hdf5-openmpi)
+add_library(ext::hdf5 INTERFACE IMPORTED)
+target_link_libraries(ext::hdf5 INTERFACE PkgConfig::FLEXMBS_HDF5)
