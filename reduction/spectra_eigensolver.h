@@ -1,0 +1,16 @@
+#pragma once
+
+#include <memory>
+
+#include "reduction/eigensolver.h"
+
+namespace flexmbs::reduction {
+
+/// The serial backend "spectra": implicitly restarted Lanczos (Spectra 1.0) in shift-invert
+/// mode, (K - sigma M)^{-1} M, M inner product, with a CHOLMOD factorisation of K - sigma M
+/// (supernodal Cholesky when positive definite, else simplicial LDL^T). Missed modes are found
+/// again by a deflated Lanczos run after a Sturm count; every pair is then Rayleigh-Ritz
+/// refined and checked. Problems too small for Lanczos (nev >= DOF - 1) are solved densely.
+std::unique_ptr<Eigensolver> MakeSpectraEigensolver();
+
+}  // namespace flexmbs::reduction
