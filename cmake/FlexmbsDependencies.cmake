@@ -21,7 +21,13 @@ find_package(MPI REQUIRED COMPONENTS C)
 pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)
 add_library(flexmbs_ext_petsc INTERFACE)
 target_link_libraries(flexmbs_ext_petsc INTERFACE PkgConfig::PETSC MPI::MPI_C)
+# <mpi.h> in C++ would pull in the deprecated MPI C++ bindings (libmpi_cxx): only C is used.
+target_compile_definitions(flexmbs_ext_petsc INTERFACE OMPI_SKIP_MPICXX=1 MPICH_SKIP_MPICXX=1)
 add_library(ext::petsc ALIAS flexmbs_ext_petsc)
+pkg_check_modules(SLEPC REQUIRED IMPORTED_TARGET SLEPc)
+add_library(flexmbs_ext_slepc INTERFACE)
+target_link_libraries(flexmbs_ext_slepc INTERFACE PkgConfig::SLEPC flexmbs_ext_petsc)
+add_library(ext::slepc ALIAS flexmbs_ext_slepc)
 
 # Eigen's headers trigger -Wshadow and friends: include them as system headers.
 get_target_property(_eigen_inc Eigen3::Eigen INTERFACE_INCLUDE_DIRECTORIES)

@@ -127,7 +127,7 @@ DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_ki
   PetscMPIInt failed_rank = error.empty() ? -1 : rank;
   FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &failed_rank, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD));
   if (failed_rank >= 0) {
-    for (Mat A : {out.stiffness, out.mass}) MatDestroy(&A);
+    DestroyDistributed(&out);
     throw InputError(error.empty() ? fmt::format("the assembly failed on rank {}", failed_rank) : error);
   }
   for (Mat A : {out.stiffness, out.mass}) {
@@ -135,6 +135,11 @@ DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_ki
     FLEXMBS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
   return out;
+}
+
+void DestroyDistributed(DistributedMatrices* matrices) {
+  MatDestroy(&matrices->stiffness);
+  MatDestroy(&matrices->mass);
 }
 
 }  // namespace flexmbs::fem

@@ -22,7 +22,7 @@ struct IndexRange {
 IndexRange EvenPartition(Eigen::Index count, int parts, int part);
 
 /// K and M as row-distributed PETSc AIJ matrices on PETSC_COMM_WORLD (block size 3). The
-/// caller owns them (MatDestroy).
+/// caller owns them: DestroyDistributed (collective) before PETSc is finalised.
 struct DistributedMatrices {
   _p_Mat* stiffness = nullptr;  ///< K [N/m]
   _p_Mat* mass = nullptr;       ///< M [kg]
@@ -36,5 +36,8 @@ struct DistributedMatrices {
 /// AssembleSystem's to round-off, on any number of ranks. Throws InputError for an element
 /// with a non-positive Jacobian, InternalError for a PETSc failure.
 DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_kind);
+
+/// Collective: destroys both matrices and sets the pointers to null.
+void DestroyDistributed(DistributedMatrices* matrices);
 
 }  // namespace flexmbs::fem

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "reduction/slepc_solver.h"
 #include "reduction/spectra_eigensolver.h"
 
 namespace flexmbs::reduction {
@@ -19,6 +20,7 @@ namespace {
 const std::vector<std::pair<std::string, std::function<std::unique_ptr<Eigensolver>()>>>& Backends() {
   static const std::vector<std::pair<std::string, std::function<std::unique_ptr<Eigensolver>()>>> backends = {
       {"spectra", &MakeSpectraEigensolver},
+      {"slepc", &MakeSlepcEigensolver},
   };
   return backends;
 }
@@ -114,6 +116,23 @@ void ValidateEigenInputs(const Eigen::SparseMatrix<double>& K, const Eigen::Spar
   }
 }
 
+PairResiduals ResidualsFromSums(const ResidualSums& sums, const Eigen::VectorXd& eigenvalues,
+                                double sigma, double zero_eigenvalue) {
+  FLEXMBS_CHECK(sums.cols() == eigenvalues.size(), "ResidualsFromSums: one column per eigenvalue");
+  PairResiduals result{Eigen::VectorXd(eigenvalues.size()), Eigen::VectorXd(eigenvalues.size())};
+  for (Eigen::Index j = 0; j < eigenvalues.size(); ++j) {
+    const double lambda = eigenvalues(j);
+    const double k_norm = std::sqrt(sums(0, j));
+    const double m_norm = std::sqrt(sums(1, j));
+    const double rigid_scale = std::abs(lambda) <= zero_eigenvalue ? std::abs(sigma) * m_norm : 0.0;
+    const double scale = std::max({k_norm, std::abs(lambda) * m_norm, rigid_scale,
+                                   std::numeric_limits<double>::min()});
+    result.relative(j) = std::sqrt(sums(2, j)) / scale;
+    result.floor(j) = std::numeric_limits<double>::epsilon() * std::sqrt(sums(3, j)) / scale;
+  }
+  return result;
+}
+
 PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                                const Eigen::VectorXd& eigenvalues, const Eigen::MatrixXd& modes, double sigma) {
   FLEXMBS_CHECK(modes.cols() == eigenvalues.size() && modes.rows() == K.rows(),
@@ -123,19 +142,16 @@ PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen
   const Eigen::MatrixXd abs_modes = modes.cwiseAbs();
   const Eigen::MatrixXd abs_KX = Eigen::SparseMatrix<double>(K.cwiseAbs()) * abs_modes;
   const Eigen::MatrixXd abs_MX = Eigen::SparseMatrix<double>(M.cwiseAbs()) * abs_modes;
-  const double zero = kZeroEigenvalue * K.diagonal().sum() / M.diagonal().sum();
-  PairResiduals result{Eigen::VectorXd(eigenvalues.size()), Eigen::VectorXd(eigenvalues.size())};
+  ResidualSums sums(4, eigenvalues.size());
   for (Eigen::Index j = 0; j < eigenvalues.size(); ++j) {
     const double lambda = eigenvalues(j);
-    const double m_norm = MX.col(j).norm();
-    const double rigid_scale = std::abs(lambda) <= zero ? std::abs(sigma) * m_norm : 0.0;
-    const double scale = std::max({KX.col(j).norm(), std::abs(lambda) * m_norm, rigid_scale,
-                                   std::numeric_limits<double>::min()});
-    result.relative(j) = (KX.col(j) - lambda * MX.col(j)).norm() / scale;
-    result.floor(j) = std::numeric_limits<double>::epsilon() *
-                      (abs_KX.col(j) + std::abs(lambda) * abs_MX.col(j)).norm() / scale;
+    sums(0, j) = KX.col(j).squaredNorm();
+    sums(1, j) = MX.col(j).squaredNorm();
+    sums(2, j) = (KX.col(j) - lambda * MX.col(j)).squaredNorm();
+    sums(3, j) = (abs_KX.col(j) + std::abs(lambda) * abs_MX.col(j)).squaredNorm();
   }
-  return result;
+  return ResidualsFromSums(sums, eigenvalues, sigma,
+                           kZeroEigenvalue * K.diagonal().sum() / M.diagonal().sum());
 }
 
 bool PairResiduals::Accepted(double tolerance, Eigen::Index* worst, double floor_factor) const {

@@ -166,6 +166,15 @@ struct PairResiduals {
   bool Accepted(double tolerance, Eigen::Index* worst = nullptr,
                 double floor_factor = kResidualFloorFactor) const;
 };
+/// The squared norms residuals are made of, per mode (column), summed over rows so that
+/// ranks holding different rows can add theirs: ||K phi||^2, ||M phi||^2,
+/// ||K phi - lambda M phi||^2 and || |K| |phi| + |lambda| |M| |phi| ||^2.
+using ResidualSums = Eigen::Matrix<double, 4, Eigen::Dynamic>;
+/// Residuals and round-off floors (as defined in EigenSolution) from summed squares;
+/// `zero_eigenvalue` = kZeroEigenvalue trace(K) / trace(M) marks rigid-body modes.
+PairResiduals ResidualsFromSums(const ResidualSums& sums, const Eigen::VectorXd& eigenvalues,
+                                double sigma, double zero_eigenvalue);
+/// Residuals of K, M held whole in this process.
 PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                                const Eigen::VectorXd& eigenvalues, const Eigen::MatrixXd& modes,
                                double sigma);

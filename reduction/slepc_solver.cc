@@ -1,6 +1,8 @@
 #include "reduction/slepc_solver.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <fmt/format.h>
 #include <numeric>
 #include <slepceps.h>
@@ -35,25 +37,194 @@ Eigen::VectorXd GatherToAll(Vec x) {
   return out;
 }
 
-// ||K x - lambda M x|| / max(||K x||, |lambda| ||M x||), and x^T M x.
-std::pair<double, double> ResidualAndMassNorm(Mat K, Mat M, Vec x, double lambda) {
-  Vec kx, mx;
-  FLEXMBS_PETSC(MatCreateVecs(K, nullptr, &kx));
-  FLEXMBS_PETSC(MatCreateVecs(K, nullptr, &mx));
-  FLEXMBS_PETSC(MatMult(K, x, kx));
-  FLEXMBS_PETSC(MatMult(M, x, mx));
-  PetscReal norm_kx = 0.0, norm_mx = 0.0, residual = 0.0;
-  PetscScalar xmx = 0.0;
-  FLEXMBS_PETSC(VecNorm(kx, NORM_2, &norm_kx));
-  FLEXMBS_PETSC(VecNorm(mx, NORM_2, &norm_mx));
-  FLEXMBS_PETSC(VecDot(x, mx, &xmx));
-  FLEXMBS_PETSC(VecAXPY(kx, -lambda, mx));
-  FLEXMBS_PETSC(VecNorm(kx, NORM_2, &residual));
-  FLEXMBS_PETSC(VecDestroy(&kx));
-  FLEXMBS_PETSC(VecDestroy(&mx));
-  const double scale = std::max({norm_kx, std::abs(lambda) * norm_mx, 1e-300});
-  return {residual / scale, xmx};
+// For this rank's rows r: (A X)_r and (|A| |X|)_r, X full-length on every rank.
+void LocalProducts(Mat A, const Eigen::MatrixXd& X, Eigen::MatrixXd* AX, Eigen::MatrixXd* abs_AX) {
+  PetscInt begin = 0, end = 0;
+  FLEXMBS_PETSC(MatGetOwnershipRange(A, &begin, &end));
+  AX->setZero(end - begin, X.cols());
+  abs_AX->setZero(end - begin, X.cols());
+  for (PetscInt r = begin; r < end; ++r) {
+    PetscInt count = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* values = nullptr;
+    FLEXMBS_PETSC(MatGetRow(A, r, &count, &cols, &values));
+    for (PetscInt k = 0; k < count; ++k) {
+      AX->row(r - begin) += values[k] * X.row(cols[k]);
+      abs_AX->row(r - begin) += std::abs(values[k]) * X.row(cols[k]).cwiseAbs();
+    }
+    FLEXMBS_PETSC(MatRestoreRow(A, r, &count, &cols, &values));
+  }
 }
+
+// Sums a matrix over all ranks, in place.
+void AllreduceSum(Eigen::MatrixXd* A) {
+  FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, A->data(), static_cast<int>(A->size()), MPI_DOUBLE,
+                              MPI_SUM, PETSC_COMM_WORLD));
+}
+
+// Fills residuals, round-off floors and the M-orthonormality error of `solution`.
+void MeasurePairs(Mat K, Mat M, EigenSolution* solution) {
+  const Eigen::MatrixXd& X = solution->modes;
+  const Eigen::VectorXd& lambda = solution->eigenvalues;
+  Eigen::MatrixXd KX, MX, abs_KX, abs_MX;
+  LocalProducts(K, X, &KX, &abs_KX);
+  LocalProducts(M, X, &MX, &abs_MX);
+  PetscInt begin = 0, end = 0;
+  FLEXMBS_PETSC(MatGetOwnershipRange(K, &begin, &end));
+  Eigen::MatrixXd sums(4, X.cols());
+  for (Eigen::Index j = 0; j < X.cols(); ++j) {
+    sums(0, j) = KX.col(j).squaredNorm();
+    sums(1, j) = MX.col(j).squaredNorm();
+    sums(2, j) = (KX.col(j) - lambda(j) * MX.col(j)).squaredNorm();
+    sums(3, j) = (abs_KX.col(j) + std::abs(lambda(j)) * abs_MX.col(j)).squaredNorm();
+  }
+  Eigen::MatrixXd gram = X.middleRows(begin, end - begin).transpose() * MX;
+  AllreduceSum(&sums);
+  AllreduceSum(&gram);
+  PetscScalar trace_k = 0.0, trace_m = 0.0;
+  FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
+  FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
+  const PairResiduals residuals =
+      ResidualsFromSums(sums, lambda, solution->shift, kZeroEigenvalue * trace_k / trace_m);
+  solution->relative_residuals = residuals.relative;
+  solution->residual_floors = residuals.floor;
+  solution->orthonormality_error =
+      (gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols())).cwiseAbs().maxCoeff();
+}
+
+// Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky.
+void Configure(EPS eps, Mat K, Mat M, double sigma, const EigenOptions& options) {
+  ST st;
+  KSP ksp;
+  PC pc;
+  FLEXMBS_PETSC(EPSSetOperators(eps, K, M));
+  FLEXMBS_PETSC(EPSSetProblemType(eps, EPS_GHEP));
+  FLEXMBS_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
+  FLEXMBS_PETSC(EPSSetTolerances(eps, options.tolerance, options.max_iterations));
+  if (options.max_frequency_hz > 0.0) {
+    // Spectrum slicing: every eigenvalue in [sigma, lambda_max], counted by the inertia of the
+    // MUMPS factorisations (which needs ICNTL(13) = 1 in parallel; the ST prefixes its factor).
+    FLEXMBS_PETSC(PetscOptionsSetValue(nullptr, "-st_mat_mumps_icntl_13", "1"));
+    FLEXMBS_PETSC(EPSSetInterval(eps, sigma, ShiftFromHz(options.max_frequency_hz)));
+    FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
+  } else {
+    FLEXMBS_PETSC(EPSSetDimensions(eps, options.num_modes, PETSC_DEFAULT, PETSC_DEFAULT));
+    FLEXMBS_PETSC(EPSSetTarget(eps, sigma));
+    FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  }
+  FLEXMBS_PETSC(EPSGetST(eps, &st));
+  FLEXMBS_PETSC(STSetType(st, STSINVERT));
+  FLEXMBS_PETSC(STGetKSP(st, &ksp));
+  FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
+  FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
+  FLEXMBS_PETSC(PCSetType(pc, PCCHOLESKY));
+  FLEXMBS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+}
+
+// Zeroes the rows and columns of `fixed_dofs` (K diagonal 1, M diagonal 0).
+void RemoveFixedDofs(Mat K, Mat M, const std::vector<int>& fixed_dofs) {
+  PetscInt begin = 0, end = 0;
+  FLEXMBS_PETSC(MatGetOwnershipRange(K, &begin, &end));
+  std::vector<PetscInt> owned;
+  for (int dof : fixed_dofs) {
+    if (dof >= begin && dof < end) owned.push_back(dof);
+  }
+  const auto count = static_cast<PetscInt>(owned.size());
+  FLEXMBS_PETSC(MatZeroRowsColumns(K, count, owned.data(), 1.0, nullptr, nullptr));
+  FLEXMBS_PETSC(MatZeroRowsColumns(M, count, owned.data(), 0.0, nullptr, nullptr));
+  for (Mat A : {K, M}) FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+}
+
+// The converged pairs of `eps`, lowest first, at most `limit` (0 = all), M-normalised.
+void ExtractPairs(EPS eps, Mat K, Mat M, int limit, EigenSolution* solution) {
+  PetscInt converged = 0;
+  FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
+  std::vector<double> lambdas(static_cast<std::size_t>(converged));
+  Vec x, mx;
+  FLEXMBS_PETSC(MatCreateVecs(K, &x, &mx));
+  for (PetscInt i = 0; i < converged; ++i) {
+    FLEXMBS_PETSC(EPSGetEigenvalue(eps, i, &lambdas[static_cast<std::size_t>(i)], nullptr));
+  }
+  std::vector<PetscInt> order(lambdas.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) {
+    return lambdas[static_cast<std::size_t>(a)] < lambdas[static_cast<std::size_t>(b)];
+  });
+  if (limit > 0 && static_cast<int>(order.size()) > limit) order.resize(static_cast<std::size_t>(limit));
+  PetscInt n = 0;
+  FLEXMBS_PETSC(MatGetSize(K, &n, nullptr));
+  const auto count = static_cast<Eigen::Index>(order.size());
+  solution->eigenvalues.resize(count);
+  solution->modes.resize(n, count);
+  for (Eigen::Index j = 0; j < count; ++j) {
+    const PetscInt i = order[static_cast<std::size_t>(j)];
+    FLEXMBS_PETSC(EPSGetEigenvector(eps, i, x, nullptr));
+    PetscScalar xmx = 0.0;
+    FLEXMBS_PETSC(MatMult(M, x, mx));
+    FLEXMBS_PETSC(VecDot(x, mx, &xmx));
+    FLEXMBS_PETSC(VecScale(x, 1.0 / std::sqrt(xmx)));
+    solution->eigenvalues(j) = lambdas[static_cast<std::size_t>(i)];
+    solution->modes.col(j) = GatherToAll(x);
+  }
+  FLEXMBS_PETSC(VecDestroy(&x));
+  FLEXMBS_PETSC(VecDestroy(&mx));
+}
+
+// Copies this rank's block of rows of the full matrix A into a new PETSc AIJ matrix.
+Mat ToPetsc(const Eigen::SparseMatrix<double>& A) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = A;
+  Mat out;
+  FLEXMBS_PETSC(MatCreate(PETSC_COMM_WORLD, &out));
+  FLEXMBS_PETSC(MatSetSizes(out, PETSC_DECIDE, PETSC_DECIDE, static_cast<PetscInt>(A.rows()),
+                            static_cast<PetscInt>(A.cols())));
+  FLEXMBS_PETSC(MatSetType(out, MATAIJ));
+  FLEXMBS_PETSC(MatSetUp(out));
+  PetscInt begin = 0, end = 0;
+  FLEXMBS_PETSC(MatGetOwnershipRange(out, &begin, &end));
+  // Exact preallocation from the row counts of the owned block.
+  std::vector<PetscInt> diagonal(static_cast<std::size_t>(end - begin), 0), off(diagonal.size(), 0);
+  for (PetscInt r = begin; r < end; ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, r); it; ++it) {
+      const bool in_block = it.col() >= begin && it.col() < end;
+      ++(in_block ? diagonal : off)[static_cast<std::size_t>(r - begin)];
+    }
+  }
+  FLEXMBS_PETSC(MatXAIJSetPreallocation(out, 1, diagonal.data(), off.data(), nullptr, nullptr));
+  for (PetscInt r = begin; r < end; ++r) {
+    const auto start = rows.outerIndexPtr()[r];
+    const auto count = static_cast<PetscInt>(rows.outerIndexPtr()[r + 1] - start);
+    std::vector<PetscInt> cols(rows.innerIndexPtr() + start, rows.innerIndexPtr() + start + count);
+    FLEXMBS_PETSC(MatSetValues(out, 1, &r, count, cols.data(), rows.valuePtr() + start, INSERT_VALUES));
+  }
+  FLEXMBS_PETSC(MatAssemblyBegin(out, MAT_FINAL_ASSEMBLY));
+  FLEXMBS_PETSC(MatAssemblyEnd(out, MAT_FINAL_ASSEMBLY));
+  return out;
+}
+
+class SlepcEigensolver final : public Eigensolver {
+ public:
+  std::string_view name() const override { return "slepc"; }
+
+  EigenSolution Solve(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                      const EigenOptions& options) const override {
+    ValidateEigenInputs(K, M, options);
+    // PETSc (and MPI) can be initialised once per process: keep it for the process lifetime
+    // (a session the caller opened first owns it instead).
+    static const SlepcSession session;
+    Mat K_petsc = ToPetsc(K);
+    Mat M_petsc = ToPetsc(M);
+    try {
+      EigenSolution solution = SolveDistributedEigenproblem(K_petsc, M_petsc, {}, options);
+      MatDestroy(&K_petsc);
+      MatDestroy(&M_petsc);
+      return solution;
+    } catch (...) {
+      MatDestroy(&K_petsc);
+      MatDestroy(&M_petsc);
+      throw;
+    }
+  }
+};
 
 }  // namespace
 
@@ -82,87 +253,60 @@ int SlepcSession::Size() {
   return size;
 }
 
-DistributedEigenResult SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>& fixed_dofs,
-                                                    const DistributedEigenOptions& options) {
-  // Each rank zeroes the fixed rows it owns; columns are zeroed collectively.
-  PetscInt row_begin = 0, row_end = 0;
-  FLEXMBS_PETSC(MatGetOwnershipRange(K, &row_begin, &row_end));
-  std::vector<PetscInt> owned_fixed;
-  for (int dof : fixed_dofs) {
-    if (dof >= row_begin && dof < row_end) owned_fixed.push_back(dof);
+EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>& fixed_dofs,
+                                           const EigenOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  RemoveFixedDofs(K, M, fixed_dofs);
+  EigenSolution solution;
+  solution.backend = "slepc";
+  if (options.shift_hz) {
+    solution.shift = ShiftFromHz(*options.shift_hz);
+  } else {
+    PetscScalar trace_k = 0.0, trace_m = 0.0;
+    FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
+    FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
+    solution.shift = -1e-6 * trace_k / trace_m;
   }
-  const auto num_fixed = static_cast<PetscInt>(owned_fixed.size());
-  FLEXMBS_PETSC(MatZeroRowsColumns(K, num_fixed, owned_fixed.data(), 1.0, nullptr, nullptr));
-  FLEXMBS_PETSC(MatZeroRowsColumns(M, num_fixed, owned_fixed.data(), 0.0, nullptr, nullptr));
-  for (Mat A : {K, M}) {
-    FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
-    FLEXMBS_PETSC(MatSetOption(A, MAT_SPD, PETSC_FALSE));
-  }
-
+  const bool band = options.max_frequency_hz > 0.0;
   EPS eps;
-  ST st;
-  KSP ksp;
-  PC pc;
   FLEXMBS_PETSC(EPSCreate(PETSC_COMM_WORLD, &eps));
-  FLEXMBS_PETSC(EPSSetOperators(eps, K, M));
-  FLEXMBS_PETSC(EPSSetProblemType(eps, EPS_GHEP));
-  FLEXMBS_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
-  FLEXMBS_PETSC(EPSSetDimensions(eps, options.num_modes, PETSC_DEFAULT, PETSC_DEFAULT));
-  FLEXMBS_PETSC(EPSSetTolerances(eps, options.tolerance, options.max_iterations));
-  FLEXMBS_PETSC(EPSSetTarget(eps, options.shift));
-  FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-  FLEXMBS_PETSC(EPSGetST(eps, &st));
-  FLEXMBS_PETSC(STSetType(st, STSINVERT));
-  FLEXMBS_PETSC(STGetKSP(st, &ksp));
-  FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
-  FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
-  FLEXMBS_PETSC(PCSetType(pc, PCCHOLESKY));
-  FLEXMBS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  FLEXMBS_PETSC(EPSSolve(eps));
-
-  PetscInt converged = 0, iterations = 0;
-  FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
-  FLEXMBS_PETSC(EPSGetIterationNumber(eps, &iterations));
-  if (converged < options.num_modes) {
+  try {
+    Configure(eps, K, M, solution.shift, options);
+    FLEXMBS_PETSC(EPSSolve(eps));
+    PetscInt converged = 0, iterations = 0;
+    FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
+    FLEXMBS_PETSC(EPSGetIterationNumber(eps, &iterations));
+    solution.restarts = static_cast<int>(iterations);
+    if (band && converged == 0) {
+      throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+    }
+    if (!band && converged < options.num_modes) {
+      throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations",
+                                   converged, options.num_modes, iterations));
+    }
+    ExtractPairs(eps, K, M, options.num_modes, &solution);
+    if (band) solution.checked_cut = ShiftFromHz(options.max_frequency_hz);
+    FLEXMBS_PETSC(EPSDestroy(&eps));
+  } catch (...) {
     EPSDestroy(&eps);
-    throw InputError(fmt::format("SLEPc converged {} of {} modes in {} iterations (raise max_iterations or lower the mode count)",
-                                 converged, options.num_modes, iterations));
+    throw;
   }
-
-  Vec x;
-  FLEXMBS_PETSC(MatCreateVecs(K, &x, nullptr));
-  DistributedEigenResult result;
-  result.iterations = static_cast<int>(iterations);
-  std::vector<double> lambdas(static_cast<std::size_t>(options.num_modes));
-  std::vector<Eigen::VectorXd> vectors(lambdas.size());
-  std::vector<double> residuals(lambdas.size());
-  for (PetscInt i = 0; i < options.num_modes; ++i) {
-    PetscScalar lambda = 0.0;
-    FLEXMBS_PETSC(EPSGetEigenpair(eps, i, &lambda, nullptr, x, nullptr));
-    const auto [residual, xmx] = ResidualAndMassNorm(K, M, x, lambda);
-    FLEXMBS_PETSC(VecScale(x, 1.0 / std::sqrt(xmx)));
-    const auto k = static_cast<std::size_t>(i);
-    lambdas[k] = lambda;
-    residuals[k] = residual;
-    vectors[k] = GatherToAll(x);
+  MeasurePairs(K, M, &solution);
+  const PairResiduals residuals{solution.relative_residuals, solution.residual_floors};
+  Eigen::Index worst = 0;
+  if (!residuals.Accepted(options.residual_tolerance, &worst)) {
+    throw InputError(fmt::format("eigenproblem: mode {} ({:.6g} Hz) has relative residual {:.3g} above "
+                                 "max({:g}, {:g} x its round-off floor {:.3g})",
+                                 worst, FrequenciesHz(solution.eigenvalues)(worst),
+                                 solution.relative_residuals(worst), options.residual_tolerance,
+                                 kResidualFloorFactor, solution.residual_floors(worst)));
   }
-  FLEXMBS_PETSC(VecDestroy(&x));
-  FLEXMBS_PETSC(EPSDestroy(&eps));
-
-  std::vector<std::size_t> order(lambdas.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lambdas[a] < lambdas[b]; });
-  const auto n = static_cast<Eigen::Index>(lambdas.size());
-  result.eigenvalues.resize(n);
-  result.relative_residuals.resize(n);
-  result.modes.resize(vectors.empty() ? 0 : vectors[0].size(), n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const std::size_t k = order[static_cast<std::size_t>(j)];
-    result.eigenvalues(j) = lambdas[k];
-    result.relative_residuals(j) = residuals[k];
-    result.modes.col(j) = vectors[k];
-  }
-  return result;
+  solution.missed_mode_check = band ? MissedModeCheck::kSturmCount : MissedModeCheck::kNone;
+  solution.factorizations = 1;
+  solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return solution;
 }
+
+std::unique_ptr<Eigensolver> MakeSlepcEigensolver() { return std::make_unique<SlepcEigensolver>(); }
 
 }  // namespace flexmbs::reduction

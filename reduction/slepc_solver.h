@@ -1,7 +1,9 @@
 #pragma once
 
-#include <Eigen/Core>
+#include <memory>
 #include <vector>
+
+#include "reduction/eigensolver.h"
 
 // PETSc's matrix type (`Mat` is a pointer to it), declared here so that no PETSc header
 // appears in this public header.
@@ -27,30 +29,22 @@ class SlepcSession {
   bool owns_ = false;
 };
 
-/// Options of the distributed generalized eigen-solve.
-struct DistributedEigenOptions {
-  int num_modes = 10;
-  double shift = 0.0;  ///< sigma [rad^2/s^2]: modes nearest it are found (negative for free bodies)
-  double tolerance = 1e-10;  ///< SLEPc's relative convergence tolerance
-  int max_iterations = 1000;
-};
+/// Collective on PETSC_COMM_WORLD: eigenpairs of the distributed K phi = lambda M phi, as
+/// `options` asks (the lowest num_modes, or all below max_frequency_hz by spectrum slicing),
+/// by SLEPc Krylov-Schur with shift-and-invert, K - sigma M factorised by MUMPS Cholesky.
+/// sigma = ShiftFromHz(*options.shift_hz), or -1e-6 trace(K)/trace(M) when unset (below every
+/// eigenvalue, also of free bodies). `fixed_dofs` (global DOF numbers, the same list on every
+/// rank) are removed by zeroing their rows and columns (K diagonal 1, M diagonal 0), which
+/// moves their eigenvalues to infinity; K and M are modified in place. The modes are gathered,
+/// full length, on every rank; residuals and round-off floors are those of EigenSolution,
+/// summed over the ranks' rows. Throws InputError if fewer pairs converge than asked or a pair
+/// misses its residual bound, InternalError for a PETSc/SLEPc failure.
+EigenSolution SolveDistributedEigenproblem(_p_Mat* K, _p_Mat* M, const std::vector<int>& fixed_dofs,
+                                           const EigenOptions& options);
 
-/// Lowest eigenpairs of a distributed problem, gathered on every rank.
-struct DistributedEigenResult {
-  Eigen::VectorXd eigenvalues;  ///< lambda = omega^2 [rad^2/s^2], ascending
-  Eigen::MatrixXd modes;        ///< full-length, M-orthonormal columns (zero on fixed DOF)
-  Eigen::VectorXd relative_residuals;  ///< ||K phi - lambda M phi|| / max(||K phi||, ||lambda M phi||)
-  int iterations = 0;
-};
-
-/// Collective on PETSC_COMM_WORLD: the `options.num_modes` eigenpairs of K phi = lambda M phi
-/// nearest `options.shift`, by SLEPc Krylov-Schur with shift-and-invert, the shifted matrix
-/// factorised by MUMPS Cholesky. `fixed_dofs` (global DOF numbers, the same list on every rank)
-/// are removed by zeroing their rows and columns (K diagonal 1, M diagonal 0), which moves
-/// their eigenvalues to infinity. K and M are modified in place. Throws InputError if fewer
-/// pairs converge than asked, InternalError for a PETSc/SLEPc failure.
-DistributedEigenResult SolveDistributedEigenproblem(_p_Mat* K, _p_Mat* M,
-                                                    const std::vector<int>& fixed_dofs,
-                                                    const DistributedEigenOptions& options);
+/// The backend "slepc" behind the serial interface: every rank passes the same K and M, each
+/// copies its block of rows into PETSc matrices and SolveDistributedEigenproblem runs on them.
+/// Under `mpirun -n N` the factorisation and the Krylov iteration are distributed.
+std::unique_ptr<Eigensolver> MakeSlepcEigensolver();
 
 }  // namespace flexmbs::reduction

@@ -64,8 +64,7 @@ TEST(DistributedAssembly, EqualsSerialAssemblyOnEveryRank) {
     DistributedMatrices distributed = AssembleDistributed(mesh, kind);
     EXPECT_LT(MaxRelativeDifference(distributed.stiffness, serial.stiffness), kRoundOffTolerance);
     EXPECT_LT(MaxRelativeDifference(distributed.mass, serial.mass), kRoundOffTolerance);
-    MatDestroy(&distributed.stiffness);
-    MatDestroy(&distributed.mass);
+    DestroyDistributed(&distributed);
   }
 }
 

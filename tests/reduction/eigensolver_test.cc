@@ -149,9 +149,10 @@ TEST(MakeEigensolver, UnknownBackendThrowsInputErrorListingTheAvailableOnes) {
     MakeEigensolver("arpack");
     FAIL() << "no exception";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "unknown eigensolver backend 'arpack' (available: spectra)");
+    EXPECT_STREQ(e.what(), "unknown eigensolver backend 'arpack' (available: spectra, slepc)");
   }
   EXPECT_EQ(MakeEigensolver("spectra")->name(), "spectra");
+  EXPECT_EQ(MakeEigensolver("slepc")->name(), "slepc");
 }
 
 TEST(FrequenciesHz, AreSignedSquareRootsOverTwoPi) {

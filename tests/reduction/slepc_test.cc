@@ -1,0 +1,116 @@
+// The SLEPc backend agrees with the Spectra backend, through the serial interface and through
+// the distributed assembly, on one rank and under `mpiexec -n 2` (both registered with CTest).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include "fem/assembly.h"
+#include "fem/distributed_assembly.h"
+#include "reduction/dof_constraints.h"
+#include "reduction/eigensolver.h"
+#include "reduction/slepc_solver.h"
+#include "tests/reduction/test_problems.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+// The agreement bound between the two backends; both reach about 1e-11 alone.
+constexpr double kBackendAgreement = 1e-8;
+
+struct Problem {
+  fem::Mesh mesh;
+  std::vector<int> clamp;  // nodes on x = 0
+};
+
+Problem ClampedBox() {
+  Problem p{testing::HexBox({8, 3, 2}, {0.4, 0.15, 0.1}, testing::Steel()), {}};
+  p.clamp = testing::NodesOnPlane(p.mesh, 0, 0.0);
+  return p;
+}
+
+// Eigenvalues agree to kBackendAgreement relative and each mode spans the same line.
+void ExpectSameModes(const EigenSolution& a, const EigenSolution& b,
+                     const Eigen::SparseMatrix<double>& M, std::string_view what) {
+  ASSERT_EQ(a.eigenvalues.size(), b.eigenvalues.size()) << what;
+  for (Eigen::Index j = 0; j < a.eigenvalues.size(); ++j) {
+    EXPECT_NEAR(a.eigenvalues(j), b.eigenvalues(j), kBackendAgreement * std::abs(b.eigenvalues(j)))
+        << what << " mode " << j;
+  }
+  EXPECT_LT(testing::LargestPrincipalAngleSine(M, a.modes, b.modes), kBackendAgreement) << what;
+}
+
+TEST(SlepcBackend, AgreesWithSpectraOnAClampedBody) {
+  const Problem p = ClampedBox();
+  const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
+  const FreeDofMap free = FreeDofMap::ClampNodes(p.mesh.num_nodes(), p.clamp);
+  const Eigen::SparseMatrix<double> K = free.Restrict(system.stiffness), M = free.Restrict(system.mass);
+  EigenOptions options;
+  options.num_modes = 10;
+  const EigenSolution slepc = MakeEigensolver("slepc")->Solve(K, M, options);
+  const EigenSolution spectra = MakeEigensolver("spectra")->Solve(K, M, options);
+  ExpectSameModes(slepc, spectra, M, "clamped");
+  EXPECT_LT(slepc.relative_residuals.maxCoeff(), options.residual_tolerance);
+  EXPECT_LT(slepc.orthonormality_error, 1e-10);
+}
+
+TEST(SlepcBackend, FindsTheSixRigidModesOfAFreeBody) {
+  const fem::Mesh mesh = testing::HexBox({4, 3, 2}, {0.2, 0.15, 0.1}, testing::Steel());
+  const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
+  EigenOptions options;
+  options.num_modes = 9;
+  const EigenSolution slepc = MakeEigensolver("slepc")->Solve(system.stiffness, system.mass, options);
+  const EigenSolution spectra = MakeEigensolver("spectra")->Solve(system.stiffness, system.mass, options);
+  for (int j = 0; j < 6; ++j) EXPECT_LT(std::abs(slepc.eigenvalues(j)), 1e-8 * slepc.eigenvalues(6));
+  // Rigid modes are a six-dimensional subspace; compare it and the elastic modes separately.
+  EXPECT_LT(testing::LargestPrincipalAngleSine(system.mass, slepc.modes.leftCols(6),
+                                               spectra.modes.leftCols(6)), 1e-6);
+  for (int j = 6; j < 9; ++j) {
+    EXPECT_NEAR(slepc.eigenvalues(j), spectra.eigenvalues(j), kBackendAgreement * spectra.eigenvalues(j));
+  }
+}
+
+TEST(SlepcBackend, FrequencyBandBySpectrumSlicingEqualsSpectrasBand) {
+  const Problem p = ClampedBox();
+  const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
+  const FreeDofMap free = FreeDofMap::ClampNodes(p.mesh.num_nodes(), p.clamp);
+  const Eigen::SparseMatrix<double> K = free.Restrict(system.stiffness), M = free.Restrict(system.mass);
+  EigenOptions options;
+  options.max_frequency_hz = 3000.0;
+  const EigenSolution slepc = MakeEigensolver("slepc")->Solve(K, M, options);
+  const EigenSolution spectra = MakeEigensolver("spectra")->Solve(K, M, options);
+  EXPECT_GT(slepc.eigenvalues.size(), 3);
+  ExpectSameModes(slepc, spectra, M, "band");
+}
+
+TEST(SlepcBackend, DistributedAssemblyPathEqualsTheSerialSolve) {
+  const Problem p = ClampedBox();
+  std::vector<int> fixed;
+  for (int node : p.clamp) {
+    for (int i = 0; i < 3; ++i) fixed.push_back(3 * node + i);
+  }
+  EigenOptions options;
+  options.num_modes = 8;
+  fem::DistributedMatrices distributed = fem::AssembleDistributed(p.mesh, fem::MassMatrixKind::kConsistent);
+  const EigenSolution slepc =
+      SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, fixed, options);
+  fem::DestroyDistributed(&distributed);
+
+  const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
+  const FreeDofMap free = FreeDofMap::ClampNodes(p.mesh.num_nodes(), p.clamp);
+  const EigenSolution spectra = MakeEigensolver("spectra")->Solve(
+      free.Restrict(system.stiffness), free.Restrict(system.mass), options);
+  EigenSolution spectra_full = spectra;
+  spectra_full.modes = free.Expand(spectra.modes);
+  ExpectSameModes(slepc, spectra_full, system.mass, "distributed");
+  EXPECT_LT(slepc.relative_residuals.maxCoeff(), options.residual_tolerance);
+}
+
+}  // namespace
+}  // namespace flexmbs::reduction
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  const flexmbs::reduction::SlepcSession session;
+  int failed = RUN_ALL_TESTS() != 0 ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return failed;
+}
