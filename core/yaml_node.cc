@@ -145,13 +145,29 @@ std::string YamlNode::AsString() const {
   return node_->Scalar();
 }
 
+bool YamlNode::AsBool() const {
+  if (!node_->IsScalar()) Fail("expected true or false");
+  bool value;
+  if (!YAML::convert<bool>::decode(*node_, value)) {
+    Fail(fmt::format("'{}' is not true or false", node_->Scalar()));
+  }
+  return value;
+}
+
+std::vector<YamlNode> YamlNode::AsList() const {
+  if (!node_->IsSequence()) Fail("expected a list");
+  std::vector<YamlNode> out;
+  for (std::size_t i = 0; i < node_->size(); ++i) {
+    out.push_back(YamlNode(file_, fmt::format("{}[{}]", item_, i), (*node_)[i]));
+  }
+  return out;
+}
+
 std::vector<std::string> YamlNode::AsStringList() const {
   if (node_->IsScalar()) return {node_->Scalar()};
   if (!node_->IsSequence()) Fail("expected a list of names");
   std::vector<std::string> out;
-  for (std::size_t i = 0; i < node_->size(); ++i) {
-    out.push_back(YamlNode(file_, fmt::format("{}[{}]", item_, i), (*node_)[i]).AsString());
-  }
+  for (const YamlNode& element : AsList()) out.push_back(element.AsString());
   return out;
 }
 

@@ -34,9 +34,12 @@ class YamlNode {
   /// Scalars, converted or an InputError naming the item and the value.
   double AsDouble() const;
   int AsInt() const;
+  bool AsBool() const;
   std::string AsString() const;
   /// A sequence of strings (a single string counts as a one-element list).
   std::vector<std::string> AsStringList() const;
+  /// The elements of a sequence node, each knowing its item path ("interfaces[1]").
+  std::vector<YamlNode> AsList() const;
   /// The entries of a map node, in file order; throws InputError for a key given twice.
   std::vector<std::pair<std::string, YamlNode>> AsMap() const;
 

@@ -1,0 +1,119 @@
+#include "reduction/reduction_spec.h"
+
+#include <algorithm>
+#include <array>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/yaml_node.h"
+#include "reduction/eigensolver.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+// The value of `node` among `names` (file spellings), as its index; else an error listing them.
+template <std::size_t N>
+int Choice(const YamlNode& node, const std::array<std::string_view, N>& names) {
+  const std::string value = node.AsString();
+  const auto it = std::find(names.begin(), names.end(), value);
+  if (it == names.end()) node.Fail(fmt::format("'{}' must be one of: {}", value, fmt::join(names, ", ")));
+  return static_cast<int>(it - names.begin());
+}
+
+constexpr std::array<std::string_view, 3> kMethods = {"free_free", "fixed_interface", "craig_bampton"};
+constexpr std::array<std::string_view, 3> kCouplings = {"nodes", "rigid", "average"};
+constexpr std::array<std::string_view, 3> kAxes = {"x", "y", "z"};
+
+std::string CheckNodeSet(const YamlNode& node, const std::vector<std::string>& node_sets) {
+  const std::string name = node.AsString();
+  if (std::find(node_sets.begin(), node_sets.end(), name) == node_sets.end()) {
+    node.Fail(fmt::format("'{}' is not one of the body's node_sets ({})", name,
+                          node_sets.empty() ? "none" : fmt::format("{}", fmt::join(node_sets, ", "))));
+  }
+  return name;
+}
+
+InterfaceSpec ReadInterface(const YamlNode& node, const std::vector<std::string>& node_sets) {
+  node.RejectUnknownKeys({"node_set", "coupling", "marker"});
+  InterfaceSpec spec;
+  spec.node_set = CheckNodeSet(node.Required("node_set"), node_sets);
+  if (node.Has("coupling")) {
+    spec.coupling = static_cast<InterfaceCoupling>(Choice(node.Required("coupling"), kCouplings));
+  }
+  if (node.Has("marker")) {
+    const YamlNode marker = node.Required("marker");
+    const std::vector<YamlNode> xyz = marker.AsList();
+    if (xyz.size() != 3) marker.Fail(fmt::format("a marker position needs 3 coordinates, got {}", xyz.size()));
+    spec.p_BoMarker_B = Eigen::Vector3d(xyz[0].AsDouble(), xyz[1].AsDouble(), xyz[2].AsDouble());
+  }
+  return spec;
+}
+
+CorrectionSpec ReadCorrection(const YamlNode& node, const std::vector<std::string>& node_sets) {
+  node.RejectUnknownKeys({"node_set", "axes"});
+  CorrectionSpec spec;
+  spec.node_set = CheckNodeSet(node.Required("node_set"), node_sets);
+  spec.axes = {0, 1, 2};
+  if (node.Has("axes")) {
+    spec.axes.clear();
+    for (const YamlNode& axis : node.Required("axes").AsList()) spec.axes.push_back(Choice(axis, kAxes));
+  }
+  return spec;
+}
+
+}  // namespace
+
+std::string_view MethodName(ReductionMethod method) { return kMethods[static_cast<std::size_t>(method)]; }
+
+ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
+                                const std::vector<std::string>& node_sets) {
+  const YamlNode section = YamlNode::LoadFile(body_file).Required("reduction");
+  section.RejectUnknownKeys({"method", "modes", "max_frequency_hz", "eigensolver", "rigid_body_modes",
+                            "orthonormalize", "interfaces", "correction_modes"});
+  ReductionSpec spec;
+  if (section.Has("method")) {
+    spec.method = static_cast<ReductionMethod>(Choice(section.Required("method"), kMethods));
+  }
+  if (section.Has("modes")) {
+    const YamlNode modes = section.Required("modes");
+    spec.num_modes = modes.AsInt();
+    if (spec.num_modes <= 0) modes.Fail(fmt::format("mode count {} must be > 0", spec.num_modes));
+  }
+  if (section.Has("max_frequency_hz")) {
+    const YamlNode band = section.Required("max_frequency_hz");
+    spec.max_frequency_hz = band.AsDouble();
+    if (spec.max_frequency_hz <= 0.0) band.Fail(fmt::format("{:g} Hz must be > 0", spec.max_frequency_hz));
+  }
+  if (spec.num_modes == 0 && spec.max_frequency_hz == 0.0) {
+    section.Fail("give the number of normal modes ('modes') or a band ('max_frequency_hz')");
+  }
+  if (section.Has("eigensolver")) {
+    const YamlNode solver = section.Required("eigensolver");
+    spec.eigensolver = solver.AsString();
+    const std::vector<std::string> available = AvailableEigensolvers();
+    if (std::find(available.begin(), available.end(), spec.eigensolver) == available.end()) {
+      solver.Fail(fmt::format("unknown eigensolver '{}' (available: {})", spec.eigensolver, fmt::join(available, ", ")));
+    }
+  }
+  if (section.Has("rigid_body_modes")) {
+    constexpr std::array<std::string_view, 2> kRigid = {"exact", "computed"};
+    spec.exact_rigid_body_modes = Choice(section.Required("rigid_body_modes"), kRigid) == 0;
+  }
+  if (section.Has("orthonormalize")) spec.orthonormalize = section.Required("orthonormalize").AsBool();
+  if (section.Has("interfaces")) {
+    for (const YamlNode& node : section.Required("interfaces").AsList()) {
+      spec.interfaces.push_back(ReadInterface(node, node_sets));
+    }
+  }
+  if (section.Has("correction_modes")) {
+    for (const YamlNode& node : section.Required("correction_modes").AsList()) {
+      spec.corrections.push_back(ReadCorrection(node, node_sets));
+    }
+  }
+  if (spec.method != ReductionMethod::kFreeFree && spec.interfaces.empty()) {
+    section.Fail(fmt::format("method '{}' needs at least one entry in 'interfaces'", MethodName(spec.method)));
+  }
+  return spec;
+}
+
+}  // namespace flexmbs::reduction
