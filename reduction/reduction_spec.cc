@@ -21,8 +21,17 @@ int Choice(const YamlNode& node, const std::array<std::string_view, N>& names) {
 }
 
 constexpr std::array<std::string_view, 3> kMethods = {"free_free", "fixed_interface", "craig_bampton"};
-constexpr std::array<std::string_view, 3> kCouplings = {"nodes", "rigid", "average"};
-constexpr std::array<std::string_view, 3> kAxes = {"x", "y", "z"};
+// In the order of the Coupling enum.
+constexpr std::array<std::string_view, 3> kCouplings = {"nodes", "rigid", "averaging"};
+// In the order of the LoadDistribution enum.
+constexpr std::array<std::string_view, 2> kDistributions = {"resultant", "per_node"};
+
+// A list of three numbers.
+Eigen::Vector3d ReadVector3(const YamlNode& node) {
+  const std::vector<YamlNode> xyz = node.AsList();
+  if (xyz.size() != 3) node.Fail(fmt::format("expected 3 coordinates, got {}", xyz.size()));
+  return Eigen::Vector3d(xyz[0].AsDouble(), xyz[1].AsDouble(), xyz[2].AsDouble());
+}
 
 std::string CheckNodeSet(const YamlNode& node, const std::vector<std::string>& node_sets) {
   const std::string name = node.AsString();
@@ -33,30 +42,28 @@ std::string CheckNodeSet(const YamlNode& node, const std::vector<std::string>& n
   return name;
 }
 
-InterfaceSpec ReadInterface(const YamlNode& node, const std::vector<std::string>& node_sets) {
+InterfaceSetting ReadInterface(const YamlNode& node, const std::vector<std::string>& node_sets) {
   node.RejectUnknownKeys({"node_set", "coupling", "marker"});
-  InterfaceSpec spec;
+  InterfaceSetting spec;
   spec.node_set = CheckNodeSet(node.Required("node_set"), node_sets);
   if (node.Has("coupling")) {
-    spec.coupling = static_cast<InterfaceCoupling>(Choice(node.Required("coupling"), kCouplings));
+    spec.coupling = static_cast<Coupling>(Choice(node.Required("coupling"), kCouplings));
   }
-  if (node.Has("marker")) {
-    const YamlNode marker = node.Required("marker");
-    const std::vector<YamlNode> xyz = marker.AsList();
-    if (xyz.size() != 3) marker.Fail(fmt::format("a marker position needs 3 coordinates, got {}", xyz.size()));
-    spec.p_BoMarker_B = Eigen::Vector3d(xyz[0].AsDouble(), xyz[1].AsDouble(), xyz[2].AsDouble());
-  }
+  if (node.Has("marker")) spec.p_BoMarker_B = ReadVector3(node.Required("marker"));
   return spec;
 }
 
 CorrectionSpec ReadCorrection(const YamlNode& node, const std::vector<std::string>& node_sets) {
-  node.RejectUnknownKeys({"node_set", "axes"});
+  node.RejectUnknownKeys({"node_set", "direction", "distribution"});
   CorrectionSpec spec;
   spec.node_set = CheckNodeSet(node.Required("node_set"), node_sets);
-  spec.axes = {0, 1, 2};
-  if (node.Has("axes")) {
-    spec.axes.clear();
-    for (const YamlNode& axis : node.Required("axes").AsList()) spec.axes.push_back(Choice(axis, kAxes));
+  if (node.Has("direction")) {
+    const YamlNode direction = node.Required("direction");
+    spec.direction = ReadVector3(direction);
+    if (spec.direction->norm() == 0.0) direction.Fail("a load direction must not be zero");
+  }
+  if (node.Has("distribution")) {
+    spec.distribution = static_cast<LoadDistribution>(Choice(node.Required("distribution"), kDistributions));
   }
   return spec;
 }
@@ -65,11 +72,26 @@ CorrectionSpec ReadCorrection(const YamlNode& node, const std::vector<std::strin
 
 std::string_view MethodName(ReductionMethod method) { return kMethods[static_cast<std::size_t>(method)]; }
 
+BoundaryConditions ResolveConditions(const ReductionSpec& spec,
+                                     const std::map<std::string, std::vector<int>>& node_sets) {
+  BoundaryConditions conditions;
+  for (const std::string& name : spec.supports) conditions.supports.push_back({name, node_sets.at(name)});
+  for (const InterfaceSetting& setting : spec.interfaces) {
+    InterfaceSpec interface;
+    interface.name = setting.node_set;
+    interface.nodes = node_sets.at(setting.node_set);
+    interface.coupling = setting.coupling;
+    interface.marker_position = setting.p_BoMarker_B;
+    conditions.interfaces.push_back(std::move(interface));
+  }
+  return conditions;
+}
+
 ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
                                 const std::vector<std::string>& node_sets) {
   const YamlNode section = YamlNode::LoadFile(body_file).Required("reduction");
   section.RejectUnknownKeys({"method", "modes", "max_frequency_hz", "eigensolver", "rigid_body_modes",
-                            "orthonormalize", "interfaces", "correction_modes"});
+                            "orthonormalize", "supports", "interfaces", "correction_modes"});
   ReductionSpec spec;
   if (section.Has("method")) {
     spec.method = static_cast<ReductionMethod>(Choice(section.Required("method"), kMethods));
@@ -100,6 +122,11 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
     spec.exact_rigid_body_modes = Choice(section.Required("rigid_body_modes"), kRigid) == 0;
   }
   if (section.Has("orthonormalize")) spec.orthonormalize = section.Required("orthonormalize").AsBool();
+  if (section.Has("supports")) {
+    for (const YamlNode& node : section.Required("supports").AsList()) {
+      spec.supports.push_back(CheckNodeSet(node, node_sets));
+    }
+  }
   if (section.Has("interfaces")) {
     for (const YamlNode& node : section.Required("interfaces").AsList()) {
       spec.interfaces.push_back(ReadInterface(node, node_sets));
@@ -110,10 +137,30 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
       spec.corrections.push_back(ReadCorrection(node, node_sets));
     }
   }
-  if (spec.method != ReductionMethod::kFreeFree && spec.interfaces.empty()) {
-    section.Fail(fmt::format("method '{}' needs at least one entry in 'interfaces'", MethodName(spec.method)));
+  if (spec.method == ReductionMethod::kCraigBampton && spec.interfaces.empty()) {
+    section.Fail("method 'craig_bampton' needs at least one entry in 'interfaces'");
+  }
+  if (spec.method == ReductionMethod::kFixedInterface && spec.interfaces.empty() && spec.supports.empty()) {
+    section.Fail("method 'fixed_interface' needs 'supports' or 'interfaces' to hold the body");
+  }
+  if (spec.method == ReductionMethod::kFreeFree && !(spec.interfaces.empty() && spec.supports.empty())) {
+    section.Fail("method 'free_free' takes no 'supports' or 'interfaces' (use fixed_interface or craig_bampton)");
   }
   return spec;
+}
+
+std::vector<LoadSet> ResolveLoadSets(const ReductionSpec& spec,
+                                     const std::map<std::string, std::vector<int>>& node_sets) {
+  std::vector<LoadSet> loads;
+  for (const CorrectionSpec& c : spec.corrections) {
+    LoadSet load;
+    load.name = c.node_set;
+    load.nodes = node_sets.at(c.node_set);
+    load.direction = c.direction;
+    load.distribution = c.distribution;
+    loads.push_back(std::move(load));
+  }
+  return loads;
 }
 
 }  // namespace flexmbs::reduction

@@ -2,9 +2,13 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "reduction/correction_modes.h"
+#include "reduction/interface_coupling.h"
 
 namespace flexmbs::reduction {
 
@@ -15,24 +19,19 @@ enum class ReductionMethod {
   kCraigBampton,    ///< interface constraint modes plus fixed-interface normal modes
 };
 
-/// How an interface node set is tied to the basis.
-enum class InterfaceCoupling {
-  kNodes,    ///< every DOF of every node of the set is a boundary DOF
-  kRigid,    ///< a 6-DOF marker the nodes follow rigidly (RBE2-like)
-  kAverage,  ///< a 6-DOF marker moving with the weighted rigid fit of the nodes (RBE3-like)
-};
-
-/// One interface: a node set of the body and its coupling.
-struct InterfaceSpec {
+/// One interface as the body file names it: a node set of the body and its coupling
+/// (interface_coupling.h).
+struct InterfaceSetting {
   std::string node_set;
-  InterfaceCoupling coupling = InterfaceCoupling::kNodes;
+  Coupling coupling = Coupling::kNodes;
   std::optional<Eigen::Vector3d> p_BoMarker_B;  ///< marker position [m]; default: the set's centroid
 };
 
-/// Static correction modes for unit loads on a node set, along the listed axes of B.
+/// Static correction modes for unit loads on a node set (correction_modes.h LoadSet).
 struct CorrectionSpec {
   std::string node_set;
-  std::vector<int> axes;  ///< 0 = x, 1 = y, 2 = z
+  std::optional<Eigen::Vector3d> direction;  ///< in B; unset: x, y and z
+  LoadDistribution distribution = LoadDistribution::kResultant;
 };
 
 /// The `reduction:` section of a body file:
@@ -44,11 +43,13 @@ struct CorrectionSpec {
 ///       eigensolver: spectra         # spectra (default) | slepc
 ///       rigid_body_modes: exact      # free_free: exact (default) | computed
 ///       orthonormalize: false        # craig_bampton: reduced M = I, K diagonal
+///       supports: [clamp]            # node sets clamped during the reduction
 ///       interfaces:
-///         - {node_set: clamp, coupling: nodes}      # nodes | rigid | average
+///         - {node_set: tip, coupling: nodes}        # nodes | rigid | averaging
 ///         - {node_set: hub, coupling: rigid, marker: [0, 0, 0]}
 ///       correction_modes:
-///         - {node_set: tip, axes: [y, z]}
+///         - {node_set: tip, direction: [0, 1, 0]}   # default: x, y and z
+///         - {node_set: pad, distribution: per_node} # resultant (default) | per_node
 struct ReductionSpec {
   ReductionMethod method = ReductionMethod::kFreeFree;
   int num_modes = 0;
@@ -56,17 +57,28 @@ struct ReductionSpec {
   std::string eigensolver = "spectra";
   bool exact_rigid_body_modes = true;
   bool orthonormalize = false;
-  std::vector<InterfaceSpec> interfaces;
+  std::vector<std::string> supports;
+  std::vector<InterfaceSetting> interfaces;
   std::vector<CorrectionSpec> corrections;
 };
 
 /// Reads the `reduction:` section of `body_file`; `node_sets` are the body's node set names
 /// (every interface and correction set must be one of them). Throws InputError
 /// "<file>:<line>:<col>: reduction.<item>: <problem>" for a missing section, an unknown
-/// method, coupling, axis or eigensolver, neither modes nor max_frequency_hz, a non-positive
-/// count or band, an interface missing where the method needs one, or an unknown node set.
+/// method, coupling, distribution or eigensolver, a zero direction, neither modes nor max_frequency_hz, a non-positive
+/// count or band, neither a support nor an interface where the method needs one, or an
+/// unknown node set.
 ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
                                 const std::vector<std::string>& node_sets);
+
+/// The supports and interfaces of `spec` with their node sets resolved (`node_sets`: the
+/// mesh's named node sets, which LoadReductionSpec has checked the names against).
+BoundaryConditions ResolveConditions(const ReductionSpec& spec,
+                                     const std::map<std::string, std::vector<int>>& node_sets);
+
+/// The load sets of `spec` with their node sets resolved.
+std::vector<LoadSet> ResolveLoadSets(const ReductionSpec& spec,
+                                     const std::map<std::string, std::vector<int>>& node_sets);
 
 /// The method's name in files and reports ("free_free", ...).
 std::string_view MethodName(ReductionMethod method);

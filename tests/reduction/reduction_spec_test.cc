@@ -36,25 +36,31 @@ TEST(ReductionSpec, ReadsACraigBamptonSection) {
   const ReductionSpec spec = LoadReductionSpec(WriteBody(R"(reduction:
   method: craig_bampton
   modes: 12
+  supports: [clamp]
   eigensolver: slepc
   orthonormalize: true
   interfaces:
     - {node_set: clamp}
-    - {node_set: tip, coupling: average, marker: [1, 0.005, 0.005]}
+    - {node_set: tip, coupling: averaging, marker: [1, 0.005, 0.005]}
   correction_modes:
-    - {node_set: tip, axes: [y, z]}
+    - {node_set: tip, direction: [0, 1, 0]}
+    - {node_set: clamp, distribution: per_node}
 )"), kNodeSets);
   EXPECT_EQ(spec.method, ReductionMethod::kCraigBampton);
   EXPECT_EQ(spec.num_modes, 12);
   EXPECT_EQ(spec.eigensolver, "slepc");
   EXPECT_TRUE(spec.orthonormalize);
+  EXPECT_EQ(spec.supports, std::vector<std::string>{"clamp"});
   ASSERT_EQ(spec.interfaces.size(), 2u);
-  EXPECT_EQ(spec.interfaces[0].coupling, InterfaceCoupling::kNodes);
+  EXPECT_EQ(spec.interfaces[0].coupling, Coupling::kNodes);
   EXPECT_FALSE(spec.interfaces[0].p_BoMarker_B.has_value());
-  EXPECT_EQ(spec.interfaces[1].coupling, InterfaceCoupling::kAverage);
+  EXPECT_EQ(spec.interfaces[1].coupling, Coupling::kAveraging);
   EXPECT_EQ(*spec.interfaces[1].p_BoMarker_B, Eigen::Vector3d(1, 0.005, 0.005));
-  ASSERT_EQ(spec.corrections.size(), 1u);
-  EXPECT_EQ(spec.corrections[0].axes, (std::vector<int>{1, 2}));
+  ASSERT_EQ(spec.corrections.size(), 2u);
+  EXPECT_EQ(*spec.corrections[0].direction, Eigen::Vector3d(0, 1, 0));
+  EXPECT_EQ(spec.corrections[0].distribution, LoadDistribution::kResultant);
+  EXPECT_FALSE(spec.corrections[1].direction.has_value());
+  EXPECT_EQ(spec.corrections[1].distribution, LoadDistribution::kPerNode);
 }
 
 TEST(ReductionSpec, DefaultsToFreeFreeWithExactRigidModesOnSpectra) {
@@ -77,10 +83,18 @@ TEST(ReductionSpec, BadInputGivesOneLineErrorsNamingFileItemAndValue) {
             file + ":2:36: reduction.eigensolver: unknown eigensolver 'arpack' (available: spectra, slepc)");
   EXPECT_EQ(ErrorOf("reduction: {method: craig_bampton, modes: 5}\n"),
             file + ":2:12: reduction: method 'craig_bampton' needs at least one entry in 'interfaces'");
+  EXPECT_EQ(ErrorOf("reduction: {method: fixed_interface, modes: 5}\n"),
+            file + ":2:12: reduction: method 'fixed_interface' needs 'supports' or 'interfaces' to hold the body");
+  EXPECT_EQ(ErrorOf("reduction: {modes: 5, supports: [clamp]}\n"),
+            file + ":2:12: reduction: method 'free_free' takes no 'supports' or 'interfaces' (use fixed_interface or craig_bampton)");
+  EXPECT_EQ(ErrorOf("reduction: {method: fixed_interface, modes: 5, supports: [root]}\n"),
+            file + ":2:59: reduction.supports[0]: 'root' is not one of the body's node_sets (clamp, tip)");
   EXPECT_EQ(ErrorOf("reduction: {method: craig_bampton, modes: 5, interfaces: [{node_set: hub}]}\n"),
             file + ":2:70: reduction.interfaces[0].node_set: 'hub' is not one of the body's node_sets (clamp, tip)");
-  EXPECT_EQ(ErrorOf("reduction: {modes: 5, correction_modes: [{node_set: tip, axes: [w]}]}\n"),
-            file + ":2:65: reduction.correction_modes[0].axes[0]: 'w' must be one of: x, y, z");
+  EXPECT_EQ(ErrorOf("reduction: {modes: 5, correction_modes: [{node_set: tip, distribution: lumped}]}\n"),
+            file + ":2:72: reduction.correction_modes[0].distribution: 'lumped' must be one of: resultant, per_node");
+  EXPECT_EQ(ErrorOf("reduction: {modes: 5, correction_modes: [{node_set: tip, direction: [0, 0, 0]}]}\n"),
+            file + ":2:69: reduction.correction_modes[0].direction: a load direction must not be zero");
 }
 
 }  // namespace

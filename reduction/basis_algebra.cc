@@ -1,0 +1,77 @@
+#include "reduction/basis_algebra.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+// One Cholesky-QR pass: Q = X L^-T with L L^T = X^T M X; returns L^-T (Q = X L^-T).
+Eigen::MatrixXd CholeskyQrStep(const Eigen::SparseMatrix<double>& M, Eigen::MatrixXd* X) {
+  const Eigen::MatrixXd G = Symmetrized(X->transpose() * (M * *X));
+  const Eigen::LLT<Eigen::MatrixXd> llt(G);
+  FLEXMBS_CHECK(llt.info() == Eigen::Success, "M-orthonormalisation: the basis columns are dependent");
+  const Eigen::MatrixXd U_inv =
+      llt.matrixU().solve(Eigen::MatrixXd::Identity(G.rows(), G.cols()));  // L^-T = U^-1
+  *X = *X * U_inv;
+  return U_inv;
+}
+
+}  // namespace
+
+Eigen::MatrixXd Symmetrized(const Eigen::MatrixXd& A) { return 0.5 * (A + A.transpose()); }
+
+RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                        const Eigen::MatrixXd& B) {
+  RitzResult ritz;
+  const Eigen::Index n = B.cols();
+  if (n == 0) {
+    ritz.vectors = B;
+    ritz.transform.resize(0, 0);
+    return ritz;
+  }
+  // Unit M-norm columns first: correction and constraint modes differ in scale by many decades.
+  const Eigen::MatrixXd MB = M * B;
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double norm = std::sqrt(std::max(B.col(j).dot(MB.col(j)), 0.0));
+    FLEXMBS_CHECK(norm > 0.0 && std::isfinite(norm), "Rayleigh-Ritz: zero or non-finite basis vector");
+    scale(j) = 1.0 / norm;
+  }
+  Eigen::MatrixXd Q = B * scale.asDiagonal();
+  Eigen::MatrixXd T = scale.asDiagonal();
+  for (int pass = 0; pass < 2; ++pass) T = T * CholeskyQrStep(M, &Q);
+  const Eigen::MatrixXd Kr = Symmetrized(Q.transpose() * (K * Q));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(Kr);
+  FLEXMBS_CHECK(eigen.info() == Eigen::Success, "Rayleigh-Ritz: reduced eigenproblem failed");
+  ritz.values = eigen.eigenvalues();
+  ritz.vectors = Q * eigen.eigenvectors();
+  ritz.transform = T * eigen.eigenvectors();
+  return ritz;
+}
+
+void MOrthogonalizeAgainst(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
+  if (Q.cols() == 0 || X->cols() == 0) return;
+  const Eigen::MatrixXd MQ = M * Q;
+  for (int pass = 0; pass < 2; ++pass) *X -= Q * (MQ.transpose() * *X);
+}
+
+Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& X) {
+  if (X.cols() == 0) return X;
+  const Eigen::MatrixXd MX = M * X;
+  Eigen::VectorXd scale(X.cols());
+  for (Eigen::Index j = 0; j < X.cols(); ++j) {
+    const double norm = std::sqrt(std::max(X.col(j).dot(MX.col(j)), 0.0));
+    FLEXMBS_CHECK(norm > 0.0 && std::isfinite(norm), "M-orthonormalisation: zero or non-finite vector");
+    scale(j) = 1.0 / norm;
+  }
+  Eigen::MatrixXd Q = X * scale.asDiagonal();
+  for (int pass = 0; pass < 2; ++pass) CholeskyQrStep(M, &Q);
+  return Q;
+}
+
+}  // namespace flexmbs::reduction

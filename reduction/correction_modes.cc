@@ -1,0 +1,266 @@
+#include "reduction/correction_modes.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <vector>
+
+#include "core/error.h"
+#include "reduction/basis_algebra.h"
+#include "reduction/dof_constraints.h"
+#include "reduction/interior_problem.h"
+#include "reduction/shifted_factorization.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+using Index = Eigen::Index;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const char* const kAxisNames[3] = {"x", "y", "z"};
+
+// Six DOF that hold a free body statically determinately (3-2-1): node A (farthest from the
+// centroid) in x, y, z; node B (farthest from A) in the two axes other than AB's dominant one;
+// node C (farthest from the line AB) along the dominant axis of the normal of ABC. Rigid
+// motions with these six DOF zero vanish (A fixes translation, B the rotations across AB, C
+// the rotation about AB), so no reaction arises for a self-equilibrated load.
+std::array<Index, 6> DeterminateSupport(const Eigen::Matrix3Xd& nodes) {
+  const Eigen::Vector3d centre = nodes.rowwise().mean();
+  Index a = 0, b = 0, c = 0;
+  (nodes.colwise() - centre).colwise().squaredNorm().maxCoeff(&a);
+  (nodes.colwise() - nodes.col(a)).colwise().squaredNorm().maxCoeff(&b);
+  const Eigen::Vector3d d = nodes.col(b) - nodes.col(a);
+  double best = -1.0;
+  for (Index v = 0; v < nodes.cols(); ++v) {
+    const double distance = d.cross(nodes.col(v) - nodes.col(a)).squaredNorm();
+    if (distance > best) {
+      best = distance;
+      c = v;
+    }
+  }
+  const Eigen::Vector3d normal = d.cross(nodes.col(c) - nodes.col(a));
+  if (!(d.norm() > 0.0) || !(normal.norm() > 1e-9 * d.squaredNorm())) {
+    throw InputError("static correction modes: inertia relief: the mesh's nodes lie on one line");
+  }
+  Index d_axis = 0, n_axis = 0;
+  d.cwiseAbs().maxCoeff(&d_axis);
+  normal.cwiseAbs().maxCoeff(&n_axis);
+  std::array<Index, 6> dofs{3 * a, 3 * a + 1, 3 * a + 2, 0, 0, 3 * c + n_axis};
+  int k = 3;
+  for (Index axis = 0; axis < 3; ++axis) {
+    if (axis != d_axis) dofs[static_cast<std::size_t>(k++)] = 3 * b + axis;
+  }
+  return dofs;
+}
+
+// Inertia-relief static responses of a free body, M-orthogonal to the rigid modes.
+Eigen::MatrixXd InertiaReliefResponses(const FeModel& model, const Eigen::MatrixXd& F) {
+  const Eigen::MatrixXd R = MOrthonormalRigidModes(model);
+  const Eigen::MatrixXd MR = model.M * R;
+  const Eigen::MatrixXd F_e = F - MR * (R.transpose() * F);
+  const std::array<Index, 6> fixed = DeterminateSupport(model.nodes);
+  const FreeDofMap map(model.K.rows(), fixed);
+  const Eigen::SparseMatrix<double> K_ff = map.Restrict(model.K);
+  const Eigen::SparseMatrix<double> M_ff = map.Restrict(model.M);
+  ShiftedFactorization factor;
+  if (factor.Factorize(K_ff, M_ff, 0.0, ShiftedFactorization::Method::kSupernodalCholesky) !=
+          ShiftedFactorization::Status::kOk ||
+      HasZeroEnergyMode(factor, K_ff, M_ff)) {
+    throw InputError("static correction modes: inertia relief: the free body's stiffness is singular beyond its six "
+                     "rigid-body modes (a part of the mesh not connected to the rest, or a mechanism)");
+  }
+  Eigen::MatrixXd X = map.Expand(factor.Solve(map.RestrictVectors(F_e)));
+  MOrthogonalizeAgainst(model.M, R, &X);
+  return X;
+}
+
+}  // namespace
+
+LoadCases BuildLoadCases(Index num_nodes, const LoadSet& load) {
+  if (load.name.empty()) throw InputError("load set with an empty name");
+  const std::string what = fmt::format("load set '{}'", load.name);
+  if (load.nodes.empty()) throw InputError(fmt::format("{}: no nodes (empty load set)", what));
+  std::vector<bool> seen(static_cast<std::size_t>(num_nodes), false);
+  for (const int n : load.nodes) {
+    if (n < 0 || n >= num_nodes) {
+      throw InputError(fmt::format("{}: node {} is outside the mesh's node range [0, {})", what, n, num_nodes));
+    }
+    if (seen[static_cast<std::size_t>(n)]) throw InputError(fmt::format("{}: node {} is listed twice", what, n));
+    seen[static_cast<std::size_t>(n)] = true;
+  }
+  std::vector<Eigen::Vector3d> directions;
+  std::vector<std::string> direction_names;
+  if (load.direction) {
+    const Eigen::Vector3d& d = *load.direction;
+    const double norm = d.norm();
+    if (!(std::isfinite(norm) && norm > 0.0)) {
+      throw InputError(fmt::format("{}: direction ({:g}, {:g}, {:g}) must be finite and non-zero", what, d(0), d(1), d(2)));
+    }
+    directions.push_back(d / norm);
+    direction_names.emplace_back();
+  } else {
+    for (Index axis = 0; axis < 3; ++axis) {
+      directions.push_back(Eigen::Vector3d::Unit(axis));
+      direction_names.emplace_back(std::string("_") + kAxisNames[axis]);
+    }
+  }
+  std::vector<double> shares(load.nodes.size(), 1.0);
+  if (!load.weights.empty()) {
+    if (load.distribution != LoadDistribution::kResultant) {
+      throw InputError(fmt::format("{}: weights are for a resultant load only, not per-node loads", what));
+    }
+    if (load.weights.size() != load.nodes.size()) {
+      throw InputError(fmt::format("{}: {} weights for {} nodes", what, load.weights.size(), load.nodes.size()));
+    }
+    for (std::size_t k = 0; k < shares.size(); ++k) {
+      if (!(std::isfinite(load.weights[k]) && load.weights[k] > 0.0)) {
+        throw InputError(fmt::format("{}: weight {} of node {} must be finite and > 0", what, load.weights[k],
+                                     load.nodes[k]));
+      }
+      shares[k] = load.weights[k];
+    }
+  }
+  double total = 0.0;
+  for (const double w : shares) total += w;
+
+  LoadCases cases;
+  const Index num_dofs = 3 * num_nodes;
+  if (load.distribution == LoadDistribution::kResultant) {
+    cases.F = Eigen::MatrixXd::Zero(num_dofs, static_cast<Index>(directions.size()));
+    for (std::size_t d = 0; d < directions.size(); ++d) {
+      for (std::size_t k = 0; k < load.nodes.size(); ++k) {
+        cases.F.block<3, 1>(3 * static_cast<Index>(load.nodes[k]), static_cast<Index>(d)) =
+            shares[k] / total * directions[d];
+      }
+      cases.names.push_back(load.name + direction_names[d]);
+    }
+  } else {
+    cases.F = Eigen::MatrixXd::Zero(num_dofs, static_cast<Index>(directions.size() * load.nodes.size()));
+    Index column = 0;
+    for (const int n : load.nodes) {
+      for (std::size_t d = 0; d < directions.size(); ++d) {
+        cases.F.block<3, 1>(3 * static_cast<Index>(n), column++) = directions[d];
+        cases.names.push_back(fmt::format("{}_n{}{}", load.name, n, direction_names[d]));
+      }
+    }
+  }
+  return cases;
+}
+
+CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBasis& basis,
+                                          std::span<const LoadSet> loads, const CorrectionOptions& options) {
+  ValidateModel(model);
+  const Index n = model.K.rows();
+  if (basis.Phi.rows() != n) {
+    throw InputError(fmt::format("static correction modes: the basis has {} rows, the model {} DOF", basis.Phi.rows(), n));
+  }
+  if (loads.empty()) throw InputError("static correction modes: no load sets");
+  if (!(options.dependency_tolerance > 0.0 && options.dependency_tolerance < 1.0)) {
+    throw InputError(fmt::format("static correction modes: dependency_tolerance {} must be in (0, 1)",
+                                 options.dependency_tolerance));
+  }
+  std::vector<std::string> names;
+  std::vector<Eigen::MatrixXd> blocks;
+  std::set<std::string> taken(basis.names.begin(), basis.names.end());
+  Index num_cases = 0;
+  for (const LoadSet& load : loads) {
+    LoadCases cases = BuildLoadCases(model.nodes.cols(), load);
+    num_cases += cases.F.cols();
+    for (std::string& name : cases.names) {
+      names.push_back("static_correction_" + name);
+      if (!taken.insert(names.back()).second) {
+        throw InputError(fmt::format("load set '{}': mode name '{}' is already in the basis or made twice", load.name,
+                                     names.back()));
+      }
+    }
+    blocks.push_back(std::move(cases.F));
+  }
+  Eigen::MatrixXd F(n, num_cases);
+  Index offset = 0;
+  for (const Eigen::MatrixXd& block : blocks) {
+    F.middleCols(offset, block.cols()) = block;
+    offset += block.cols();
+  }
+
+  // Static responses of the body as the basis holds it.
+  CorrectionResult result;
+  Eigen::MatrixXd X;
+  std::vector<bool> carried(static_cast<std::size_t>(num_cases), false);  // no interior load at all
+  if (!basis.held_by.empty()) {
+    const InteriorProblem interior = BuildInteriorProblem(model, basis.held_by);
+    const ShiftedFactorization factor = FactorHeldInterior(model, basis.held_by, interior);
+    const Eigen::MatrixXd rhs = Eigen::SparseMatrix<double>(interior.transform.G.transpose()) * F;
+    for (Index j = 0; j < num_cases; ++j) carried[static_cast<std::size_t>(j)] = rhs.col(j).isZero(0.0);
+    X = interior.transform.G * factor.Solve(rhs);
+  } else {
+    X = InertiaReliefResponses(model, F);
+  }
+
+  // M-orthogonalise against the basis (not its constraint modes) and each other; drop the dependent.
+  Eigen::MatrixXd against_columns(n, 0);
+  {
+    std::vector<Index> keep;
+    for (Index j = 0; j < basis.num_modes(); ++j) {
+      if (basis.kinds[static_cast<std::size_t>(j)] != ModeKind::kConstraint) keep.push_back(j);
+    }
+    against_columns.resize(n, static_cast<Index>(keep.size()));
+    for (std::size_t k = 0; k < keep.size(); ++k) against_columns.col(static_cast<Index>(k)) = basis.Phi.col(keep[k]);
+  }
+  Eigen::MatrixXd Q = MOrthonormalized(model.M, against_columns);
+  std::vector<Index> accepted;
+  Eigen::MatrixXd added(n, 0);
+  for (Index j = 0; j < num_cases; ++j) {
+    const std::string& name = names[static_cast<std::size_t>(j)];
+    if (carried[static_cast<std::size_t>(j)]) {
+      result.dropped.push_back(fmt::format("{}: the load acts on support or interface DOF only (carried by the "
+                                           "constraint modes or the supports)", name));
+      continue;
+    }
+    Eigen::MatrixXd x = X.col(j);
+    const double before = std::sqrt(x.col(0).dot(model.M * x.col(0)));
+    MOrthogonalizeAgainst(model.M, Q, &x);
+    const double after = std::sqrt(std::max(x.col(0).dot(model.M * x.col(0)), 0.0));
+    if (!(before > 0.0) || !(after > options.dependency_tolerance * before)) {
+      result.dropped.push_back(fmt::format("{}: linearly dependent on the basis (M-norm left after orthogonalisation "
+                                           "{:.2g} of the static response's)", name, before > 0.0 ? after / before : 0.0));
+      continue;
+    }
+    x /= after;
+    Q.conservativeResize(n, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = x.col(0);
+    added.conservativeResize(n, added.cols() + 1);
+    added.col(added.cols() - 1) = x.col(0);
+    accepted.push_back(j);
+  }
+
+  ReducedBasis& out = result.basis;
+  out = basis;
+  const Index old = basis.num_modes();
+  const Index k = added.cols();
+  result.added = k;
+  out.Phi.conservativeResize(n, old + k);
+  out.Phi.rightCols(k) = added;
+  for (const Index j : accepted) {
+    out.kinds.push_back(ModeKind::kStaticCorrection);
+    out.names.push_back(names[static_cast<std::size_t>(j)]);
+  }
+  auto extend = [&](Eigen::VectorXd* v) {
+    v->conservativeResize(old + k);
+    v->tail(k).setConstant(kNaN);
+  };
+  extend(&out.frequency_hz);
+  extend(&out.relative_residuals);
+  extend(&out.residual_floors);
+  if (out.method.find("+static_correction") == std::string::npos) out.method += "+static_correction";
+  out.description += fmt::format("; {} static correction modes ({}, {} dropped)", k,
+                                 basis.held_by.empty() ? "inertia relief" : "held as the basis", result.dropped.size());
+  ComputeReducedMatrices(model, &out);
+  return result;
+}
+
+}  // namespace flexmbs::reduction

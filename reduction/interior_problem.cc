@@ -1,0 +1,123 @@
+#include "reduction/interior_problem.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/error.h"
+#include "reduction/dof_constraints.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+// Held nodes lie on one line when the second singular value of their centred positions is
+// below this fraction of the first (exactly collinear positions give round-off).
+constexpr double kCollinearFraction = 1e-9;
+
+}  // namespace
+
+InteriorProblem BuildInteriorProblem(const FeModel& model, const BoundaryConditions& conditions) {
+  ValidateModel(model);
+  InteriorProblem p;
+  p.transform = BuildConstraintTransform(model.nodes, conditions);
+  const Eigen::SparseMatrix<double>& G = p.transform.G;
+  const bool averaging = std::any_of(conditions.interfaces.begin(), conditions.interfaces.end(),
+                                     [](const InterfaceSpec& i) { return i.coupling == Coupling::kAveraging; });
+  if (!averaging) {
+    // G selects the interior DOF (ascending, like FreeDofMap): restrict without sparse products.
+    std::vector<bool> interior(static_cast<std::size_t>(G.rows()), false);
+    for (Eigen::Index o = 0; o < G.outerSize(); ++o) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(G, o); it; ++it) interior[static_cast<std::size_t>(it.row())] = true;
+    }
+    std::vector<Eigen::Index> fixed;
+    for (Eigen::Index dof = 0; dof < G.rows(); ++dof) {
+      if (!interior[static_cast<std::size_t>(dof)]) fixed.push_back(dof);
+    }
+    const FreeDofMap map(G.rows(), fixed);
+    p.K_oo = map.Restrict(model.K);
+    p.M_oo = map.Restrict(model.M);
+    return p;
+  }
+  const Eigen::SparseMatrix<double> Gt = G.transpose();
+  p.K_oo = Gt * (model.K * G);
+  p.M_oo = Gt * (model.M * G);
+  p.K_oo.prune(0.0);
+  p.M_oo.prune(0.0);
+  return p;
+}
+
+bool HasZeroEnergyMode(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& K,
+                       const Eigen::SparseMatrix<double>& M) {
+  constexpr Eigen::Index kProbeVectors = 2;
+  constexpr int kSteps = 3;
+  const Eigen::Index n = K.rows();
+  if (n == 0) return false;
+  const double scale = K.diagonal().sum() / M.diagonal().sum();
+  std::mt19937_64 rng(0x48656c64u);
+  std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+  Eigen::MatrixXd X(n, kProbeVectors);
+  for (Eigen::Index i = 0; i < X.size(); ++i) X.data()[i] = uniform(rng);
+  for (int step = 0; step < kSteps; ++step) {
+    X = factor.Solve(Eigen::MatrixXd(M * X));
+    if (!X.allFinite()) return true;
+    X.colwise().normalize();
+  }
+  const Eigen::MatrixXd KX = K * X;
+  const Eigen::MatrixXd MX = M * X;
+  for (Eigen::Index j = 0; j < kProbeVectors; ++j) {
+    const double rayleigh = X.col(j).dot(KX.col(j)) / X.col(j).dot(MX.col(j));
+    if (!(rayleigh > kZeroEigenvalue * scale)) return true;
+  }
+  return false;
+}
+
+ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
+                                        const InteriorProblem& interior) {
+  ShiftedFactorization factor;
+  if (interior.K_oo.rows() == 0) return factor;
+  const auto status = factor.Factorize(interior.K_oo, interior.M_oo, 0.0,
+                                       ShiftedFactorization::Method::kSupernodalCholesky);
+  if (status != ShiftedFactorization::Status::kOk || HasZeroEnergyMode(factor, interior.K_oo, interior.M_oo)) {
+    ThrowNotHeld(model, conditions);
+  }
+  return factor;
+}
+
+void ThrowNotHeld(const FeModel& model, const BoundaryConditions& conditions) {
+  const std::string who = DescribeConditions(conditions);
+  const std::size_t count = conditions.supports.size() + conditions.interfaces.size();
+  bool has_averaging = false;
+  std::vector<int> held;
+  for (const SupportSpec& s : conditions.supports) held.insert(held.end(), s.nodes.begin(), s.nodes.end());
+  for (const InterfaceSpec& i : conditions.interfaces) {
+    if (i.coupling == Coupling::kAveraging) has_averaging = true;
+    held.insert(held.end(), i.nodes.begin(), i.nodes.end());
+  }
+  std::string reason;
+  if (conditions.empty()) {
+    reason = "nothing holds it";
+  } else if (!has_averaging) {
+    Eigen::Matrix3Xd x(3, static_cast<Eigen::Index>(held.size()));
+    for (std::size_t k = 0; k < held.size(); ++k) x.col(static_cast<Eigen::Index>(k)) = model.nodes.col(held[k]);
+    const Eigen::Vector3d centre = x.rowwise().mean();
+    x.colwise() -= centre;
+    const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::MatrixXd>(x).singularValues();
+    if (!(s(0) > 0.0)) {
+      reason = fmt::format("{} held node{} at one point, about which the body can still rotate",
+                           held.size() == 1 ? "its only" : "all its", held.size() == 1 ? " is" : "s are");
+    } else if (s(1) <= kCollinearFraction * s(0)) {
+      reason = fmt::format("its {} held nodes lie on one line, about which the body can still rotate", held.size());
+    }
+  }
+  if (reason.empty()) {
+    reason = "a zero-energy motion remains with them held (a part of the mesh not connected to them, or a mechanism)";
+  }
+  throw InputError(fmt::format("{} {} not hold the body: the interior stiffness K_ii (interface DOF held) is singular: {}",
+                               who, count == 1 ? "does" : "do", reason));
+}
+
+}  // namespace flexmbs::reduction

@@ -1,0 +1,47 @@
+#pragma once
+
+// The body held by its supports and interfaces, in the interior coordinates u_o of
+// u = B q_b + G u_o (BuildConstraintTransform): the matrices of the held body and their
+// factorisation, with the check that the conditions really hold it.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "reduction/interface_coupling.h"
+#include "reduction/modal_basis.h"
+#include "reduction/shifted_factorization.h"
+
+namespace flexmbs::reduction {
+
+/// K_oo = G^T K G and M_oo = G^T M G: stiffness [N/m] and mass [kg] of the body with supports
+/// clamped and interfaces held (q_b = 0). Symmetric, full storage.
+struct InteriorProblem {
+  ConstraintTransform transform;
+  Eigen::SparseMatrix<double> K_oo;
+  Eigen::SparseMatrix<double> M_oo;
+};
+
+/// Builds the interior problem of `conditions` (which may be empty: then G = I, a free body).
+/// Throws InputError for bad conditions (BuildConstraintTransform) or a bad model.
+InteriorProblem BuildInteriorProblem(const FeModel& model, const BoundaryConditions& conditions);
+
+/// The Cholesky factor of K_oo (sigma = 0). Throws a one-line InputError naming the conditions
+/// and the reason if they do not hold the body: K_oo is not positive definite, or has an
+/// eigenvalue at zero to round-off (HasZeroEnergyMode).
+ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
+                                        const InteriorProblem& interior);
+
+/// Whether the factorised K (sigma = 0) has an eigenvalue at zero to round-off relative to
+/// trace(K)/trace(M): three steps of inverse iteration from two random vectors, then the
+/// Rayleigh quotient of each. A numerically singular K can factorise with round-off pivots;
+/// K^-1 then amplifies its null space by 1e8 or more per step, so a Rayleigh quotient drops to
+/// round-off; for a positive definite K every Rayleigh quotient is >= lambda_1.
+bool HasZeroEnergyMode(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& K,
+                       const Eigen::SparseMatrix<double>& M);
+
+/// Throws the one-line InputError "<conditions> do(es) not hold the body: ... (reason)", the
+/// reason read from the geometry: all held nodes at one point or on one line, else a part not
+/// connected to them or a mechanism.
+[[noreturn]] void ThrowNotHeld(const FeModel& model, const BoundaryConditions& conditions);
+
+}  // namespace flexmbs::reduction

@@ -1,0 +1,147 @@
+#pragma once
+
+// The reduced basis of a flexible body (the result type shared by every reduction) and the two
+// modal bases: free-free normal modes and fixed-interface normal modes.
+//
+// A basis Phi (num_dofs x n) approximates the FE displacement as u = Phi q. Its reduced
+// matrices are K_r = Phi^T K Phi and M_r = Phi^T M Phi (Rayleigh-Ritz; Craig & Kurdila,
+// "Fundamentals of Structural Dynamics", 2nd ed. 2006, on the Rayleigh-Ritz method).
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "reduction/eigensolver.h"
+#include "reduction/interface_coupling.h"
+
+namespace flexmbs::reduction {
+
+/// What a column of a basis is.
+enum class ModeKind {
+  kRigid,             ///< a rigid-body mode (zero strain energy)
+  kNormal,            ///< an eigenvector of K phi = lambda M phi (of the body as held, or of a reduced system)
+  kConstraint,        ///< unit motion of one boundary DOF, interior statically condensed (Craig-Bampton)
+  kStaticCorrection,  ///< the static response to a named load (residual / attachment mode)
+};
+
+/// "rigid", "normal", "constraint", "static_correction": the names used in files.
+std::string_view ModeKindName(ModeKind kind);
+/// The kind named `name` (see ModeKindName), or nothing.
+std::optional<ModeKind> ModeKindFromName(std::string_view name);
+
+/// Number of columns of each kind.
+struct ModeCounts {
+  Eigen::Index rigid = 0;
+  Eigen::Index normal = 0;
+  Eigen::Index constraint = 0;
+  Eigen::Index static_correction = 0;
+  Eigen::Index total() const { return rigid + normal + constraint + static_correction; }
+  bool operator==(const ModeCounts&) const = default;
+};
+/// "6 rigid, 10 normal, 0 constraint, 2 static_correction".
+std::string FormatModeCounts(const ModeCounts& counts);
+
+/// The FE model a basis is built from (views, not copies): K [N/m] and M [kg], symmetric, full
+/// storage, DOF 3 n + i (fem::SystemMatrices), and the node positions p_BoN_B [m] (3 x n).
+struct FeModel {
+  const Eigen::SparseMatrix<double>& K;
+  const Eigen::SparseMatrix<double>& M;
+  const Eigen::Matrix3Xd& nodes;
+};
+
+/// Throws InputError unless K and M are square, of size 3 x (number of nodes), and non-empty.
+void ValidateModel(const FeModel& model);
+
+/// A reduced basis with its reduced matrices and what each column is.
+struct ReducedBasis {
+  /// "free_free_modal", "fixed_interface_modal", "craig_bampton",
+  /// "craig_bampton_orthonormalized"; "+static_correction" appended when correction modes were added.
+  std::string method;
+  /// One line for people: how the basis was made and what its columns are.
+  std::string description;
+  /// num_dofs x n: one mode shape per column, DOF 3 node + axis [m per unit modal coordinate].
+  Eigen::MatrixXd Phi;
+  std::vector<ModeKind> kinds;     ///< per column
+  std::vector<std::string> names;  ///< per column, unique: "rigid_tx", "normal_3", "constraint_tip_rx", ...
+  Eigen::MatrixXd K_reduced;       ///< Phi^T K Phi [N/m scaled by the modal normalisation]
+  Eigen::MatrixXd M_reduced;       ///< Phi^T M Phi
+  /// Per column: the eigenfrequency [Hz] of rigid (0 or the computed round-off value) and normal
+  /// modes; NaN for constraint and static correction modes.
+  Eigen::VectorXd frequency_hz;
+  /// Per column: relative residual of the eigenpair (EigenSolution) for rigid and normal modes
+  /// that are eigenpairs of the model as held; NaN otherwise (constraint and correction modes,
+  /// and the normal modes of a reduced system, which are Ritz vectors, not eigenvectors).
+  Eigen::VectorXd relative_residuals;
+  /// Per column: the round-off floor of that residual (EigenSolution::residual_floors); NaN otherwise.
+  Eigen::VectorXd residual_floors;
+  /// The supports and interfaces the basis was computed with (empty: free-free). Static
+  /// correction modes are computed for the body held the same way.
+  BoundaryConditions held_by;
+  /// The eigensolver backend that computed the normal modes ("" if none was used).
+  std::string eigensolver;
+  /// Only for a transformed basis (OrthonormalizeBasis): Phi = Phi_original * original_transform,
+  /// with the kinds and names of the original columns.
+  std::vector<ModeKind> original_kinds;
+  std::vector<std::string> original_names;
+  Eigen::MatrixXd original_transform;
+
+  Eigen::Index num_modes() const { return Phi.cols(); }
+  ModeCounts Counts() const;
+};
+
+/// Sets basis->K_reduced and M_reduced from the full matrices: Phi^T K Phi and Phi^T M Phi
+/// (symmetrised).
+void ComputeReducedMatrices(const FeModel& model, ReducedBasis* basis);
+
+/// The six rigid-body modes of the mesh (3 n x 6), M-orthonormal: unit translations along B's
+/// axes scaled by 1 / sqrt(m), then unit rotations about the principal axes of inertia through
+/// the centre of mass scaled by 1 / sqrt(J_k) (mutually M-orthogonal for the consistent mass,
+/// from fem::MassPropertiesFromMassMatrix), cleaned by one Cholesky-QR pass in the M inner
+/// product. Columns: translation x, y, z, rotation about principal axis 1, 2, 3 (ascending J).
+Eigen::MatrixXd MOrthonormalRigidModes(const FeModel& model);
+
+/// Which rigid-body modes a free-free basis carries.
+enum class RigidModes {
+  /// The six lowest eigenvectors as computed (rigid to the eigensolver's accuracy; any
+  /// orthonormal basis of the rigid subspace, mixed translations and rotations).
+  kComputed,
+  /// MOrthonormalRigidModes, exactly rigid; the elastic modes are made exactly M-orthogonal to
+  /// them and re-diagonalised by Rayleigh-Ritz (same subspace, residuals recomputed).
+  kExact,
+};
+
+/// Options of a free-free modal basis.
+struct FreeFreeOptions {
+  /// The eigensolver settings. `num_modes` counts the ELASTIC modes: the lowest `num_modes`
+  /// elastic modes, or with `max_frequency_hz` all elastic modes below it (num_modes then caps
+  /// their number). The six rigid-body modes come on top.
+  EigenOptions eigen;
+  RigidModes rigid_modes = RigidModes::kExact;
+};
+
+/// Free-free normal modes of an unsupported body: 6 rigid-body modes, then the elastic modes,
+/// ascending, all M-orthonormal (M_reduced = I, K_reduced = diag(omega^2)). Repeated
+/// frequencies are fine: their modes are any M-orthonormal basis of the eigenspace.
+/// Throws a one-line InputError for: a bad model, no modes asked for, more elastic modes than
+/// DOF - 6, a band with no elastic mode, a number of zero-frequency modes other than 6 (a
+/// disconnected part or a mechanism), and the eigensolver's own errors (prefixed).
+ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const Eigensolver& solver);
+
+/// Fixed-interface normal modes: the eigenmodes of the body with every support clamped and
+/// every interface held (node-set and rigid interfaces: their node DOF fixed; averaging
+/// interfaces: the marker held, W u = 0, the nodes free to deform). Solved in the interior
+/// coordinates of BuildConstraintTransform, K_oo = G^T K G, M_oo = G^T M G (symmetric positive
+/// definite), expanded to the full DOF: Phi = G phi_o. M-orthonormal; the residuals are those
+/// of the constrained problem (the constraint forces are not residual).
+/// `eigen`: the lowest num_modes, or all below max_frequency_hz (Craig & Bampton 1968;
+/// Craig & Kurdila 2006, component-mode synthesis).
+/// Throws a one-line InputError for: no interface or support, bad interfaces (see
+/// BuildConstraintTransform), no modes asked for, more modes than interior DOF, conditions
+/// that do not hold the body (a zero-frequency mode remains), a band with no modes.
+ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
+                                      const EigenOptions& eigen, const Eigensolver& solver);
+
+}  // namespace flexmbs::reduction

@@ -1,0 +1,219 @@
+#include "reduction/modal_basis.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "basis_test_support.h"
+#include "core/error.h"
+#include "fem/mass_properties.h"
+#include "test_problems.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+using fem::ElementType;
+using testing::Body;
+using testing::LargestPrincipalAngleSine;
+
+// The eigensolver's contract (EigenOptions defaults): relative residual of every pair.
+constexpr double kResidualBound = 1e-8;
+// The contract: max |Phi^T M Phi - I|.
+constexpr double kOrthonormalityBound = 1e-10;
+// Off-diagonal of K_reduced relative to its largest diagonal entry: round-off of the
+// Rayleigh-Ritz rotation (measured ~1e-14).
+constexpr double kDiagonalBound = 1e-10;
+// Eigenvalues against the dense solver, relative to max(lambda, first elastic lambda): the
+// dense reference is accurate relative to each low eigenvalue (test_problems.h); measured
+// deviations ~1e-12, the contract is 1e-8.
+constexpr double kDenseAgreement = 1e-8;
+// Sine of the largest principal angle between two computations of one eigenspace:
+// Davis-Kahan, residual (<= 1e-8) over the relative gap (>= 1e-2 here).
+constexpr double kSubspaceAgreement = 1e-6;
+// |R^T M E| after the exact rigid replacement: two Gram-Schmidt passes leave round-off.
+constexpr double kExactOrthogonality = 1e-12;
+// ||K r|| / (||K|| ||r||) of an exact rigid-body vector: round-off of the assembly.
+constexpr double kRigidStrain = 1e-12;
+
+const fem::IsotropicMaterial kSteel{"steel", 210e9, 0.3, 7850.0};
+
+double FreeFreeShift(const Body& b) { return -1e-6 * b.K.diagonal().sum() / b.M.diagonal().sum(); }
+
+double MaxOffDiagonal(const Eigen::MatrixXd& A) {
+  Eigen::MatrixXd off = A;
+  off.diagonal().setZero();
+  return off.cwiseAbs().maxCoeff() / A.diagonal().cwiseAbs().maxCoeff();
+}
+
+// The tet10 L-bracket of the free-free tests: legs 0.3 m long, 0.1 m thick, 0.1 m wide.
+const Body& Bracket() {
+  static const Body body = testing::MakeBracket(ElementType::kTet10, 3, 1, 0.3, 0.1, kSteel);
+  return body;
+}
+
+TEST(FreeFreeModalBasis, BracketHasSixRigidModesAndTheElasticFrequenciesOfTheDenseModel) {
+  const Body& b = Bracket();
+  FreeFreeOptions options;
+  options.eigen.num_modes = 12;
+  const testing::DenseEigen dense = testing::SolveDense(b.K, b.M, FreeFreeShift(b));
+  for (const RigidModes rigid : {RigidModes::kExact, RigidModes::kComputed}) {
+    options.rigid_modes = rigid;
+    const ReducedBasis basis = FreeFreeModalBasis(b.model(), options, testing::Spectra());
+    EXPECT_EQ(basis.Counts(), (ModeCounts{6, 12, 0, 0}));
+    EXPECT_EQ(basis.num_modes(), 18);
+    ASSERT_EQ(basis.names.size(), 18u);
+    EXPECT_EQ(basis.method, "free_free_modal");
+    const double lambda_1 = dense.values(6);
+    double max_deviation = 0.0;
+    for (Eigen::Index j = 6; j < 18; ++j) {
+      const double lambda = testing::Lambda(basis.frequency_hz(j));
+      const double deviation = std::abs(lambda - dense.values(j)) / std::max(dense.values(j), lambda_1);
+      max_deviation = std::max(max_deviation, deviation);
+      EXPECT_LE(deviation, kDenseAgreement) << "mode " << j;
+      EXPECT_LE(basis.relative_residuals(j), kResidualBound) << "mode " << j;
+    }
+    for (Eigen::Index j = 0; j < 6; ++j) EXPECT_LE(std::abs(basis.frequency_hz(j)), 1e-3) << "rigid mode " << j;
+    EXPECT_LE((basis.M_reduced - Eigen::MatrixXd::Identity(18, 18)).cwiseAbs().maxCoeff(), kOrthonormalityBound);
+    EXPECT_LE(MaxOffDiagonal(basis.K_reduced.bottomRightCorner(12, 12)), kDiagonalBound);
+    // The elastic eigenspaces equal the dense ones (the bracket's frequencies are distinct).
+    const double sine = LargestPrincipalAngleSine(b.M, basis.Phi.rightCols(12), dense.vectors.middleCols(6, 12));
+    EXPECT_LE(sine, kSubspaceAgreement);
+    std::printf("[ numbers  ] bracket (%s rigid modes), %td DOF: f7..f18 = %.2f .. %.2f Hz, max deviation from dense "
+                "%.1e, elastic subspace sine %.1e, max residual %.1e\n",
+                rigid == RigidModes::kExact ? "exact" : "computed", b.K.rows(), basis.frequency_hz(6),
+                basis.frequency_hz(17), max_deviation, sine, basis.relative_residuals.tail(12).maxCoeff());
+  }
+}
+
+TEST(FreeFreeModalBasis, ExactRigidModesSpanTheComputedRigidSubspaceAndAreExactlyOrthogonalToTheElastic) {
+  const Body& b = Bracket();
+  FreeFreeOptions options;
+  options.eigen.num_modes = 6;
+  options.rigid_modes = RigidModes::kExact;
+  const ReducedBasis exact = FreeFreeModalBasis(b.model(), options, testing::Spectra());
+  options.rigid_modes = RigidModes::kComputed;
+  const ReducedBasis computed = FreeFreeModalBasis(b.model(), options, testing::Spectra());
+
+  const Eigen::MatrixXd R = exact.Phi.leftCols(6);
+  const double rigid_sine = LargestPrincipalAngleSine(b.M, R, computed.Phi.leftCols(6));
+  EXPECT_LE(rigid_sine, kSubspaceAgreement);
+  // Exactly rigid: the exact columns lie in the span of fem::RigidBodyModes and carry no strain.
+  const Eigen::MatrixXd rigid = fem::RigidBodyModes(b.mesh.nodes);
+  const Eigen::MatrixXd fit = rigid * rigid.colPivHouseholderQr().solve(R);
+  EXPECT_LE((fit - R).cwiseAbs().maxCoeff() / R.cwiseAbs().maxCoeff(), 1e-13);
+  const double k_norm = Eigen::MatrixXd(b.K).norm();
+  EXPECT_LE((b.K * R).norm() / (k_norm * R.norm()), kRigidStrain);
+  EXPECT_LE((R.transpose() * (b.M * exact.Phi.rightCols(6))).cwiseAbs().maxCoeff(), kExactOrthogonality);
+  // Translations first, each a pure translation along one axis.
+  for (int axis = 0; axis < 3; ++axis) {
+    const Eigen::VectorXd t = R.col(axis);
+    for (Eigen::Index v = 0; v < b.mesh.num_nodes(); ++v) {
+      EXPECT_NEAR(t(3 * v + axis), t(axis), 1e-12 * std::abs(t(axis)));
+    }
+  }
+  const double elastic_sine = LargestPrincipalAngleSine(b.M, exact.Phi.rightCols(6), computed.Phi.rightCols(6));
+  EXPECT_LE(elastic_sine, kSubspaceAgreement);
+  std::printf("[ numbers  ] exact vs computed rigid subspace sine %.1e, elastic %.1e, |R^T M E| %.1e, rigid residual "
+              "%.1e (computed %.1e)\n",
+              rigid_sine, elastic_sine, (R.transpose() * (b.M * exact.Phi.rightCols(6))).cwiseAbs().maxCoeff(),
+              exact.relative_residuals.head(6).maxCoeff(), computed.relative_residuals.head(6).maxCoeff());
+}
+
+TEST(FreeFreeModalBasis, MaxFrequencyKeepsExactlyTheElasticModesInTheBand) {
+  const Body& b = Bracket();
+  const testing::DenseEigen dense = testing::SolveDense(b.K, b.M, FreeFreeShift(b));
+  // A band edge halfway between dense modes 10 and 11 (elastic modes 5 and 6).
+  const double edge_hz = 0.5 * (std::sqrt(dense.values(10)) + std::sqrt(dense.values(11))) / (2.0 * std::numbers::pi);
+  FreeFreeOptions options;
+  options.eigen.max_frequency_hz = edge_hz;
+  const ReducedBasis basis = FreeFreeModalBasis(b.model(), options, testing::Spectra());
+  EXPECT_EQ(basis.Counts(), (ModeCounts{6, 5, 0, 0}));
+  // num_modes caps the band.
+  options.eigen.num_modes = 3;
+  EXPECT_EQ(FreeFreeModalBasis(b.model(), options, testing::Spectra()).Counts(), (ModeCounts{6, 3, 0, 0}));
+}
+
+TEST(FixedInterfaceModalBasis, ClampedBoxMatchesTheDenseClampedModel) {
+  const Body b = testing::MakeBox(ElementType::kHex20, {4, 1, 1}, {0.4, 0.05, 0.04}, kSteel);
+  const std::vector<int> clamp = testing::NodesAt(b.mesh, 0, 0.0);
+  BoundaryConditions conditions;
+  conditions.interfaces.push_back({"root", clamp, Coupling::kNodes, std::nullopt, {}});
+  EigenOptions eigen;
+  eigen.num_modes = 8;
+  const ReducedBasis basis = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::Spectra());
+  EXPECT_EQ(basis.Counts(), (ModeCounts{0, 8, 0, 0}));
+  EXPECT_EQ(basis.held_by.interfaces.size(), 1u);
+  // Zero on the held nodes.
+  for (const int n : clamp) EXPECT_EQ(basis.Phi.middleRows(3 * n, 3).cwiseAbs().maxCoeff(), 0.0);
+  const testing::DenseModes dense =
+      testing::DenseModesOn(b.K, b.M, testing::FreeDofSelection(b.K.rows(), clamp), 0.0);
+  for (Eigen::Index j = 0; j < 8; ++j) {
+    EXPECT_NEAR(testing::Lambda(basis.frequency_hz(j)) / dense.values(j), 1.0, kDenseAgreement) << "mode " << j;
+    EXPECT_LE(basis.relative_residuals(j), kResidualBound);
+  }
+  EXPECT_LE((basis.M_reduced - Eigen::MatrixXd::Identity(8, 8)).cwiseAbs().maxCoeff(), kOrthonormalityBound);
+  // A support instead of an interface gives the same modes.
+  BoundaryConditions support;
+  support.supports.push_back({"root", clamp});
+  const ReducedBasis supported = FixedInterfaceModalBasis(b.model(), support, eigen, testing::Spectra());
+  EXPECT_LE((supported.frequency_hz - basis.frequency_hz).cwiseAbs().maxCoeff(), 1e-9 * basis.frequency_hz(7));
+  std::printf("[ numbers  ] clamped hex20 beam: f1 = %.3f Hz, f8 = %.3f Hz, max residual %.1e\n", basis.frequency_hz(0),
+              basis.frequency_hz(7), basis.relative_residuals.maxCoeff());
+}
+
+TEST(ModeKind, NamesRoundTrip) {
+  for (const ModeKind kind : {ModeKind::kRigid, ModeKind::kNormal, ModeKind::kConstraint, ModeKind::kStaticCorrection}) {
+    EXPECT_EQ(ModeKindFromName(ModeKindName(kind)), kind);
+  }
+  EXPECT_EQ(ModeKindName(ModeKind::kStaticCorrection), "static_correction");
+  EXPECT_FALSE(ModeKindFromName("elastic").has_value());
+  EXPECT_EQ(FormatModeCounts({6, 10, 0, 2}), "6 rigid, 10 normal, 0 constraint, 2 static_correction");
+}
+
+TEST(ModalBasisBadInput, GivesOneLineInputErrors) {
+  const Body b = testing::MakeBox(ElementType::kHex8, {2, 1, 1}, {0.2, 0.1, 0.1}, kSteel);
+  const FeModel model = b.model();
+  const Eigensolver& solver = testing::Spectra();
+  FreeFreeOptions options;
+  testing::ExpectInputError([&] { FreeFreeModalBasis(model, options, solver); }, {"free-free", "no modes asked for"});
+  options.eigen.num_modes = 100;  // 36 DOF
+  testing::ExpectInputError([&] { FreeFreeModalBasis(model, options, solver); },
+                            {"free-free", "100 elastic modes", "36 DOF"});
+  options.eigen.num_modes = 0;
+  options.eigen.max_frequency_hz = 1.0;  // far below the first elastic mode
+  testing::ExpectInputError([&] { FreeFreeModalBasis(model, options, solver); },
+                            {"no elastic mode below max_frequency_hz = 1 Hz", "the lowest is at"});
+
+  EigenOptions eigen;
+  eigen.num_modes = 3;
+  testing::ExpectInputError([&] { FixedInterfaceModalBasis(model, {}, eigen, solver); },
+                            {"fixed-interface", "no interface or support"});
+  BoundaryConditions clamp;
+  clamp.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
+  eigen.num_modes = 40;
+  testing::ExpectInputError([&] { FixedInterfaceModalBasis(model, clamp, eigen, solver); },
+                            {"support 'root'", "40 modes asked for", "24 interior DOF"});
+  eigen.num_modes = 0;
+  eigen.max_frequency_hz = 1.0;
+  testing::ExpectInputError([&] { FixedInterfaceModalBasis(model, clamp, eigen, solver); },
+                            {"support 'root'", "no mode below max_frequency_hz = 1 Hz"});
+  // One edge of a free box does not hold it.
+  BoundaryConditions edge;
+  edge.interfaces.push_back({"edge", testing::NodesWhere(b.mesh, [](const Eigen::Vector3d& x) {
+                               return x(1) == 0.0 && x(2) == 0.0;
+                             }), Coupling::kNodes, std::nullopt, {}});
+  eigen.num_modes = 3;
+  eigen.max_frequency_hz = 0.0;
+  testing::ExpectInputError([&] { FixedInterfaceModalBasis(model, edge, eigen, solver); },
+                            {"interface 'edge' does not hold the body", "lie on one line"});
+  const Eigen::SparseMatrix<double> small(6, 6);
+  testing::ExpectInputError([&] { FreeFreeModalBasis({small, small, b.mesh.nodes}, options, solver); },
+                            {"model: K is 6 x 6"});
+}
+
+}  // namespace
+}  // namespace flexmbs::reduction
