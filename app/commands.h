@@ -8,4 +8,8 @@ namespace flexmbs::app {
 /// body and report its FE model.
 void AddMeshCommand(CLI::App& app);
 
+/// Registers `flexmbs reduce body.yaml -o body.sid.h5 [--json]`: mesh, assemble and reduce a
+/// body as its `reduction` section says, and write the reduced body file.
+void AddReduceCommand(CLI::App& app);
+
 }  // namespace flexmbs::app

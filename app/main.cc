@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(flexmbs::Version()));
   app.require_subcommand(1);
   flexmbs::app::AddMeshCommand(app);
+  flexmbs::app::AddReduceCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

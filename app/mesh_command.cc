@@ -6,8 +6,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string_view>
-#include <unistd.h>
 
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/matrix_market.h"
 #include "core/atomic_file.h"
@@ -24,49 +24,6 @@ struct MeshOptions {
   bool json = false;
   std::string matrix_prefix;
 };
-
-// Progress on stderr, only when stderr is a terminal: each message replaces the previous
-// one on a single line, and the line is erased when the work ends (or fails), so that an
-// error is the only line left and redirected stderr holds nothing but errors.
-class Progress {
- public:
-  Progress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
-  ~Progress() { Clear(); }
-  Progress(const Progress&) = delete;
-  Progress& operator=(const Progress&) = delete;
-
-  void Show(std::string_view message) {
-    if (!enabled_) return;
-    fmt::print(stderr, "\r\033[K{}", message);
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  void Clear() {
-    if (!shown_) return;
-    fmt::print(stderr, "\r\033[K");
-    std::fflush(stderr);
-    shown_ = false;
-  }
-
- private:
-  bool enabled_;
-  bool shown_ = false;
-};
-
-// Fails early, before any meshing, if PREFIX_K.mtx cannot be created in its folder.
-void CheckMatrixPrefix(const std::string& prefix) {
-  const std::filesystem::path folder = std::filesystem::path(prefix).parent_path();
-  const std::filesystem::path dir = folder.empty() ? std::filesystem::path(".") : folder;
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    throw InputError(
-        fmt::format("--matrix-market {}: folder '{}' does not exist", prefix, dir.string()));
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw InputError(
-        fmt::format("--matrix-market {}: cannot write in folder '{}'", prefix, dir.string()));
-  }
-}
 
 // Writes K and M as PREFIX_K.mtx and PREFIX_M.mtx: both files or neither.
 void WriteMatrices(const std::string& prefix, const fem::SystemMatrices& system) {
@@ -94,24 +51,9 @@ void WriteMatrices(const std::string& prefix, const fem::SystemMatrices& system)
   }
 }
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// A vector as a JSON array, a matrix as an array of rows.
-nlohmann::json ToJson(const Eigen::MatrixXd& m) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    nlohmann::json row = nlohmann::json::array();
-    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
-    rows.push_back(m.cols() == 1 ? row[0] : row);
-  }
-  return rows;
-}
-
 void RunMesh(const MeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  if (!options.matrix_prefix.empty()) CheckMatrixPrefix(options.matrix_prefix);
+  if (!options.matrix_prefix.empty()) CheckOutputFolder("--matrix-market", options.matrix_prefix);
   Progress progress;
   const fem::BodySpec spec = fem::LoadBodySpec(options.body_file);
   progress.Show(fmt::format("meshing {} ...", spec.geometry_file.string()));

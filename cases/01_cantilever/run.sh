@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Preprocesses the steel cantilever: mesh and FE model report (text and JSON).
+# Preprocesses the steel cantilever: the FE model report, then two reduced bodies (clamped
+# normal modes; Craig-Bampton with a tip marker), written to out/.
 # Usage: run.sh [path/to/flexmbs]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -8,4 +9,6 @@ out="${FLEXMBS_OUT:-$here/out}"
 mkdir -p "$out"
 "$flexmbs" mesh "$here/beam.yaml"
 "$flexmbs" mesh "$here/beam.yaml" --json > "$out/beam.mesh.json"
-echo "wrote $out/beam.mesh.json"
+"$flexmbs" reduce "$here/beam.yaml" -o "$out/beam.sid.h5"
+"$flexmbs" reduce "$here/beam_cb.yaml" -o "$out/beam_cb.sid.h5"
+echo "wrote $out/beam.mesh.json, $out/beam.sid.h5, $out/beam_cb.sid.h5"

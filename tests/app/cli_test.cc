@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "reduction/reduced_body_file.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -274,6 +276,50 @@ TEST_F(CliTest, MatrixMarketIntoMissingFolderFailsBeforeMeshing) {
   ExpectInputError(Flexmbs({"mesh", (kData / "cube.yaml").string(), "--matrix-market", prefix}),
                    "--matrix-market " + prefix + ": folder '" + (dir_ / "no_such_folder").string() +
                        "' does not exist");
+}
+
+// --- reduce ---
+
+TEST_F(CliTest, ReduceWritesTheBodyFileItReports) {
+  const fs::path body = WriteBody(CubeBody() + "reduction: {method: free_free, modes: 4}\n");
+  const fs::path output = dir_ / "out" / "cube.sid.h5";
+  const Outcome run = Flexmbs({"reduce", body.string(), "-o", output.string(), "--json"});
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  EXPECT_EQ(run.err, "");
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["modes"]["rigid"], 6);
+  EXPECT_EQ(j["modes"]["normal"], 4);
+  EXPECT_EQ(j["modes"]["total"], 10);
+  const flexmbs::reduction::ReducedBody file = flexmbs::reduction::ReadReducedBody(output);
+  ASSERT_EQ(file.phi.cols(), 10);
+  EXPECT_EQ(file.mode_kinds[0], "rigid");
+  EXPECT_EQ(file.mode_kinds[9], "normal");
+  for (int k = 6; k < 10; ++k) {
+    EXPECT_EQ(file.frequency_hz(k), j["frequency_hz"][static_cast<std::size_t>(k)].get<double>());
+    EXPECT_GT(file.frequency_hz(k), 0.0);
+  }
+  // The basis is M-orthonormal: the reduced mass matrix is the identity.
+  EXPECT_LT((file.mass_reduced - Eigen::MatrixXd::Identity(10, 10)).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_EQ(OutputFiles(), std::vector<std::string>{"cube.sid.h5"});
+}
+
+TEST_F(CliTest, ReduceWithoutAReductionSectionIsAnInputError) {
+  ExpectInputError(Flexmbs({"reduce", (kData / "cube.yaml").string(), "-o", (dir_ / "out" / "c.sid.h5").string()}),
+                   "cube.yaml:2:1: missing key 'reduction'");
+}
+
+TEST_F(CliTest, ReduceIntoMissingFolderFailsBeforeMeshing) {
+  const fs::path output = dir_ / "no_such_folder" / "c.sid.h5";
+  ExpectInputError(Flexmbs({"reduce", (kData / "cube.yaml").string(), "-o", output.string()}),
+                   "-o " + output.string() + ": folder '" + (dir_ / "no_such_folder").string() + "' does not exist");
+}
+
+TEST_F(CliTest, FailedReductionLeavesNoFile) {
+  const fs::path body = WriteBody(CubeBody() + "reduction: {method: free_free, modes: 100000}\n");
+  const Outcome run = Flexmbs({"reduce", body.string(), "-o", (dir_ / "out" / "c.sid.h5").string()});
+  EXPECT_EQ(run.exit_code, kExitInputError) << run.err;
+  EXPECT_EQ(Lines(run.err).size(), 1u) << run.err;
+  EXPECT_EQ(OutputFiles(), std::vector<std::string>{});
 }
 
 // --- bad bodies: one line, exit 2, and no output files ---

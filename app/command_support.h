@@ -1,0 +1,44 @@
+#pragma once
+
+// Pieces every flexmbs command uses: terminal progress, timing, output checks, JSON.
+
+#include <Eigen/Core>
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+namespace flexmbs::app {
+
+/// Progress on stderr, only when stderr is a terminal: each message replaces the previous
+/// one on a single line, and the line is erased when the work ends (or fails), so that an
+/// error is the only line left and redirected stderr holds nothing but errors.
+class Progress {
+ public:
+  Progress();
+  ~Progress() { Clear(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  /// Replaces the progress line with `message`.
+  void Show(std::string_view message);
+  /// Erases the progress line.
+  void Clear();
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+};
+
+/// Wall-clock seconds since `start`.
+double SecondsSince(std::chrono::steady_clock::time_point start);
+
+/// Throws InputError "<option> <value>: folder '<dir>' does not exist" (or is not writable)
+/// unless files can be created in the folder of `path`; `option` names the command-line
+/// option for the message. Called before any long work.
+void CheckOutputFolder(std::string_view option, const std::filesystem::path& path);
+
+/// A vector as a JSON array, a matrix as an array of rows; NaN becomes null.
+nlohmann::json ToJson(const Eigen::MatrixXd& m);
+
+}  // namespace flexmbs::app
