@@ -12,4 +12,8 @@ void AddMeshCommand(CLI::App& app);
 /// body as its `reduction` section says, and write the reduced body file.
 void AddReduceCommand(CLI::App& app);
 
+/// Registers `flexmbs compare A.sid.h5 B.sid.h5 [--json]`: frequency errors, MAC matrix and
+/// effective modal mass of two bases of one body.
+void AddCompareCommand(CLI::App& app);
+
 }  // namespace flexmbs::app

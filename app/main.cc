@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   flexmbs::app::AddMeshCommand(app);
   flexmbs::app::AddReduceCommand(app);
+  flexmbs::app::AddCompareCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

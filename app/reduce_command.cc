@@ -53,7 +53,7 @@ reduction::ReducedBasis BuildBasis(const reduction::ReductionSpec& spec, const r
 
 // The file content of a basis of `mesh`.
 reduction::ReducedBody ToReducedBody(const fem::BodySpec& body, const fem::Mesh& mesh,
-                                     const fem::MassProperties& props,
+                                     const fem::SystemMatrices& system, const fem::MassProperties& props,
                                      const reduction::ReductionSpec& spec,
                                      const reduction::ReducedBasis& basis) {
   reduction::ReducedBody out;
@@ -68,6 +68,7 @@ reduction::ReducedBody ToReducedBody(const fem::BodySpec& body, const fem::Mesh&
   out.relative_residuals = basis.relative_residuals;
   out.stiffness_reduced = basis.K_reduced;
   out.mass_reduced = basis.M_reduced;
+  out.participation = basis.Phi.transpose() * (system.mass * fem::RigidBodyModes(mesh.nodes));
   out.provenance = {{"body_file", body.file.string()},
                     {"geometry_file", body.geometry_file.string()},
                     {"nodes", std::to_string(mesh.num_nodes())},
@@ -162,7 +163,7 @@ void RunReduce(const ReduceOptions& options) {
   if (!writer) return;
 
   const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes);
-  reduction::WriteReducedBody(options.output, ToReducedBody(body, mesh, props, spec, basis));
+  reduction::WriteReducedBody(options.output, ToReducedBody(body, mesh, system, props, spec, basis));
   Report(options, basis, mesh, mesh_seconds, assembly_seconds, reduction_seconds);
 }
 

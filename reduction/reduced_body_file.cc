@@ -18,7 +18,8 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   FLEXMBS_CHECK(static_cast<Eigen::Index>(body.mode_names.size()) == n &&
                     static_cast<Eigen::Index>(body.mode_kinds.size()) == n &&
                     body.frequency_hz.size() == n && body.relative_residuals.size() == n &&
-                    body.stiffness_reduced.rows() == n && body.mass_reduced.rows() == n,
+                    body.stiffness_reduced.rows() == n && body.mass_reduced.rows() == n &&
+                    body.participation.rows() == n && body.participation.cols() == 6,
                 "every mode needs a name, a kind, a frequency, a residual and reduced matrices");
   FLEXMBS_CHECK(body.phi.rows() == 3 * body.node_positions.cols(), "Phi must have 3 rows per node");
   h5::File file = h5::File::Create(path);
@@ -40,6 +41,7 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   modes.WriteMatrix("phi", body.phi, "m/q");
   modes.WriteMatrix("stiffness_reduced", body.stiffness_reduced, "N/m/q^2");
   modes.WriteMatrix("mass_reduced", body.mass_reduced, "kg/q^2");
+  modes.WriteMatrix("participation", body.participation, "kg/q (columns 0-2), kg m/q (3-5)");
 
   h5::Group mesh = root.CreateGroup("mesh");
   mesh.WriteMatrix("node_positions", body.node_positions.transpose(), "m");
@@ -86,6 +88,7 @@ ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   body.phi = modes.ReadMatrix("phi");
   body.stiffness_reduced = modes.ReadMatrix("stiffness_reduced");
   body.mass_reduced = modes.ReadMatrix("mass_reduced");
+  body.participation = modes.ReadMatrix("participation");
   const h5::Group mesh = root.OpenGroup("mesh");
   mesh.RequireUnits("node_positions", "m");
   body.node_positions = mesh.ReadMatrix("node_positions").transpose();
@@ -104,6 +107,7 @@ ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   const auto n = static_cast<std::size_t>(body.phi.cols());
   if (body.mode_names.size() != n || body.mode_kinds.size() != n ||
       static_cast<std::size_t>(body.frequency_hz.size()) != n ||
+      static_cast<std::size_t>(body.participation.rows()) != n || body.participation.cols() != 6 ||
       body.phi.rows() != 3 * body.node_positions.cols()) {
     throw InputError(fmt::format("{}: inconsistent body: {} modes in /modes/phi, {} names, {} kinds, "
                                  "{} frequencies, {} rows for {} nodes",

@@ -29,6 +29,9 @@ struct ReducedBody {
   Eigen::VectorXd relative_residuals;  ///< eigen-residual of normal modes, NaN for other kinds
   Eigen::MatrixXd stiffness_reduced;   ///< Phi^T K Phi [N/m per unit q^2]
   Eigen::MatrixXd mass_reduced;        ///< Phi^T M Phi [kg per unit q^2]
+  /// n_modes x 6: Phi^T M R, R the unit rigid translations along and rotations about B's axes
+  /// through Bo (fem::RigidBodyModes) [kg, kg m per unit q]: modal participation factors.
+  Eigen::MatrixXd participation;
   /// Free-form provenance: source files, mesh counts, material, reduction settings, solver,
   /// timings, tool version.
   std::map<std::string, std::string> provenance;

@@ -358,6 +358,28 @@ TEST_F(CliTest, ReduceUnderMpirunWithTwoRanksGivesTheSerialResult) {
   }
 }
 
+TEST_F(CliTest, CompareOfABodyWithItselfPairsEveryModeExactly) {
+  const fs::path body = WriteBody(CubeBody() + "reduction: {method: free_free, modes: 3}\n");
+  const fs::path file = dir_ / "out" / "cube.sid.h5";
+  ASSERT_EQ(Flexmbs({"reduce", body.string(), "-o", file.string()}).exit_code, kExitOk);
+  const Outcome run = Flexmbs({"compare", file.string(), file.string(), "--json"});
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  ASSERT_EQ(j["pairs"].size(), 9u);
+  for (const auto& pair : j["pairs"]) {
+    EXPECT_EQ(pair["mode_a"], pair["mode_b"]);
+    EXPECT_EQ(pair["relative_error"].get<double>(), 0.0);
+    EXPECT_NEAR(pair["mac"].get<double>(), 1.0, 1e-12);
+  }
+  // A free-free basis carries the whole mass in its rigid translations.
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(j["effective_mass_fraction"]["a"][d].get<double>(), 1.0, 1e-10);
+}
+
+TEST_F(CliTest, CompareOfANonBodyFileIsAnInputError) {
+  ExpectInputError(Flexmbs({"compare", (kData / "cube.yaml").string(), (kData / "cube.yaml").string()}),
+                   "cube.yaml: not an HDF5 file");
+}
+
 // --- bad bodies: one line, exit 2, and no output files ---
 //
 // One case per code path that reports an input error. tests/fem/body_spec_test.cc and

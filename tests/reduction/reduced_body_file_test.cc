@@ -37,6 +37,7 @@ ReducedBody SampleBody() {
   body.relative_residuals = Eigen::Vector3d(std::nan(""), 1e-12, 3e-11);
   body.stiffness_reduced = Eigen::MatrixXd::Random(3, 3);
   body.mass_reduced = Eigen::MatrixXd::Identity(3, 3);
+  body.participation = Eigen::MatrixXd::Random(3, 6);
   body.provenance = {{"mesh", "bracket.msh"}, {"eigensolver", "spectra"}};
   return body;
 }
@@ -66,6 +67,7 @@ TEST(ReducedBodyFile, RoundTripIsExact) {
   ExpectSame(read.relative_residuals, written.relative_residuals);
   ExpectSame(read.stiffness_reduced, written.stiffness_reduced);
   ExpectSame(read.mass_reduced, written.mass_reduced);
+  ExpectSame(read.participation, written.participation);
   EXPECT_EQ(read.provenance.at("mesh"), "bracket.msh");
   EXPECT_TRUE(read.provenance.contains("tool_version"));
 }
