@@ -1,6 +1,7 @@
 // Body files: every bad input is an InputError whose message is one line naming the file,
 // the item and the value.
 #include "fem/body_spec.h"
+#include "tests/input_error.h"
 #include "tests/test_data.h"
 
 #include <gtest/gtest.h>
@@ -72,16 +73,7 @@ class BodySpecTest : public ::testing::Test {
   }
 
   static std::string ErrorOfFile(const fs::path& file) {
-    try {
-      LoadBodySpec(file);
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-      return message;
-    } catch (const std::exception& e) {
-      return std::string("not an InputError: ") + e.what();
-    }
-    return "no error";
+    return testing::InputErrorMessage([&] { LoadBodySpec(file); });
   }
 
   fs::path dir_;

@@ -1,6 +1,7 @@
 // Mesh import: hand-written meshes and geometries, good and bad. Every bad one is an
 // InputError whose message is one line naming the file and what is wrong with it.
 #include "fem/gmsh_import.h"
+#include "tests/input_error.h"
 #include "tests/test_data.h"
 
 #include <gtest/gtest.h>
@@ -116,16 +117,7 @@ class GmshImportTest : public ::testing::Test {
   // The message of the InputError ImportMesh throws for `file`.
   static std::string ImportError(const fs::path& file, MeshingOptions options = {},
                                  const std::vector<std::string>& node_sets = {}) {
-    try {
-      ImportMesh(file, options, node_sets);
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-      return message;
-    } catch (const std::exception& e) {
-      return std::string("not an InputError: ") + e.what();
-    }
-    return "no error";
+    return testing::InputErrorMessage([&] { ImportMesh(file, options, node_sets); });
   }
 
   fs::path dir_;

@@ -17,6 +17,7 @@
 #include "fem/mesh.h"
 #include "reduction/eigensolver.h"
 #include "reduction/modal_basis.h"
+#include "tests/reduction/test_problems.h"
 
 namespace flexmbs::reduction::testing {
 

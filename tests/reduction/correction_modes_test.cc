@@ -27,7 +27,7 @@ constexpr double kStaticAgreement = 1e-9;
 constexpr double kTruncationError = 1e-4;
 constexpr double kOrthonormalityBound = 1e-10;
 
-const fem::IsotropicMaterial kSteel{"steel", 210e9, 0.3, 7850.0};
+const fem::IsotropicMaterial kSteel = testing::Steel();
 
 // The hex20 cantilever of the correction tests: 0.4 x 0.05 x 0.04 m.
 const Body& TheBeam() {

@@ -33,9 +33,9 @@ constexpr double kOrthonormalityBound = 1e-10;
 // Off-diagonal of K_reduced relative to its largest diagonal: round-off (measured ~1e-15).
 constexpr double kDiagonalBound = 1e-10;
 
-const fem::IsotropicMaterial kSteel{"steel", 210e9, 0.3, 7850.0};
+const fem::IsotropicMaterial kSteel = testing::Steel();
 
-double Shift(const Body& b) { return -1e-6 * b.K.diagonal().sum() / b.M.diagonal().sum(); }
+double Shift(const Body& b) { return FreeBodyShift(b.K, b.M); }
 
 // Eigenvalues of the reduced pair, ascending, in shift-invert form (accurate low eigenvalues).
 Eigen::VectorXd ReducedEigenvalues(const ReducedBasis& basis, double sigma) {

@@ -57,7 +57,7 @@ struct Problem {
 
 // A shift for the dense reference of a free-free body: -1e-6 of the mesh's stiffness-to-mass
 // scale, far below the first elastic eigenvalue and far above round-off.
-double FreeFreeShift(const Problem& p) { return -1e-6 * p.K.diagonal().sum() / p.M.diagonal().sum(); }
+double FreeFreeShift(const Problem& p) { return FreeBodyShift(p.K, p.M); }
 
 Problem Assemble(fem::Mesh mesh) {
   fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);

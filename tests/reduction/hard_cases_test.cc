@@ -47,7 +47,7 @@ constexpr double kThinPlateAccuracy = 1e-2;
 // locking of the linear elements grows with the element aspect ratio, 31 here).
 constexpr double kLockingFactor = 1.5;
 
-double Shift(const Body& b) { return -1e-6 * b.K.diagonal().sum() / b.M.diagonal().sum(); }
+double Shift(const Body& b) { return FreeBodyShift(b.K, b.M); }
 
 void ExpectResidualsWithinBound(const ReducedBasis& basis) {
   for (Eigen::Index j = 0; j < basis.num_modes(); ++j) {

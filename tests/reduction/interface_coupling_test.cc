@@ -33,7 +33,7 @@ constexpr double kDenseAgreement = 1e-8;
 // Davis-Kahan subspace bound (residual 1e-8 over relative gaps >= 1e-2).
 constexpr double kSubspaceAgreement = 1e-6;
 
-const fem::IsotropicMaterial kSteel{"steel", 210e9, 0.3, 7850.0};
+const fem::IsotropicMaterial kSteel = testing::Steel();
 
 // A hex20 beam 0.4 x 0.05 x 0.04 m, clamped (support) at x = 0, with the tip face x = 0.4 as
 // one interface of the given coupling, marker at the face centroid.

@@ -39,9 +39,9 @@ constexpr double kExactOrthogonality = 1e-12;
 // ||K r|| / (||K|| ||r||) of an exact rigid-body vector: round-off of the assembly.
 constexpr double kRigidStrain = 1e-12;
 
-const fem::IsotropicMaterial kSteel{"steel", 210e9, 0.3, 7850.0};
+const fem::IsotropicMaterial kSteel = testing::Steel();
 
-double FreeFreeShift(const Body& b) { return -1e-6 * b.K.diagonal().sum() / b.M.diagonal().sum(); }
+double FreeFreeShift(const Body& b) { return FreeBodyShift(b.K, b.M); }
 
 double MaxOffDiagonal(const Eigen::MatrixXd& A) {
   Eigen::MatrixXd off = A;

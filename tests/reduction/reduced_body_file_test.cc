@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/h5_file.h"
+#include "tests/input_error.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -74,12 +75,7 @@ TEST(ReducedBodyFile, RoundTripIsExact) {
 
 // The message of the InputError that reading `path` throws.
 std::string ReadError(const fs::path& path) {
-  try {
-    ReadReducedBody(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::InputErrorMessage([&] { ReadReducedBody(path); });
 }
 
 TEST(ReducedBodyFile, ForeignHdf5FileIsRefusedByName) {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
+#include "tests/input_error.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -24,12 +24,7 @@ fs::path WriteBody(const std::string& reduction_yaml) {
 }
 
 std::string ErrorOf(const std::string& reduction_yaml) {
-  try {
-    LoadReductionSpec(WriteBody(reduction_yaml), kNodeSets);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::InputErrorMessage([&] { LoadReductionSpec(WriteBody(reduction_yaml), kNodeSets); });
 }
 
 TEST(ReductionSpec, ReadsACraigBamptonSection) {
