@@ -1,0 +1,621 @@
+// core/h5_file.h: Group (structure, datasets, attributes) and the shared helpers of h5_detail.h
+// for names, units and string attributes.
+
+#include <fmt/format.h>
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "core/h5_detail.h"
+#include "core/h5_file.h"
+
+namespace flexmbs::h5 {
+
+using detail::Check;
+using detail::CheckInternal;
+using detail::CheckName;
+using detail::CheckUnits;
+using detail::Fail;
+using detail::FileState;
+using detail::Handle;
+using detail::Join;
+using detail::Live;
+using detail::Writable;
+using detail::WriteStringAttribute;
+
+namespace {
+
+// ------------------------------------------------------------------------------------------
+// Types and children
+
+Handle Utf8StringType() {
+  Handle type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
+  CheckInternal(H5Tset_size(type.get(), H5T_VARIABLE), "make a variable-length string type");
+  CheckInternal(H5Tset_cset(type.get(), H5T_CSET_UTF8), "make a UTF-8 string type");
+  return type;
+}
+
+/// H5I_GROUP, H5I_DATASET, ... for the child `name` of `loc`, or H5I_BADID if there is none.
+H5I_type_t ChildType(const FileState& file, hid_t loc, const std::string& object,
+                     std::string_view name) {
+  const std::string n(name);
+  if (Check(H5Lexists(loc, n.c_str(), H5P_DEFAULT), file, object, "look up the object") <= 0) {
+    return H5I_BADID;
+  }
+  const Handle child(Check(H5Oopen(loc, n.c_str(), H5P_DEFAULT), file, object, "open the object"),
+                     H5Oclose);
+  return H5Iget_type(child.get());
+}
+
+// ------------------------------------------------------------------------------------------
+// Attributes (on groups and datasets)
+
+void WriteAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                    std::string_view name, hid_t file_type, hid_t memory_type, const void* data) {
+  const std::string n(name);
+  const std::string what = fmt::format("write attribute '{}'", name);
+  if (Check(H5Aexists(object_id, n.c_str()), file, object, what) > 0) {
+    Check(H5Adelete(object_id, n.c_str()), file, object, what);
+  }
+  const Handle space(CheckInternal(H5Screate(H5S_SCALAR), "create a scalar dataspace"), H5Sclose);
+  const Handle attribute(Check(H5Acreate2(object_id, n.c_str(), file_type, space.get(),
+                                          H5P_DEFAULT, H5P_DEFAULT),
+                               file, object, what),
+                         H5Aclose);
+  Check(H5Awrite(attribute.get(), memory_type, data), file, object, what);
+}
+
+/// Reads `count` strings of `file_type` (variable- or fixed-length) through `read`, which
+/// calls H5Dread or H5Aread with the memory type and buffer it is given.
+template <typename ReadFunction>
+std::vector<std::string> ReadStringData(const FileState& file, const std::string& object,
+                                        hid_t file_type, std::size_t count, ReadFunction read) {
+  std::vector<std::string> out;
+  if (count == 0) return out;
+  out.reserve(count);
+  const H5T_cset_t cset = H5Tget_cset(file_type);
+  if (Check(H5Tis_variable_str(file_type), file, object, "inspect the string type") > 0) {
+    Handle memory_type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
+    CheckInternal(H5Tset_size(memory_type.get(), H5T_VARIABLE), "make a string type");
+    CheckInternal(H5Tset_cset(memory_type.get(), cset), "set the character set");
+    std::vector<char*> buffer(count, nullptr);
+    Check(read(memory_type.get(), static_cast<void*>(buffer.data())), file, object,
+          "read the strings");
+    for (char* s : buffer) {
+      out.emplace_back(s != nullptr ? s : "");
+      if (s != nullptr) H5free_memory(s);
+    }
+  } else {
+    const std::size_t size = H5Tget_size(file_type);
+    if (size == 0) Fail(file, object, "cannot read the strings (size 0)");
+    Handle memory_type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
+    CheckInternal(H5Tset_size(memory_type.get(), size), "make a string type");
+    CheckInternal(H5Tset_cset(memory_type.get(), cset), "set the character set");
+    CheckInternal(H5Tset_strpad(memory_type.get(), H5T_STR_NULLPAD), "set the string padding");
+    std::vector<char> buffer(count * size, '\0');
+    Check(read(memory_type.get(), static_cast<void*>(buffer.data())), file, object,
+          "read the strings");
+    for (std::size_t i = 0; i < count; ++i) {
+      const char* begin = buffer.data() + i * size;
+      out.emplace_back(begin, std::find(begin, begin + size, '\0'));
+    }
+  }
+  return out;
+}
+
+std::string_view SingularKind(H5T_class_t type_class) {
+  switch (type_class) {
+    case H5T_FLOAT: return "a double";
+    case H5T_INTEGER: return "an integer";
+    case H5T_STRING: return "a string";
+    default: return "a value of another HDF5 type";
+  }
+}
+
+/// Opens the attribute `name` of `object_id` and checks it holds one value of `expected`.
+Handle OpenAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                     std::string_view name, H5T_class_t expected, Handle* type_out) {
+  const std::string n(name);
+  const std::string what = fmt::format("read attribute '{}'", name);
+  if (Check(H5Aexists(object_id, n.c_str()), file, object, what) <= 0) {
+    Fail(file, object, fmt::format("no attribute '{}'", name));
+  }
+  Handle attribute(Check(H5Aopen(object_id, n.c_str(), H5P_DEFAULT), file, object, what),
+                   H5Aclose);
+  Handle type(Check(H5Aget_type(attribute.get()), file, object, what), H5Tclose);
+  const H5T_class_t type_class = H5Tget_class(type.get());
+  const Handle space(Check(H5Aget_space(attribute.get()), file, object, what), H5Sclose);
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (type_class != expected) {
+    Fail(file, object, fmt::format("attribute '{}': expected {}, found {}", name,
+                                   SingularKind(expected), SingularKind(type_class)));
+  }
+  if (count != 1) {
+    Fail(file, object,
+         fmt::format("attribute '{}': expected one value, found {}", name, std::max<hssize_t>(count, 0)));
+  }
+  *type_out = std::move(type);
+  return attribute;
+}
+
+std::string ReadStringAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                                std::string_view name) {
+  Handle type(H5I_INVALID_HID, H5Tclose);
+  const Handle attribute = OpenAttribute(file, object_id, object, name, H5T_STRING, &type);
+  return ReadStringData(file, object, type.get(), 1, [&](hid_t memory_type, void* buffer) {
+    return H5Aread(attribute.get(), memory_type, buffer);
+  }).front();
+}
+
+// ------------------------------------------------------------------------------------------
+// Datasets
+
+/// An open dataset with its element class and extent.
+struct DatasetView {
+  Handle dataset;
+  Handle type;
+  H5T_class_t type_class = H5T_NO_CLASS;
+  int rank = 0;  // -1 for a null dataspace, 0 for a scalar
+  std::vector<hsize_t> dims;
+  std::size_t count = 0;
+};
+
+Handle OpenDataset(const FileState& file, hid_t loc, const std::string& object,
+                   std::string_view name) {
+  switch (ChildType(file, loc, object, name)) {
+    case H5I_BADID: Fail(file, object, "no such dataset");
+    case H5I_DATASET: break;
+    case H5I_GROUP: Fail(file, object, "is a group, expected a dataset");
+    default: Fail(file, object, "is not a dataset");
+  }
+  const std::string n(name);
+  return Handle(Check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), file, object, "open the dataset"),
+                H5Dclose);
+}
+
+DatasetView InspectDataset(const FileState& file, hid_t loc, const std::string& object,
+                           std::string_view name) {
+  DatasetView view{OpenDataset(file, loc, object, name), Handle(H5I_INVALID_HID, H5Tclose),
+                   H5T_NO_CLASS, 0, {}, 0};
+  const hid_t ds = view.dataset.get();
+  view.type = Handle(Check(H5Dget_type(ds), file, object, "read the dataset type"), H5Tclose);
+  view.type_class = H5Tget_class(view.type.get());
+  const Handle space(Check(H5Dget_space(ds), file, object, "read the dataset extent"), H5Sclose);
+  const H5S_class_t space_class = H5Sget_simple_extent_type(space.get());
+  if (space_class == H5S_NULL) {
+    view.rank = -1;
+    return view;
+  }
+  const int rank = Check(H5Sget_simple_extent_ndims(space.get()), file, object,
+                         "read the dataset extent");
+  view.rank = rank;
+  view.dims.assign(static_cast<std::size_t>(rank), 0);
+  if (rank > 0) {
+    Check(H5Sget_simple_extent_dims(space.get(), view.dims.data(), nullptr), file, object,
+          "read the dataset extent");
+  }
+  view.count = static_cast<std::size_t>(
+      Check(H5Sget_simple_extent_npoints(space.get()), file, object, "read the dataset extent"));
+  return view;
+}
+
+std::string_view PluralKind(H5T_class_t type_class) {
+  switch (type_class) {
+    case H5T_FLOAT: return "doubles";
+    case H5T_INTEGER: return "integers";
+    case H5T_STRING: return "strings";
+    default: return "values of another HDF5 type";
+  }
+}
+
+std::string RankName(int rank) {
+  if (rank < 0) return "null";
+  if (rank == 0) return "scalar";
+  return fmt::format("{}-D", rank);
+}
+
+/// Throws "<file>: <object>: expected a 1-D dataset of doubles, found 2-D" unless `view` has
+/// `rank` and `type_class`.
+void Expect(const DatasetView& view, const FileState& file, const std::string& object, int rank,
+            H5T_class_t type_class) {
+  if (view.rank == rank && view.type_class == type_class) return;
+  std::string found;
+  if (view.type_class != type_class) {
+    found = fmt::format("a {} dataset of {}", RankName(view.rank), PluralKind(view.type_class));
+  } else if (view.rank > 0) {
+    found = RankName(view.rank);
+  } else {
+    found = fmt::format("a {} dataset", RankName(view.rank));
+  }
+  Fail(file, object, fmt::format("expected a {} dataset of {}, found {}", RankName(rank),
+                                 PluralKind(type_class), found));
+}
+
+template <typename T>
+std::vector<T> ReadData(const DatasetView& view, const FileState& file, const std::string& object,
+                        hid_t memory_type) {
+  std::vector<T> data(view.count);
+  if (!data.empty()) {
+    Check(H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          file, object, "read the dataset");
+  }
+  return data;
+}
+
+/// Creates the dataset `name` with `dims` ({} for a scalar), writes `data` (row-major) and
+/// its "units" attribute.
+void WriteNumeric(FileState& file, hid_t loc, const std::string& object, std::string_view name,
+                  const std::vector<hsize_t>& dims, hid_t file_type, hid_t memory_type,
+                  const void* data, std::string_view units) {
+  CheckUnits(units, object);
+  const Handle space(
+      dims.empty()
+          ? CheckInternal(H5Screate(H5S_SCALAR), "create a scalar dataspace")
+          : Check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), file,
+                  object, "create the dataspace"),
+      H5Sclose);
+  const std::string n(name);
+  const Handle dataset(Check(H5Dcreate2(loc, n.c_str(), file_type, space.get(), H5P_DEFAULT,
+                                        H5P_DEFAULT, H5P_DEFAULT),
+                             file, object, "create the dataset"),
+                       H5Dclose);
+  std::size_t count = 1;
+  for (hsize_t d : dims) count *= static_cast<std::size_t>(d);
+  if (count > 0) {
+    Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), file, object,
+          "write the dataset");
+  }
+  WriteStringAttribute(file, dataset.get(), object, "units", units);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+// Shared with h5_appendable.cc (declared in h5_detail.h)
+
+namespace detail {
+
+std::string Join(const std::string& group_path, std::string_view name) {
+  return group_path == "/" ? fmt::format("/{}", name) : fmt::format("{}/{}", group_path, name);
+}
+
+void CheckName(std::string_view name) {
+  FLEXMBS_CHECK(!name.empty() && name != "." && name.find('/') == std::string_view::npos,
+                fmt::format("HDF5 object names here are one path component, got '{}'", name));
+}
+
+void CheckUnits(std::string_view units, const std::string& object) {
+  FLEXMBS_CHECK(!units.empty(),
+                fmt::format("{}: every numeric dataset needs units (\"1\" if dimensionless)",
+                            object));
+}
+
+void WriteStringAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                          std::string_view name, std::string_view value) {
+  FLEXMBS_CHECK(value.find('\0') == std::string_view::npos,
+                fmt::format("{}: attribute '{}': strings cannot hold '\\0'", object, name));
+  const Handle type = Utf8StringType();
+  const std::string text(value);
+  const char* pointer = text.c_str();
+  WriteAttribute(file, object_id, object, name, type.get(), type.get(), &pointer);
+}
+
+}  // namespace detail
+
+// ============================================================================================
+// Group
+
+Group::Group(std::shared_ptr<detail::FileState> file, std::int64_t id, std::string path)
+    : file_(std::move(file)), id_(id), path_(std::move(path)) {}
+
+Group::Group(Group&& other) noexcept
+    : file_(std::move(other.file_)),
+      id_(std::exchange(other.id_, -1)),
+      path_(std::move(other.path_)) {}
+
+Group& Group::operator=(Group&& other) noexcept {
+  if (this != &other) {
+    Close();
+    file_ = std::move(other.file_);
+    id_ = std::exchange(other.id_, -1);
+    path_ = std::move(other.path_);
+  }
+  return *this;
+}
+
+Group::~Group() { Close(); }
+
+void Group::Close() noexcept {
+  // After the file closed (H5F_CLOSE_STRONG) the id is already gone.
+  if (file_ && file_->open && id_ >= 0) H5Gclose(id_);
+  id_ = -1;
+}
+
+Group Group::CreateGroup(std::string_view name) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  const std::string n(name);
+  const hid_t id = Check(H5Gcreate2(id_, n.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), file,
+                         object, "create the group");
+  return Group(file_, id, object);
+}
+
+Group Group::OpenGroup(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  switch (ChildType(file, id_, object, name)) {
+    case H5I_BADID: Fail(file, object, "no such group");
+    case H5I_GROUP: break;
+    case H5I_DATASET: Fail(file, object, "is a dataset, expected a group");
+    default: Fail(file, object, "is not a group");
+  }
+  const std::string n(name);
+  const hid_t id = Check(H5Gopen2(id_, n.c_str(), H5P_DEFAULT), file, object, "open the group");
+  return Group(file_, id, object);
+}
+
+bool Group::Has(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string n(name);
+  return Check(H5Lexists(id_, n.c_str(), H5P_DEFAULT), file, Join(path_, name),
+               "look up the object") > 0;
+}
+
+bool Group::HasGroup(std::string_view name) const {
+  CheckName(name);
+  return ChildType(Live(file_), id_, Join(path_, name), name) == H5I_GROUP;
+}
+
+bool Group::HasDataset(std::string_view name) const {
+  CheckName(name);
+  return ChildType(Live(file_), id_, Join(path_, name), name) == H5I_DATASET;
+}
+
+std::vector<std::string> Group::ChildNames() const {
+  const FileState& file = Live(file_);
+  H5G_info_t info;
+  Check(H5Gget_info(id_, &info), file, path_, "list the group");
+  std::vector<std::string> names;
+  names.reserve(info.nlinks);
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length = Check(H5Lget_name_by_idx(id_, ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                                    nullptr, 0, H5P_DEFAULT),
+                                 file, path_, "list the group");
+    std::vector<char> buffer(static_cast<std::size_t>(length) + 1, '\0');
+    Check(H5Lget_name_by_idx(id_, ".", H5_INDEX_NAME, H5_ITER_INC, i, buffer.data(),
+                             buffer.size(), H5P_DEFAULT),
+          file, path_, "list the group");
+    names.emplace_back(buffer.data(), static_cast<std::size_t>(length));
+  }
+  return names;
+}
+
+std::vector<std::int64_t> Group::Shape(std::string_view name) const {
+  CheckName(name);
+  const DatasetView view = InspectDataset(Live(file_), id_, Join(path_, name), name);
+  return std::vector<std::int64_t>(view.dims.begin(), view.dims.end());
+}
+
+// --- writing -------------------------------------------------------------------------------
+
+void Group::WriteMatrix(std::string_view name, const Eigen::Ref<const Eigen::MatrixXd>& value,
+                        std::string_view units) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = value;
+  WriteNumeric(file, id_, object, name,
+               {static_cast<hsize_t>(value.rows()), static_cast<hsize_t>(value.cols())},
+               H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, row_major.data(), units);
+}
+
+void Group::WriteVector(std::string_view name, const Eigen::Ref<const Eigen::VectorXd>& value,
+                        std::string_view units) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  WriteNumeric(file, id_, object, name, {static_cast<hsize_t>(value.size())}, H5T_IEEE_F64LE,
+               H5T_NATIVE_DOUBLE, value.data(), units);
+}
+
+void Group::WriteScalar(std::string_view name, double value, std::string_view units) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  WriteNumeric(file, id_, object, name, {}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, units);
+}
+
+void Group::WriteIntegers(std::string_view name, std::span<const std::int64_t> values,
+                          std::string_view units) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  WriteNumeric(file, id_, object, name, {static_cast<hsize_t>(values.size())}, H5T_STD_I64LE,
+               H5T_NATIVE_INT64, values.data(), units);
+}
+
+void Group::WriteIntegerMatrix(std::string_view name, const Eigen::Ref<const IntegerMatrix>& value,
+                               std::string_view units) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  const Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major =
+      value;
+  WriteNumeric(file, id_, object, name,
+               {static_cast<hsize_t>(value.rows()), static_cast<hsize_t>(value.cols())},
+               H5T_STD_I64LE, H5T_NATIVE_INT64, row_major.data(), units);
+}
+
+void Group::WriteStrings(std::string_view name, const std::vector<std::string>& values) {
+  FileState& file = Writable(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
+  std::vector<const char*> pointers;
+  pointers.reserve(values.size());
+  for (const std::string& s : values) {
+    FLEXMBS_CHECK(s.find('\0') == std::string::npos,
+                  fmt::format("{}: strings cannot hold '\\0'", object));
+    pointers.push_back(s.c_str());
+  }
+  const Handle type = Utf8StringType();
+  const hsize_t dims[1] = {static_cast<hsize_t>(values.size())};
+  const Handle space(Check(H5Screate_simple(1, dims, nullptr), file, object, "create the dataspace"),
+                     H5Sclose);
+  const std::string n(name);
+  const Handle dataset(Check(H5Dcreate2(id_, n.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                                        H5P_DEFAULT, H5P_DEFAULT),
+                             file, object, "create the dataset"),
+                       H5Dclose);
+  if (!pointers.empty()) {
+    Check(H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()),
+          file, object, "write the dataset");
+  }
+}
+
+// --- reading -------------------------------------------------------------------------------
+
+Eigen::MatrixXd Group::ReadMatrix(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const DatasetView view = InspectDataset(file, id_, object, name);
+  Expect(view, file, object, 2, H5T_FLOAT);
+  const std::vector<double> data = ReadData<double>(view, file, object, H5T_NATIVE_DOUBLE);
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      data.data(), static_cast<Eigen::Index>(view.dims[0]), static_cast<Eigen::Index>(view.dims[1]));
+}
+
+Eigen::VectorXd Group::ReadVector(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const DatasetView view = InspectDataset(file, id_, object, name);
+  Expect(view, file, object, 1, H5T_FLOAT);
+  const std::vector<double> data = ReadData<double>(view, file, object, H5T_NATIVE_DOUBLE);
+  return Eigen::Map<const Eigen::VectorXd>(data.data(), static_cast<Eigen::Index>(data.size()));
+}
+
+double Group::ReadScalar(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const DatasetView view = InspectDataset(file, id_, object, name);
+  Expect(view, file, object, 0, H5T_FLOAT);
+  return ReadData<double>(view, file, object, H5T_NATIVE_DOUBLE).front();
+}
+
+std::vector<std::int64_t> Group::ReadIntegers(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const DatasetView view = InspectDataset(file, id_, object, name);
+  Expect(view, file, object, 1, H5T_INTEGER);
+  return ReadData<std::int64_t>(view, file, object, H5T_NATIVE_INT64);
+}
+
+IntegerMatrix Group::ReadIntegerMatrix(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const DatasetView view = InspectDataset(file, id_, object, name);
+  Expect(view, file, object, 2, H5T_INTEGER);
+  const std::vector<std::int64_t> data = ReadData<std::int64_t>(view, file, object, H5T_NATIVE_INT64);
+  return Eigen::Map<
+      const Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      data.data(), static_cast<Eigen::Index>(view.dims[0]), static_cast<Eigen::Index>(view.dims[1]));
+}
+
+std::vector<std::string> Group::ReadStrings(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const DatasetView view = InspectDataset(file, id_, object, name);
+  Expect(view, file, object, 1, H5T_STRING);
+  return ReadStringData(file, object, view.type.get(), view.count,
+                        [&](hid_t memory_type, void* buffer) {
+                          return H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL,
+                                         H5P_DEFAULT, buffer);
+                        });
+}
+
+std::string Group::ReadUnits(std::string_view name) const {
+  const FileState& file = Live(file_);
+  CheckName(name);
+  const std::string object = Join(path_, name);
+  const Handle dataset = OpenDataset(file, id_, object, name);
+  return ReadStringAttribute(file, dataset.get(), object, "units");
+}
+
+void Group::RequireUnits(std::string_view name, std::string_view expected) const {
+  const std::string units = ReadUnits(name);
+  if (units != expected) {
+    Fail(*file_, Join(path_, name), fmt::format("units '{}', expected '{}'", units, expected));
+  }
+}
+
+// --- attributes ----------------------------------------------------------------------------
+
+void Group::SetStringAttribute(std::string_view name, std::string_view value) {
+  WriteStringAttribute(Writable(file_), id_, path_, name, value);
+}
+
+void Group::SetDoubleAttribute(std::string_view name, double value) {
+  WriteAttribute(Writable(file_), id_, path_, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
+}
+
+void Group::SetIntegerAttribute(std::string_view name, std::int64_t value) {
+  WriteAttribute(Writable(file_), id_, path_, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+bool Group::HasAttribute(std::string_view name) const {
+  const FileState& file = Live(file_);
+  const std::string n(name);
+  return Check(H5Aexists(id_, n.c_str()), file, path_, "look up the attribute") > 0;
+}
+
+std::string Group::GetStringAttribute(std::string_view name) const {
+  return ReadStringAttribute(Live(file_), id_, path_, name);
+}
+
+double Group::GetDoubleAttribute(std::string_view name) const {
+  const FileState& file = Live(file_);
+  Handle type(H5I_INVALID_HID, H5Tclose);
+  const Handle attribute = OpenAttribute(file, id_, path_, name, H5T_FLOAT, &type);
+  double value = 0.0;
+  Check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), file, path_,
+        fmt::format("read attribute '{}'", name));
+  return value;
+}
+
+std::int64_t Group::GetIntegerAttribute(std::string_view name) const {
+  const FileState& file = Live(file_);
+  Handle type(H5I_INVALID_HID, H5Tclose);
+  const Handle attribute = OpenAttribute(file, id_, path_, name, H5T_INTEGER, &type);
+  std::int64_t value = 0;
+  Check(H5Aread(attribute.get(), H5T_NATIVE_INT64, &value), file, path_,
+        fmt::format("read attribute '{}'", name));
+  return value;
+}
+
+// Group::CreateAppendable is with AppendableDataset, in h5_appendable.cc.
+
+}  // namespace flexmbs::h5
