@@ -16,72 +16,16 @@ See bench/README.md.
 """
 import argparse
 import json
-import math
 import os
-import re
-import subprocess
-import sys
-import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-PYTHON = "/usr/bin/python3"
-TIME = "/usr/bin/time"
+from bench_common import (DEFAULT_FLEXMBS, E, HERE, NU, PYTHON, RHO, TIME, make_box_msh, mesh_size_for,
+                          require_executables, single_thread_env, timed_run, write_body_yaml)
 
-E, NU, RHO = 2.1e11, 0.3, 7850.0
+WHAT = "assembly_bench.py"
 DEFAULT_TARGETS = [1e4, 3e4, 1e5, 3e5, 1e6]
 # DOF * h^3 of a tet10 unit cube meshed by gmsh at size h, nearly linear in h (boundary
 # layer): measured 27.3 at h = 0.126, 18.8 at h = 0.028. Refitted from the meshes made.
 MEASURED_DOF_TIMES_H3 = [(0.126, 27.3), (0.028, 18.8)]
-
-
-def mesh_size_for(target_dofs):
-    """Mesh size h with DOF(h) = c(h) / h^3 close to target, c(h) fitted linearly."""
-    hs = [h for h, _ in MEASURED_DOF_TIMES_H3]
-    cs = [c for _, c in MEASURED_DOF_TIMES_H3]
-    n, mh, mc = len(hs), sum(hs) / len(hs), sum(cs) / len(cs)
-    var = sum((h - mh) ** 2 for h in hs)
-    slope = sum((h - mh) * (c - mc) for h, c in zip(hs, cs)) / var if n > 1 and var > 0 else 0.0
-    h = (mc / target_dofs) ** (1.0 / 3.0)
-    for _ in range(50):  # fixed point of h = (c(h) / target)^(1/3)
-        h = max((mc + slope * (h - mh)) / target_dofs, 1e-12) ** (1.0 / 3.0)
-    return h
-
-
-def make_box_msh(path, h):
-    """A unit cube (physical volume 'body', physical surface 'clamp' at x = 0) as tet10."""
-    import gmsh
-    gmsh.initialize([], False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("box")
-        gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
-        gmsh.model.occ.synchronize()
-        gmsh.model.addPhysicalGroup(3, [1], 1)
-        gmsh.model.setPhysicalName(3, 1, "body")
-        x0 = [t for d, t in gmsh.model.getEntitiesInBoundingBox(-1e-6, -1e-6, -1e-6, 1e-6, 1 + 1e-6, 1 + 1e-6, 2)]
-        gmsh.model.addPhysicalGroup(2, x0, 2)
-        gmsh.model.setPhysicalName(2, 2, "clamp")
-        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1)
-        gmsh.option.setNumber("Mesh.Binary", 1)
-        gmsh.model.mesh.generate(3)
-        gmsh.write(path)
-    finally:
-        gmsh.finalize()
-
-
-def timed_run(cmd, env=None):
-    """Runs cmd under /usr/bin/time -v; returns (stdout, peak RSS in MB, wall s)."""
-    start = time.perf_counter()
-    p = subprocess.run([TIME, "-v"] + cmd, capture_output=True, text=True, env=env)
-    wall = time.perf_counter() - start
-    if p.returncode != 0:
-        sys.exit(f"assembly_bench.py: failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr[-2000:]}")
-    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr)
-    return p.stdout, (int(m.group(1)) / 1024.0 if m else float("nan")), wall
 
 
 def main():
@@ -94,22 +38,20 @@ def main():
                    help="DOLFINx quadrature degree for K (flexmbs tet10: degree 3, 8 points)")
     p.add_argument("--mass-degree", type=int, default=4,
                    help="DOLFINx quadrature degree for M (basix degree 4: 14 points; flexmbs: 14 points, degree 5)")
-    p.add_argument("--flexmbs", default=os.path.join(ROOT, "build", "bin", "flexmbs"))
+    p.add_argument("--flexmbs", default=DEFAULT_FLEXMBS)
     p.add_argument("--workdir", default="/tmp/flexmbs_assembly_bench", help="meshes are kept here and reused")
     p.add_argument("--json-out", help="also write the results as JSON")
     a = p.parse_args()
 
-    for tool in (a.flexmbs, TIME, PYTHON):
-        if not os.access(tool, os.X_OK):
-            sys.exit(f"assembly_bench.py: {tool} not found")
+    require_executables((a.flexmbs, TIME, PYTHON), WHAT)
     os.makedirs(a.workdir, exist_ok=True)
     targets = [float(s) for s in a.sizes.split(",")] if a.sizes else DEFAULT_TARGETS
     targets = [t for t in targets if t <= a.max_dof]
-    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+    env = single_thread_env()
 
     # DOLFINx's fixed cost (interpreter, dolfinx, PETSc, gmsh) for reading its peak RSS.
-    _, dfx_base_mb, _ = timed_run([PYTHON, "-c", "import gmsh, dolfinx.fem.petsc, dolfinx.io.gmshio"], env)
-    _, fx_base_mb, _ = timed_run([a.flexmbs, "--version"], env)
+    _, dfx_base_mb, _ = timed_run([PYTHON, "-c", "import gmsh, dolfinx.fem.petsc, dolfinx.io.gmshio"], env, what=WHAT)
+    _, fx_base_mb, _ = timed_run([a.flexmbs, "--version"], env, what=WHAT)
 
     print(f"# flexmbs {a.flexmbs}; DOLFINx: K degree {a.stiffness_degree}, M degree {a.mass_degree}; "
           f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores", flush=True)
@@ -122,21 +64,18 @@ def main():
 
     rows = []
     for target in targets:
-        h = mesh_size_for(target)
+        h = mesh_size_for(target, MEASURED_DOF_TIMES_H3)
         msh = os.path.join(a.workdir, f"box_h{h:.5f}.msh")
         if not os.path.exists(msh):
             make_box_msh(msh, h)
         body = os.path.join(a.workdir, f"box_h{h:.5f}.yaml")
-        with open(body, "w") as f:
-            f.write(f"name: bench_box\ngeometry: {{file: {os.path.basename(msh)}}}\n"
-                    f"materials:\n  steel: {{youngs_modulus: {E}, poisson_ratio: {NU}, density: {RHO}}}\n"
-                    f"material: steel\nmass_matrix: consistent\n")
+        write_body_yaml(body, msh, "bench_box")
 
         # Interleaved runs (flexmbs, DOLFINx, flexmbs, ...), fastest of each kept, so that a
         # burst of load from other work on the machine hits both sides alike.
         fx_best, fx_rss, dfx, dfx_rss = None, 0.0, None, 0.0
         for r in range(max(1, a.repeat)):
-            out, rss, _ = timed_run([a.flexmbs, "mesh", body, "--json"], env)
+            out, rss, _ = timed_run([a.flexmbs, "mesh", body, "--json"], env, what=WHAT)
             j = json.loads(out)
             fx_rss = max(fx_rss, rss)
             if fx_best is None or j["seconds"]["assembly"] < fx_best["seconds"]["assembly"]:
@@ -144,7 +83,7 @@ def main():
             out, rss, _ = timed_run(
                 [PYTHON, os.path.join(HERE, "dolfinx_assemble.py"), msh,
                  "--youngs-modulus", repr(E), "--poisson-ratio", repr(NU), "--density", repr(RHO),
-                 "--stiffness-degree", str(a.stiffness_degree), "--mass-degree", str(a.mass_degree)], env)
+                 "--stiffness-degree", str(a.stiffness_degree), "--mass-degree", str(a.mass_degree)], env, what=WHAT)
             d = json.loads(out)
             dfx_rss = max(dfx_rss, rss)
             if dfx is None or d["seconds"]["assembly"] < dfx["seconds"]["assembly"]:
