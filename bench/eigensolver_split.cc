@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/free_dofs.h"
+
 #include "reduction/eigensolver.h"
 
 namespace {
@@ -86,20 +88,12 @@ int main(int argc, char** argv) {
   if (files.size() != 2) Fail("need K.mtx and M.mtx");
 
   const long n = ReadSize(files[0]);
-  std::vector<char> fixed(static_cast<std::size_t>(n), 0);
-  if (!fixed_file.empty()) {
-    std::ifstream in(fixed_file);
-    if (!in) Fail("cannot open " + fixed_file);
-    long node = 0;
-    while (in >> node) {
-      if (node < 0 || 3 * node + 2 >= n) Fail("node index out of range in " + fixed_file);
-      for (long k = 0; k < 3; ++k) fixed[static_cast<std::size_t>(3 * node + k)] = 1;
-    }
-  }
-  std::vector<long> new_index(static_cast<std::size_t>(n), -1);
   long n_free = 0;
-  for (long i = 0; i < n; ++i) {
-    if (!fixed[static_cast<std::size_t>(i)]) new_index[static_cast<std::size_t>(i)] = n_free++;
+  std::vector<long> new_index;
+  try {
+    new_index = flexmbs::bench::FreeDofIndex(n, fixed_file, &n_free);
+  } catch (const std::exception& e) {
+    Fail(e.what());
   }
   cholmod_common c;
   cholmod_start(&c);
