@@ -27,6 +27,13 @@ Problem ClampedBox() {
   return p;
 }
 
+// K and M of the problem with its clamped DOF removed.
+std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> ClampedMatrices(const Problem& p) {
+  const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
+  const FreeDofMap free = FreeDofMap::ClampNodes(p.mesh.num_nodes(), p.clamp);
+  return {free.Restrict(system.stiffness), free.Restrict(system.mass)};
+}
+
 // Eigenvalues agree to kBackendAgreement relative and each mode spans the same line.
 void ExpectSameModes(const EigenSolution& a, const EigenSolution& b,
                      const Eigen::SparseMatrix<double>& M, std::string_view what) {
@@ -39,10 +46,7 @@ void ExpectSameModes(const EigenSolution& a, const EigenSolution& b,
 }
 
 TEST(SlepcBackend, AgreesWithSpectraOnAClampedBody) {
-  const Problem p = ClampedBox();
-  const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
-  const FreeDofMap free = FreeDofMap::ClampNodes(p.mesh.num_nodes(), p.clamp);
-  const Eigen::SparseMatrix<double> K = free.Restrict(system.stiffness), M = free.Restrict(system.mass);
+  const auto [K, M] = ClampedMatrices(ClampedBox());
   EigenOptions options;
   options.num_modes = 10;
   const EigenSolution slepc = MakeEigensolver("slepc")->Solve(K, M, options);
@@ -69,10 +73,7 @@ TEST(SlepcBackend, FindsTheSixRigidModesOfAFreeBody) {
 }
 
 TEST(SlepcBackend, FrequencyBandBySpectrumSlicingEqualsSpectrasBand) {
-  const Problem p = ClampedBox();
-  const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
-  const FreeDofMap free = FreeDofMap::ClampNodes(p.mesh.num_nodes(), p.clamp);
-  const Eigen::SparseMatrix<double> K = free.Restrict(system.stiffness), M = free.Restrict(system.mass);
+  const auto [K, M] = ClampedMatrices(ClampedBox());
   EigenOptions options;
   options.max_frequency_hz = 3000.0;
   const EigenSolution slepc = MakeEigensolver("slepc")->Solve(K, M, options);
