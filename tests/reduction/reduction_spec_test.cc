@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "tests/input_error.h"
 
@@ -16,7 +17,10 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kNodeSets = {"clamp", "tip"};
 
 fs::path WriteBody(const std::string& reduction_yaml) {
-  const fs::path dir = fs::temp_directory_path() / "flexmbs_reduction_spec_test";
+  // One folder per test and process: CTest runs the tests of this file concurrently.
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() /
+                       (std::string("flexmbs_reduction_spec_") + test->name() + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path path = dir / "body.yaml";
   std::ofstream(path) << "name: b\n" << reduction_yaml;
