@@ -16,4 +16,12 @@ void AddReduceCommand(CLI::App& app);
 /// effective modal mass of two bases of one body.
 void AddCompareCommand(CLI::App& app);
 
+/// Registers `flexmbs info FILE [--json]`: a summary of a flexmbs file (a reduced body .sid.h5),
+/// chosen by the file's `format` attribute.
+void AddInfoCommand(CLI::App& app);
+
+/// Registers `flexmbs export BODY.sid.h5 -o OUT --format sid-ascii`: a reduced body in another
+/// program's file format.
+void AddExportCommand(CLI::App& app);
+
 }  // namespace flexmbs::app

@@ -7,7 +7,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "reduction/basis_comparison.h"
-#include "reduction/reduced_body_file.h"
+#include "sid/sid_file.h"
 
 namespace flexmbs::app {
 namespace {
@@ -22,13 +22,13 @@ struct CompareOptions {
 constexpr Eigen::Index kLargestPrintedMac = 24;
 
 // Effective modal mass per axis as a fraction of the body's mass.
-Eigen::Vector3d MassFractions(const reduction::ReducedBody& body, const Eigen::MatrixXd& effective) {
-  return effective.colwise().sum().transpose() / body.mass_properties.mass_kg;
+Eigen::Vector3d MassFractions(const sid::ReducedBody& body, const Eigen::MatrixXd& effective) {
+  return effective.colwise().sum().transpose() / body.mass;
 }
 
 void RunCompare(const CompareOptions& options) {
-  const reduction::ReducedBody a = reduction::ReadReducedBody(options.a);
-  const reduction::ReducedBody b = reduction::ReadReducedBody(options.b);
+  const sid::ReducedBody a = sid::ReadReducedBody(options.a);
+  const sid::ReducedBody b = sid::ReadReducedBody(options.b);
   reduction::BasisComparison c;
   try {
     c = reduction::CompareBases(a, b);

@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   flexmbs::app::AddMeshCommand(app);
   flexmbs::app::AddReduceCommand(app);
   flexmbs::app::AddCompareCommand(app);
+  flexmbs::app::AddInfoCommand(app);
+  flexmbs::app::AddExportCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -11,13 +11,15 @@
 #include "core/error.h"
 #include "fem/assembly.h"
 #include "fem/body_spec.h"
-#include "fem/mass_properties.h"
 #include "reduction/correction_modes.h"
 #include "reduction/craig_bampton.h"
 #include "reduction/modal_basis.h"
-#include "reduction/reduced_body_file.h"
+#include "reduction/sid_body_builder.h"
+#include "reduction/sid_nodes.h"
+#include "reduction/sid_spec.h"
 #include "reduction/reduction_spec.h"
 #include "reduction/slepc_solver.h"
+#include "sid/sid_file.h"
 
 namespace flexmbs::app {
 namespace {
@@ -51,40 +53,6 @@ reduction::ReducedBasis BuildBasis(const reduction::ReductionSpec& spec, const r
   throw InternalError("unknown reduction method");
 }
 
-// The file content of a basis of `mesh`.
-reduction::ReducedBody ToReducedBody(const fem::BodySpec& body, const fem::Mesh& mesh,
-                                     const fem::SystemMatrices& system, const fem::MassProperties& props,
-                                     const reduction::ReductionSpec& spec,
-                                     const reduction::ReducedBasis& basis) {
-  reduction::ReducedBody out;
-  out.name = body.name;
-  out.mass_properties = props;
-  out.node_positions = mesh.nodes;
-  out.node_sets = mesh.node_sets;
-  out.phi = basis.Phi;
-  out.mode_names = basis.names;
-  for (reduction::ModeKind kind : basis.kinds) out.mode_kinds.emplace_back(reduction::ModeKindName(kind));
-  out.frequency_hz = basis.frequency_hz;
-  out.relative_residuals = basis.relative_residuals;
-  out.stiffness_reduced = basis.K_reduced;
-  out.mass_reduced = basis.M_reduced;
-  out.participation = basis.Phi.transpose() * (system.mass * fem::RigidBodyModes(mesh.nodes));
-  out.provenance = {{"body_file", body.file.string()},
-                    {"geometry_file", body.geometry_file.string()},
-                    {"nodes", std::to_string(mesh.num_nodes())},
-                    {"elements", std::to_string(mesh.num_elements())},
-                    {"reduction_method", basis.method},
-                    {"reduction", basis.description},
-                    {"eigensolver", basis.eigensolver.empty() ? spec.eigensolver : basis.eigensolver}};
-  for (const fem::ElementBlock& block : mesh.blocks) {
-    out.provenance["material " + block.region] =
-        fmt::format("{}: E = {:g} Pa, nu = {:g}, rho = {:g} kg/m^3", block.material.name,
-                    block.material.youngs_modulus_pa, block.material.poisson_ratio,
-                    block.material.density_kg_m3);
-  }
-  return out;
-}
-
 // The largest finite value of `v`, or NaN if none.
 double MaxFinite(const Eigen::VectorXd& v) {
   double max = std::nan("");
@@ -94,8 +62,16 @@ double MaxFinite(const Eigen::VectorXd& v) {
   return max;
 }
 
-void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis,
-            const fem::Mesh& mesh, double mesh_seconds, double assembly_seconds, double reduction_seconds) {
+// Wall-clock time of each stage [s].
+struct StageSeconds {
+  double mesh = 0.0;
+  double assembly = 0.0;
+  double reduction = 0.0;
+  double sid = 0.0;
+};
+
+void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, const fem::Mesh& mesh,
+            const StageSeconds& seconds) {
   const reduction::ModeCounts counts = basis.Counts();
   if (options.json) {
     nlohmann::json j;
@@ -108,7 +84,8 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis,
     j["frequency_hz"] = ToJson(basis.frequency_hz);
     j["relative_residuals"] = ToJson(basis.relative_residuals);
     j["eigensolver"] = basis.eigensolver;
-    j["seconds"] = {{"mesh", mesh_seconds}, {"assembly", assembly_seconds}, {"reduction", reduction_seconds}};
+    j["seconds"] = {{"mesh", seconds.mesh}, {"assembly", seconds.assembly}, {"reduction", seconds.reduction},
+                    {"sid", seconds.sid}};
     fmt::print("{}\n", j.dump(2));
     return;
   }
@@ -124,8 +101,8 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis,
   const double max_residual = MaxFinite(basis.relative_residuals);
   fmt::print("max residual    {}\n", std::isnan(max_residual) ? std::string("- (no eigenpairs of the full model)")
                                                                : fmt::format("{:.3g}", max_residual));
-  fmt::print("time            mesh {:.3f} s, assembly {:.3f} s, reduction {:.3f} s\n", mesh_seconds,
-             assembly_seconds, reduction_seconds);
+  fmt::print("time            mesh {:.3f} s, assembly {:.3f} s, reduction {:.3f} s, SID {:.3f} s\n", seconds.mesh,
+             seconds.assembly, seconds.reduction, seconds.sid);
 }
 
 void RunReduce(const ReduceOptions& options) {
@@ -134,6 +111,8 @@ void RunReduce(const ReduceOptions& options) {
   Progress progress;
   const fem::BodySpec body = fem::LoadBodySpec(options.body_file);
   const reduction::ReductionSpec spec = reduction::LoadReductionSpec(options.body_file, body.node_sets);
+  const reduction::SidSpec sid_spec =
+      reduction::LoadSidSpec(options.body_file, body.node_sets, reduction::InterfaceMarkerNames(spec));
   // Under `mpirun` with the slepc backend every rank runs the command; rank 0 writes and reports.
   std::optional<reduction::SlepcSession> mpi;
   if (spec.eigensolver == "slepc") mpi.emplace();
@@ -159,12 +138,18 @@ void RunReduce(const ReduceOptions& options) {
   }
   if (spec.orthonormalize) basis = reduction::OrthonormalizeBasis(model, basis);
   const double reduction_seconds = SecondsSince(reduction_start);
-  progress.Clear();
-  if (!writer) return;
+  if (!writer) {
+    progress.Clear();
+    return;
+  }
 
-  const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes);
-  reduction::WriteReducedBody(options.output, ToReducedBody(body, mesh, system, props, spec, basis));
-  Report(options, basis, mesh, mesh_seconds, assembly_seconds, reduction_seconds);
+  progress.Show("computing the SID invariants ...");
+  const auto sid_start = std::chrono::steady_clock::now();
+  const sid::ReducedBody reduced = reduction::BuildReducedBody({body, spec, sid_spec, mesh, system}, basis);
+  const double sid_seconds = SecondsSince(sid_start);
+  progress.Clear();
+  sid::WriteReducedBody(options.output, reduced);
+  Report(options, basis, mesh, {mesh_seconds, assembly_seconds, reduction_seconds, sid_seconds});
 }
 
 }  // namespace

@@ -90,37 +90,41 @@ Eigen::SparseMatrix<double> PatternMatrix(const NodeGraph& graph, Eigen::Index n
   return A;
 }
 
+// Calls add(a, b, c, base) for every node pair (a, b) of an element and axis c, `base` the
+// value index of entry (3 nodes[a], 3 nodes[b] + c) in a matrix with the node-graph pattern
+// (entry (3 nodes[a] + r, 3 nodes[b] + c) is at base + r).
+template <class Add>
+void ForEachBlockColumn(const Eigen::SparseMatrix<double>& A, std::span<const int> nodes, Add add) {
+  const auto n = static_cast<int>(nodes.size());
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  for (int b = 0; b < n; ++b) {
+    const int nb = nodes[static_cast<std::size_t>(b)];
+    const int* first = inner + outer[3 * nb];
+    const int* last = inner + outer[3 * nb + 1];
+    for (int a = 0; a < n; ++a) {
+      const auto k3 = static_cast<int>(std::lower_bound(first, last, 3 * nodes[static_cast<std::size_t>(a)]) - first);
+      for (int c = 0; c < 3; ++c) add(a, b, c, outer[3 * nb + c] + k3);
+    }
+  }
+}
+
 // Adds element matrices into CSC matrices that share the node-graph pattern.
 class CscScatter final : public ElementMatrixVisitor {
  public:
-  CscScatter(const NodeGraph& graph, Eigen::SparseMatrix<double>* K,
-             Eigen::SparseMatrix<double>* M)
-      : graph_(graph), K_(K), M_(M) {}
+  CscScatter(Eigen::SparseMatrix<double>* K, Eigen::SparseMatrix<double>* M) : K_(K), M_(M) {}
 
   void Visit(std::span<const int> nodes, const Eigen::MatrixXd& K_e,
              const Eigen::MatrixXd& m_e) override {
-    const auto n = static_cast<int>(nodes.size());
-    const int* outer = K_->outerIndexPtr();
     double* k_values = K_->valuePtr();
     double* m_values = M_->valuePtr();
-    for (int b = 0; b < n; ++b) {
-      const int nb = nodes[static_cast<std::size_t>(b)];
-      const int* first = graph_.neighbours.data() + graph_.offsets[static_cast<std::size_t>(nb)];
-      const int* last = graph_.neighbours.data() + graph_.offsets[static_cast<std::size_t>(nb) + 1];
-      for (int a = 0; a < n; ++a) {
-        const int na = nodes[static_cast<std::size_t>(a)];
-        const auto k = static_cast<int>(std::lower_bound(first, last, na) - first);
-        for (int c = 0; c < 3; ++c) {
-          const int base = outer[3 * nb + c] + 3 * k;
-          for (int r = 0; r < 3; ++r) k_values[base + r] += K_e(3 * a + r, 3 * b + c);
-          m_values[base + c] += m_e(a, b);
-        }
-      }
-    }
+    ForEachBlockColumn(*K_, nodes, [&](int a, int b, int c, int base) {
+      for (int r = 0; r < 3; ++r) k_values[base + r] += K_e(3 * a + r, 3 * b + c);
+      m_values[base + c] += m_e(a, b);
+    });
   }
 
  private:
-  const NodeGraph& graph_;
   Eigen::SparseMatrix<double>* K_;
   Eigen::SparseMatrix<double>* M_;
 };
@@ -162,11 +166,20 @@ void VisitElementMatrices(const Mesh& mesh, MassMatrixKind mass_kind, Eigen::Ind
   }
 }
 
+Eigen::SparseMatrix<double> SystemPattern(const Mesh& mesh) {
+  return PatternMatrix(BuildNodeGraph(mesh), mesh.num_nodes());
+}
+
+void AddScalarElementMatrix(std::span<const int> nodes, const Eigen::MatrixXd& a_e,
+                            Eigen::SparseMatrix<double>* A) {
+  double* values = A->valuePtr();
+  ForEachBlockColumn(*A, nodes, [&](int a, int b, int c, int base) { values[base + c] += a_e(a, b); });
+}
+
 SystemMatrices AssembleSystem(const Mesh& mesh, MassMatrixKind mass_kind) {
-  const NodeGraph graph = BuildNodeGraph(mesh);
-  SystemMatrices system{PatternMatrix(graph, mesh.num_nodes()), {}};
+  SystemMatrices system{SystemPattern(mesh), {}};
   system.mass = system.stiffness;
-  CscScatter scatter(graph, &system.stiffness, &system.mass);
+  CscScatter scatter(&system.stiffness, &system.mass);
   VisitElementMatrices(mesh, mass_kind, 0, mesh.num_elements(), scatter);
   if (mass_kind == MassMatrixKind::kLumped) system.mass.prune(0.0);
   return system;

@@ -33,6 +33,16 @@ class ElementMatrixVisitor {
 void VisitElementMatrices(const Mesh& mesh, MassMatrixKind mass_kind, Eigen::Index first,
                           Eigen::Index end, ElementMatrixVisitor& visitor);
 
+/// The zero matrix with the sparsity pattern of AssembleSystem (3 num_nodes square, full
+/// storage): a 3x3 block for every pair of nodes that share an element.
+Eigen::SparseMatrix<double> SystemPattern(const Mesh& mesh);
+
+/// A(3 na + i, 3 nb + i) += a_e(a, b) for i = 0, 1, 2, na = nodes[a]: adds the element matrix
+/// a_e (x) I_3 of a scalar element matrix a_e (n x n, e.g. a mass or geometric stiffness) into
+/// A, which has SystemPattern's sparsity.
+void AddScalarElementMatrix(std::span<const int> nodes, const Eigen::MatrixXd& a_e,
+                            Eigen::SparseMatrix<double>* A);
+
 /// Assembles K and M of the whole mesh. The sparsity pattern is built once from the node
 /// adjacency and shared by both matrices (a lumped M is stored on that pattern's diagonal
 /// only). Throws InputError for an element with a non-positive Jacobian.

@@ -28,7 +28,7 @@ IsotropicMaterial ReadMaterial(const std::string& name, const YamlNode& node) {
 BodySpec LoadBodySpec(const std::filesystem::path& file) {
   const YamlNode root = YamlNode::LoadFile(file);
   root.RejectUnknownKeys({"name", "geometry", "materials", "material", "regions", "node_sets",
-                          "mass_matrix", "reduction", "damping", "surfaces", "interfaces"});
+                          "mass_matrix", "reduction", "sid"});
   BodySpec spec;
   spec.file = file;
   spec.name = root.Has("name") ? root.Required("name").AsString() : file.stem().string();

@@ -27,7 +27,8 @@ namespace flexmbs::fem {
 ///     node_sets: [clamp, tip]      # physical groups to keep as named node sets
 ///     mass_matrix: consistent      # or lumped
 ///
-/// Other top-level sections (`reduction`, ...) belong to later stages and are read there.
+/// The sections `reduction` (reduction/reduction_spec.h) and `sid` (reduction/sid_spec.h) belong
+/// to later stages and are read there.
 struct BodySpec {
   std::filesystem::path file;  ///< the body file itself, for messages
   std::string name;

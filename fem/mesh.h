@@ -41,4 +41,9 @@ struct Mesh {
   Eigen::Index num_elements() const;
 };
 
+/// The SHA-256 digest of the mesh content (node coordinates; each block's element type, region
+/// and connectivity), as 64 hex digits: equal meshes give equal digests, whatever file or
+/// mesher version produced them.
+std::string MeshSha256(const Mesh& mesh);
+
 }  // namespace flexmbs::fem

@@ -8,3 +8,4 @@ Box(1) = {0, 0, 0, L, h, h};
 Physical Volume("beam") = {1};
 Physical Surface("clamp") = Surface In BoundingBox{-1e-6, -1e-6, -1e-6, 1e-6, h + 1e-6, h + 1e-6};
 Physical Surface("tip") = Surface In BoundingBox{L - 1e-6, -1e-6, -1e-6, L + 1e-6, h + 1e-6, h + 1e-6};
+Physical Surface("top") = Surface In BoundingBox{-1e-6, -1e-6, h - 1e-6, L + 1e-6, h + 1e-6, h + 1e-6};

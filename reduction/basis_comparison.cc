@@ -15,12 +15,12 @@ Eigen::MatrixXd MacMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   return cross.array().square() / (norm_a * norm_b.transpose()).array();
 }
 
-Eigen::MatrixXd EffectiveModalMass(const ReducedBody& body) {
-  const Eigen::VectorXd modal_mass = body.mass_reduced.diagonal();
-  return body.participation.leftCols<3>().array().square().colwise() / modal_mass.array();
+Eigen::MatrixXd EffectiveModalMass(const sid::ReducedBody& body) {
+  const Eigen::VectorXd modal_mass = body.Me.m0.diagonal();
+  return body.Ct.m0.array().square().colwise() / modal_mass.array();
 }
 
-BasisComparison CompareBases(const ReducedBody& a, const ReducedBody& b) {
+BasisComparison CompareBases(const sid::ReducedBody& a, const sid::ReducedBody& b) {
   if (a.node_positions.cols() != b.node_positions.cols()) {
     throw InputError(fmt::format("the bodies have different meshes ({} and {} nodes): compare bases of one mesh",
                                  a.node_positions.cols(), b.node_positions.cols()));

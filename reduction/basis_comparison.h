@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "reduction/reduced_body_file.h"
+#include "sid/reduced_body.h"
 
 namespace flexmbs::reduction {
 
@@ -13,9 +13,9 @@ namespace flexmbs::reduction {
 Eigen::MatrixXd MacMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
 
 /// Effective modal mass of each mode along each axis of B [kg] (n x 3):
-/// m_eff(k, d) = (Phi_k^T M t_d)^2 / (Phi_k^T M Phi_k), from the file's participation factors
-/// and reduced mass. For a complete M-orthonormal basis the columns sum to the body's mass.
-Eigen::MatrixXd EffectiveModalMass(const ReducedBody& body);
+/// m_eff(k, d) = (Phi_k^T M t_d)^2 / (Phi_k^T M Phi_k), from the file's Ct (order 0: the
+/// participation factors Phi^T M t_d) and Me. For a complete M-orthonormal basis the columns sum to the body's mass.
+Eigen::MatrixXd EffectiveModalMass(const sid::ReducedBody& body);
 
 /// A mode of A and the mode of B most like it.
 struct ModePair {
@@ -40,6 +40,6 @@ struct BasisComparison {
 
 /// Compares two bases of the same mesh. Throws InputError if the meshes differ (node count or
 /// positions beyond 1e-12 of the body's size).
-BasisComparison CompareBases(const ReducedBody& a, const ReducedBody& b);
+BasisComparison CompareBases(const sid::ReducedBody& a, const sid::ReducedBody& b);
 
 }  // namespace flexmbs::reduction

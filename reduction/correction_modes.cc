@@ -2,10 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -13,9 +10,7 @@
 
 #include "core/error.h"
 #include "reduction/basis_algebra.h"
-#include "reduction/dof_constraints.h"
-#include "reduction/interior_problem.h"
-#include "reduction/shifted_factorization.h"
+#include "reduction/static_response.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -23,61 +18,6 @@ namespace {
 using Index = Eigen::Index;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const char* const kAxisNames[3] = {"x", "y", "z"};
-
-// Six DOF that hold a free body statically determinately (3-2-1): node A (farthest from the
-// centroid) in x, y, z; node B (farthest from A) in the two axes other than AB's dominant one;
-// node C (farthest from the line AB) along the dominant axis of the normal of ABC. Rigid
-// motions with these six DOF zero vanish (A fixes translation, B the rotations across AB, C
-// the rotation about AB), so no reaction arises for a self-equilibrated load.
-std::array<Index, 6> DeterminateSupport(const Eigen::Matrix3Xd& nodes) {
-  const Eigen::Vector3d centre = nodes.rowwise().mean();
-  Index a = 0, b = 0, c = 0;
-  (nodes.colwise() - centre).colwise().squaredNorm().maxCoeff(&a);
-  (nodes.colwise() - nodes.col(a)).colwise().squaredNorm().maxCoeff(&b);
-  const Eigen::Vector3d d = nodes.col(b) - nodes.col(a);
-  double best = -1.0;
-  for (Index v = 0; v < nodes.cols(); ++v) {
-    const double distance = d.cross(nodes.col(v) - nodes.col(a)).squaredNorm();
-    if (distance > best) {
-      best = distance;
-      c = v;
-    }
-  }
-  const Eigen::Vector3d normal = d.cross(nodes.col(c) - nodes.col(a));
-  if (!(d.norm() > 0.0) || !(normal.norm() > 1e-9 * d.squaredNorm())) {
-    throw InputError("static correction modes: inertia relief: the mesh's nodes lie on one line");
-  }
-  Index d_axis = 0, n_axis = 0;
-  d.cwiseAbs().maxCoeff(&d_axis);
-  normal.cwiseAbs().maxCoeff(&n_axis);
-  std::array<Index, 6> dofs{3 * a, 3 * a + 1, 3 * a + 2, 0, 0, 3 * c + n_axis};
-  int k = 3;
-  for (Index axis = 0; axis < 3; ++axis) {
-    if (axis != d_axis) dofs[static_cast<std::size_t>(k++)] = 3 * b + axis;
-  }
-  return dofs;
-}
-
-// Inertia-relief static responses of a free body, M-orthogonal to the rigid modes.
-Eigen::MatrixXd InertiaReliefResponses(const FeModel& model, const Eigen::MatrixXd& F) {
-  const Eigen::MatrixXd R = MOrthonormalRigidModes(model);
-  const Eigen::MatrixXd MR = model.M * R;
-  const Eigen::MatrixXd F_e = F - MR * (R.transpose() * F);
-  const std::array<Index, 6> fixed = DeterminateSupport(model.nodes);
-  const FreeDofMap map(model.K.rows(), fixed);
-  const Eigen::SparseMatrix<double> K_ff = map.Restrict(model.K);
-  const Eigen::SparseMatrix<double> M_ff = map.Restrict(model.M);
-  ShiftedFactorization factor;
-  if (factor.Factorize(K_ff, M_ff, 0.0, ShiftedFactorization::Method::kSupernodalCholesky) !=
-          ShiftedFactorization::Status::kOk ||
-      HasZeroEnergyMode(factor, K_ff, M_ff)) {
-    throw InputError("static correction modes: inertia relief: the free body's stiffness is singular beyond its six "
-                     "rigid-body modes (a part of the mesh not connected to the rest, or a mechanism)");
-  }
-  Eigen::MatrixXd X = map.Expand(factor.Solve(map.RestrictVectors(F_e)));
-  MOrthogonalizeAgainst(model.M, R, &X);
-  return X;
-}
 
 }  // namespace
 
@@ -189,17 +129,9 @@ CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBas
 
   // Static responses of the body as the basis holds it.
   CorrectionResult result;
-  Eigen::MatrixXd X;
-  std::vector<bool> carried(static_cast<std::size_t>(num_cases), false);  // no interior load at all
-  if (!basis.held_by.empty()) {
-    const InteriorProblem interior = BuildInteriorProblem(model, basis.held_by);
-    const ShiftedFactorization factor = FactorHeldInterior(model, basis.held_by, interior);
-    const Eigen::MatrixXd rhs = Eigen::SparseMatrix<double>(interior.transform.G.transpose()) * F;
-    for (Index j = 0; j < num_cases; ++j) carried[static_cast<std::size_t>(j)] = rhs.col(j).isZero(0.0);
-    X = interior.transform.G * factor.Solve(rhs);
-  } else {
-    X = InertiaReliefResponses(model, F);
-  }
+  const StaticResponses responses = SolveStaticResponses(model, basis.held_by, F, "static correction modes");
+  const Eigen::MatrixXd& X = responses.X;
+  const std::vector<bool>& carried = responses.carried;  // no interior load at all
 
   // M-orthogonalise against the basis (not its constraint modes) and each other; drop the dependent.
   Eigen::MatrixXd against_columns(n, 0);

@@ -5,17 +5,11 @@
 // (residual-flexibility and attachment modes: Craig & Kurdila, "Fundamentals of Structural
 // Dynamics", 2nd ed. 2006, chapter on component-mode synthesis).
 //
-// * Held body (the basis's held_by has supports or interfaces): x = G K_oo^-1 G^T f, the
-//   response with supports clamped and interfaces held (u = B q_b + G u_o with q_b = 0). With
-//   the Craig-Bampton constraint modes this spans every static solution under f: the static
-//   u = Psi q_b + G K_oo^-1 G^T f because G^T K Psi = 0.
-// * Free-free body (held_by empty), inertia relief (MSC Nastran Linear Static Analysis User's
-//   Guide, "Inertia relief"): the load is balanced by the rigid-body inertia forces,
-//   f_e = (I - M R R^T) f with R the M-orthonormal rigid modes, so that R^T f_e = 0; then
-//   K x = f_e is solved with six DOF fixed as a statically determinate 3-2-1 support (three
-//   far-apart nodes A, B, C: A in x, y, z, B in the two axes across AB, C normal to ABC), which
-//   carries no reaction for a self-equilibrated load, so x is exact up to a rigid motion; finally
-//   x -= R R^T M x (M-orthogonal to the rigid modes).
+// The static responses are those of the body held as the basis is (static_response.h): with
+// supports clamped and interfaces held, x = G K_oo^-1 G^T f (with the Craig-Bampton constraint
+// modes this spans every static solution under f: the static u = Psi q_b + G K_oo^-1 G^T f
+// because G^T K Psi = 0), or for a free-free body by inertia relief, M-orthogonal to the rigid
+// modes.
 // Each new mode is then M-orthogonalised against the basis (all columns except constraint
 // modes, whose unit boundary motion would be lost; for a Craig-Bampton basis the new modes
 // thus stay interface-held) and against the correction modes before it, normalised to unit

@@ -7,47 +7,23 @@
 
 #include "core/yaml_node.h"
 #include "reduction/eigensolver.h"
+#include "reduction/spec_support.h"
 
 namespace flexmbs::reduction {
 namespace {
 
-// The value of `node` among `names` (file spellings), as its index; else an error listing them.
-template <std::size_t N>
-int Choice(const YamlNode& node, const std::array<std::string_view, N>& names) {
-  const std::string value = node.AsString();
-  const auto it = std::find(names.begin(), names.end(), value);
-  if (it == names.end()) node.Fail(fmt::format("'{}' must be one of: {}", value, fmt::join(names, ", ")));
-  return static_cast<int>(it - names.begin());
-}
-
-constexpr std::array<std::string_view, 3> kMethods = {"free_free", "fixed_interface", "craig_bampton"};
+const std::vector<std::string_view> kMethods = {"free_free", "fixed_interface", "craig_bampton"};
 // In the order of the Coupling enum.
-constexpr std::array<std::string_view, 3> kCouplings = {"nodes", "rigid", "averaging"};
+const std::vector<std::string_view> kCouplings = {"nodes", "rigid", "averaging"};
 // In the order of the LoadDistribution enum.
-constexpr std::array<std::string_view, 2> kDistributions = {"resultant", "per_node"};
-
-// A list of three numbers.
-Eigen::Vector3d ReadVector3(const YamlNode& node) {
-  const std::vector<YamlNode> xyz = node.AsList();
-  if (xyz.size() != 3) node.Fail(fmt::format("expected 3 coordinates, got {}", xyz.size()));
-  return Eigen::Vector3d(xyz[0].AsDouble(), xyz[1].AsDouble(), xyz[2].AsDouble());
-}
-
-std::string CheckNodeSet(const YamlNode& node, const std::vector<std::string>& node_sets) {
-  const std::string name = node.AsString();
-  if (std::find(node_sets.begin(), node_sets.end(), name) == node_sets.end()) {
-    node.Fail(fmt::format("'{}' is not one of the body's node_sets ({})", name,
-                          node_sets.empty() ? "none" : fmt::format("{}", fmt::join(node_sets, ", "))));
-  }
-  return name;
-}
+const std::vector<std::string_view> kDistributions = {"resultant", "per_node"};
 
 InterfaceSetting ReadInterface(const YamlNode& node, const std::vector<std::string>& node_sets) {
   node.RejectUnknownKeys({"node_set", "coupling", "marker"});
   InterfaceSetting spec;
-  spec.node_set = CheckNodeSet(node.Required("node_set"), node_sets);
+  spec.node_set = ReadNodeSetName(node.Required("node_set"), node_sets);
   if (node.Has("coupling")) {
-    spec.coupling = static_cast<Coupling>(Choice(node.Required("coupling"), kCouplings));
+    spec.coupling = static_cast<Coupling>(ReadChoice(node.Required("coupling"), kCouplings));
   }
   if (node.Has("marker")) spec.p_BoMarker_B = ReadVector3(node.Required("marker"));
   return spec;
@@ -56,14 +32,14 @@ InterfaceSetting ReadInterface(const YamlNode& node, const std::vector<std::stri
 CorrectionSpec ReadCorrection(const YamlNode& node, const std::vector<std::string>& node_sets) {
   node.RejectUnknownKeys({"node_set", "direction", "distribution"});
   CorrectionSpec spec;
-  spec.node_set = CheckNodeSet(node.Required("node_set"), node_sets);
+  spec.node_set = ReadNodeSetName(node.Required("node_set"), node_sets);
   if (node.Has("direction")) {
     const YamlNode direction = node.Required("direction");
     spec.direction = ReadVector3(direction);
     if (spec.direction->norm() == 0.0) direction.Fail("a load direction must not be zero");
   }
   if (node.Has("distribution")) {
-    spec.distribution = static_cast<LoadDistribution>(Choice(node.Required("distribution"), kDistributions));
+    spec.distribution = static_cast<LoadDistribution>(ReadChoice(node.Required("distribution"), kDistributions));
   }
   return spec;
 }
@@ -94,7 +70,7 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
                             "orthonormalize", "supports", "interfaces", "correction_modes"});
   ReductionSpec spec;
   if (section.Has("method")) {
-    spec.method = static_cast<ReductionMethod>(Choice(section.Required("method"), kMethods));
+    spec.method = static_cast<ReductionMethod>(ReadChoice(section.Required("method"), kMethods));
   }
   if (section.Has("modes")) {
     const YamlNode modes = section.Required("modes");
@@ -118,13 +94,13 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
     }
   }
   if (section.Has("rigid_body_modes")) {
-    constexpr std::array<std::string_view, 2> kRigid = {"exact", "computed"};
-    spec.exact_rigid_body_modes = Choice(section.Required("rigid_body_modes"), kRigid) == 0;
+    const std::vector<std::string_view> kRigid = {"exact", "computed"};
+    spec.exact_rigid_body_modes = ReadChoice(section.Required("rigid_body_modes"), kRigid) == 0;
   }
   if (section.Has("orthonormalize")) spec.orthonormalize = section.Required("orthonormalize").AsBool();
   if (section.Has("supports")) {
     for (const YamlNode& node : section.Required("supports").AsList()) {
-      spec.supports.push_back(CheckNodeSet(node, node_sets));
+      spec.supports.push_back(ReadNodeSetName(node, node_sets));
     }
   }
   if (section.Has("interfaces")) {

@@ -17,6 +17,8 @@ packages=(
   libhdf5-dev libhdf5-openmpi-dev libsundials-dev libsiconos-numerics-dev libfcl-dev
   # command line, input, logging
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
+  # provenance hashes (SHA-256)
+  libssl-dev
   # independent peers for validation and benchmarks
   calculix-ccx python3-dolfinx python3-gmsh python3-numpy python3-scipy
   python3-matplotlib python3-h5py python3-meshio

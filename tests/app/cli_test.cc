@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "reduction/reduced_body_file.h"
+#include "sid/sid_file.h"
 
 namespace {
 
@@ -290,7 +290,7 @@ TEST_F(CliTest, ReduceWritesTheBodyFileItReports) {
   EXPECT_EQ(j["modes"]["rigid"], 6);
   EXPECT_EQ(j["modes"]["normal"], 4);
   EXPECT_EQ(j["modes"]["total"], 10);
-  const flexmbs::reduction::ReducedBody file = flexmbs::reduction::ReadReducedBody(output);
+  const flexmbs::sid::ReducedBody file = flexmbs::sid::ReadReducedBody(output);
   ASSERT_EQ(file.phi.cols(), 10);
   EXPECT_EQ(file.mode_kinds[0], "rigid");
   EXPECT_EQ(file.mode_kinds[9], "normal");
@@ -299,7 +299,7 @@ TEST_F(CliTest, ReduceWritesTheBodyFileItReports) {
     EXPECT_GT(file.frequency_hz(k), 0.0);
   }
   // The basis is M-orthonormal: the reduced mass matrix is the identity.
-  EXPECT_LT((file.mass_reduced - Eigen::MatrixXd::Identity(10, 10)).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_LT((file.Me.m0 - Eigen::MatrixXd::Identity(10, 10)).cwiseAbs().maxCoeff(), 1e-10);
   EXPECT_EQ(OutputFiles(), std::vector<std::string>{"cube.sid.h5"});
 }
 
@@ -346,8 +346,8 @@ TEST_F(CliTest, ReduceUnderMpirunWithTwoRanksGivesTheSerialResult) {
                               std::string(FLEXMBS_MPIEXEC) + " -n 2 " + kBinary.string() + " reduce " +
                               (dir_ / "mpi.yaml").string() + " -o " + mpi.string() + " > /dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  const auto a = flexmbs::reduction::ReadReducedBody(serial);
-  const auto b = flexmbs::reduction::ReadReducedBody(mpi);
+  const auto a = flexmbs::sid::ReadReducedBody(serial);
+  const auto b = flexmbs::sid::ReadReducedBody(mpi);
   ASSERT_EQ(a.phi.cols(), b.phi.cols());
   for (Eigen::Index k = 0; k < a.phi.cols(); ++k) {
     EXPECT_NEAR(b.frequency_hz(k), a.frequency_hz(k), kAgreement * a.frequency_hz(k)) << "mode " << k;

@@ -16,17 +16,17 @@ namespace {
 constexpr double kRoundOff = 1e-10;
 
 // A small box as a ReducedBody carrying ALL its modes (a complete M-orthonormal basis).
-ReducedBody CompleteBody() {
+sid::ReducedBody CompleteBody() {
   const fem::Mesh mesh = testing::HexBox({3, 2, 2}, {0.3, 0.2, 0.1}, testing::Steel());
   const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
   const testing::DenseEigen dense = testing::SolveDense(system.stiffness, system.mass, -1e3);
-  ReducedBody body;
-  body.mass_properties = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes);
+  sid::ReducedBody body;
+  body.mass = fem::MassPropertiesFromMassMatrix(system.mass, mesh.nodes).mass_kg;
   body.node_positions = mesh.nodes;
   body.phi = dense.vectors;
   body.frequency_hz = dense.values.cwiseAbs().cwiseSqrt() / (2.0 * std::numbers::pi);
-  body.mass_reduced = dense.vectors.transpose() * (system.mass * dense.vectors);
-  body.participation = dense.vectors.transpose() * (system.mass * fem::RigidBodyModes(mesh.nodes));
+  body.Me.m0 = dense.vectors.transpose() * (system.mass * dense.vectors);
+  body.Ct.m0 = dense.vectors.transpose() * (system.mass * fem::RigidBodyModes(mesh.nodes).leftCols<3>());
   return body;
 }
 
@@ -41,13 +41,13 @@ TEST(MacMatrix, IsOneForTheSameShapeAtAnyScaleAndZeroForOrthogonalShapes) {
 
 TEST(EffectiveModalMass, SumsToTheBodyMassAlongEachAxisForACompleteBasis) {
   // Phi Phi^T = M^-1 for a complete M-orthonormal basis, so sum_k (Phi_k^T M t)^2 = t^T M t = m.
-  const ReducedBody body = CompleteBody();
+  const sid::ReducedBody body = CompleteBody();
   const Eigen::Vector3d sums = EffectiveModalMass(body).colwise().sum();
-  for (int d = 0; d < 3; ++d) EXPECT_NEAR(sums(d), body.mass_properties.mass_kg, kRoundOff * body.mass_properties.mass_kg);
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(sums(d), body.mass, kRoundOff * body.mass);
 }
 
 TEST(CompareBases, ABasisAgainstItselfPairsEveryModeWithMacOneAndNoError) {
-  const ReducedBody body = CompleteBody();
+  const sid::ReducedBody body = CompleteBody();
   const BasisComparison c = CompareBases(body, body);
   ASSERT_EQ(c.pairs.size(), static_cast<std::size_t>(body.phi.cols()));
   for (const ModePair& p : c.pairs) {
@@ -57,8 +57,8 @@ TEST(CompareBases, ABasisAgainstItselfPairsEveryModeWithMacOneAndNoError) {
 }
 
 TEST(CompareBases, BasesOfDifferentMeshesAreAnInputError) {
-  const ReducedBody a = CompleteBody();
-  ReducedBody b = a;
+  const sid::ReducedBody a = CompleteBody();
+  sid::ReducedBody b = a;
   b.node_positions(0, 0) += 1e-3;
   EXPECT_THROW(CompareBases(a, b), InputError);
 }

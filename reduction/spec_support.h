@@ -1,0 +1,26 @@
+#pragma once
+
+// Small readers shared by the body file's sections (reduction_spec, sid_spec): a choice among
+// names, a 3-vector, a node set name checked against the body's node sets.
+
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/yaml_node.h"
+
+namespace flexmbs::reduction {
+
+/// The index of the value of `node` among `names` (file spellings); else fails with
+/// "'<value>' must be one of: a, b, c".
+int ReadChoice(const YamlNode& node, const std::vector<std::string_view>& names);
+
+/// A list of three numbers (finite: YamlNode::AsDouble); else fails naming the count or the value.
+Eigen::Vector3d ReadVector3(const YamlNode& node);
+
+/// The node set named by `node`; fails with "'<name>' is not one of the body's node_sets (...)"
+/// unless it is in `node_sets` (the body file's `node_sets:`).
+std::string ReadNodeSetName(const YamlNode& node, const std::vector<std::string>& node_sets);
+
+}  // namespace flexmbs::reduction

@@ -1,0 +1,562 @@
+// Geometric (stress) stiffening: the element K_G against exact polynomial integrals, the
+// assembled and the element-by-element projected K_G against each other, buckling of a column
+// against Euler, and the SID stiffening load cases against the body's mass properties.
+#include "reduction/geometric_stiffening.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "basis_test_support.h"
+#include "fem/element_integrator.h"
+#include "fem/geometric_stiffness.h"
+#include "fem/mass_properties.h"
+#include "fem/reference_element.h"
+#include "reduction/dof_constraints.h"
+#include "reduction/modal_basis.h"
+#include "tests/fem/test_meshes.h"
+
+namespace flexmbs {
+namespace {
+
+using fem::ElementType;
+using Index = Eigen::Index;
+
+// Quadrature against exact integrals of the same polynomial, or two orders of one sum: a few
+// hundred roundings of O(1) terms.
+constexpr double kRoundOff = 1e-12;
+
+constexpr ElementType kAllTypes[] = {ElementType::kTet4,  ElementType::kTet10,  ElementType::kHex8,
+                                     ElementType::kHex20, ElementType::kWedge6, ElementType::kWedge15};
+
+const fem::IsotropicMaterial kSteel{"steel", 2.1e11, 0.3, 7850.0};
+
+// ---- Polynomials in the reference coordinates, integrated exactly -------------------------
+
+using Exponents = std::array<int, 3>;
+using Polynomial = std::map<Exponents, double>;
+
+Polynomial Product(const Polynomial& a, const Polynomial& b) {
+  Polynomial p;
+  for (const auto& [ea, ca] : a) {
+    for (const auto& [eb, cb] : b) p[{ea[0] + eb[0], ea[1] + eb[1], ea[2] + eb[2]}] += ca * cb;
+  }
+  return p;
+}
+
+void AddScaled(const Polynomial& p, double s, Polynomial* sum) {
+  for (const auto& [e, c] : p) (*sum)[e] += s * c;
+}
+
+Polynomial Derivative(const Polynomial& p, int axis) {
+  Polynomial d;
+  const auto k = static_cast<std::size_t>(axis);
+  for (const auto& [e, c] : p) {
+    if (e[k] == 0) continue;
+    Exponents lowered = e;
+    --lowered[k];
+    d[lowered] += c * e[k];
+  }
+  return d;
+}
+
+double Evaluate(const Polynomial& p, const Eigen::Vector3d& xi) {
+  double value = 0.0;
+  for (const auto& [e, c] : p) value += c * std::pow(xi(0), e[0]) * std::pow(xi(1), e[1]) * std::pow(xi(2), e[2]);
+  return value;
+}
+
+double Factorial(int n) { return n <= 1 ? 1.0 : n * Factorial(n - 1); }
+// int_{-1}^{1} t^k dt.
+double LineMoment(int k) { return k % 2 == 1 ? 0.0 : 2.0 / (k + 1); }
+
+// The exact integral of xi^a eta^b zeta^c over the reference domain of `type` (reference_element.h):
+// unit simplex a! b! c! / (a + b + c + 3)!; [-1, 1]^3; unit triangle a! b! / (a + b + 2)! x [-1, 1].
+double MonomialIntegral(ElementType type, const Exponents& e) {
+  switch (type) {
+    case ElementType::kTet4:
+    case ElementType::kTet10:
+      return Factorial(e[0]) * Factorial(e[1]) * Factorial(e[2]) / Factorial(e[0] + e[1] + e[2] + 3);
+    case ElementType::kHex8:
+    case ElementType::kHex20: return LineMoment(e[0]) * LineMoment(e[1]) * LineMoment(e[2]);
+    case ElementType::kWedge6:
+    case ElementType::kWedge15:
+      return Factorial(e[0]) * Factorial(e[1]) / Factorial(e[0] + e[1] + 2) * LineMoment(e[2]);
+  }
+  return 0.0;
+}
+
+double IntegrateReference(const Polynomial& p, ElementType type) {
+  double sum = 0.0;
+  for (const auto& [e, c] : p) sum += c * MonomialIntegral(type, e);
+  return sum;
+}
+
+// The monomials that span each element's displacement space (reference_element.h).
+std::vector<Exponents> Space(ElementType type) {
+  const std::vector<Exponents> p1{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  std::vector<Exponents> p2 = p1;
+  p2.insert(p2.end(), {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}});
+  switch (type) {
+    case ElementType::kTet4: return p1;
+    case ElementType::kTet10: return p2;
+    case ElementType::kHex8: {
+      std::vector<Exponents> q1 = p1;
+      q1.insert(q1.end(), {{1, 1, 0}, {0, 1, 1}, {1, 0, 1}, {1, 1, 1}});
+      return q1;
+    }
+    case ElementType::kHex20: {
+      std::vector<Exponents> s = p2;
+      s.insert(s.end(), {{2, 1, 0}, {2, 0, 1}, {1, 2, 0}, {0, 2, 1}, {1, 0, 2}, {0, 1, 2}, {1, 1, 1}, {2, 1, 1},
+                         {1, 2, 1}, {1, 1, 2}});
+      return s;
+    }
+    case ElementType::kWedge6: {
+      std::vector<Exponents> w = p1;
+      w.insert(w.end(), {{1, 0, 1}, {0, 1, 1}});
+      return w;
+    }
+    case ElementType::kWedge15: {
+      std::vector<Exponents> w = p2;
+      w.insert(w.end(), {{2, 0, 1}, {1, 1, 1}, {0, 2, 1}, {1, 0, 2}, {0, 1, 2}});
+      return w;
+    }
+  }
+  return {};
+}
+
+// A displacement field (three components) with random coefficients on `monomials`.
+std::array<Polynomial, 3> RandomField(const std::vector<Exponents>& monomials, std::mt19937* rng) {
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+  std::array<Polynomial, 3> u;
+  for (Polynomial& component : u) {
+    for (const Exponents& e : monomials) component[e] = 1e-3 * coefficient(*rng);
+  }
+  return u;
+}
+
+// An element x = A xi + x0 (an affine image of the reference element: straight-sided).
+struct AffineElement {
+  ElementType type;
+  Eigen::Matrix3d A;
+  Eigen::Matrix3Xd X;  // node coordinates
+};
+
+AffineElement RandomAffineElement(ElementType type, std::mt19937* rng) {
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  AffineElement element{type, Eigen::Matrix3d::Identity(), {}};
+  for (Index i = 0; i < 9; ++i) element.A.data()[i] += u(*rng);
+  element.A *= 0.05;
+  const Eigen::Vector3d x0(u(*rng), u(*rng), u(*rng));
+  element.X = (element.A * fem::ReferenceElement::Of(type).nodes()).colwise() + x0;
+  return element;
+}
+
+// The nodal values (3 x n) of a polynomial field.
+Eigen::Matrix3Xd NodalValues(const AffineElement& element, const std::array<Polynomial, 3>& u) {
+  const Eigen::Matrix3Xd& xi = fem::ReferenceElement::Of(element.type).nodes();
+  Eigen::Matrix3Xd values(3, xi.cols());
+  for (Index a = 0; a < xi.cols(); ++a) {
+    for (int i = 0; i < 3; ++i) values(i, a) = Evaluate(u[static_cast<std::size_t>(i)], xi.col(a));
+  }
+  return values;
+}
+
+// H(i, k) = du_i/dx_k as polynomials in xi: du_i/dx_k = sum_j du_i/dxi_j (A^-1)(j, k).
+using PolynomialMatrix = std::array<std::array<Polynomial, 3>, 3>;
+PolynomialMatrix PhysicalGradient(const AffineElement& element, const std::array<Polynomial, 3>& u) {
+  const Eigen::Matrix3d A_inv = element.A.inverse();
+  PolynomialMatrix H;
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Polynomial d = Derivative(u[i], j);
+      for (std::size_t k = 0; k < 3; ++k) AddScaled(d, A_inv(j, static_cast<Index>(k)), &H[i][k]);
+    }
+  }
+  return H;
+}
+
+// sigma = lambda tr(eps) I + 2 mu eps as polynomials.
+PolynomialMatrix Stress(const PolynomialMatrix& H, const fem::IsotropicMaterial& material) {
+  const double lambda = material.LameLambdaPa(), mu = material.ShearModulusPa();
+  PolynomialMatrix sigma;
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t l = 0; l < 3; ++l) {
+      AddScaled(H[k][l], mu, &sigma[k][l]);
+      AddScaled(H[l][k], mu, &sigma[k][l]);
+      if (k == l) {
+        for (std::size_t m = 0; m < 3; ++m) AddScaled(H[m][m], lambda, &sigma[k][l]);
+      }
+    }
+  }
+  return sigma;
+}
+
+// int sum_i grad u_i . (sigma grad v_i) dV, exactly.
+double ExactEnergy(const AffineElement& element, const PolynomialMatrix& Hu, const PolynomialMatrix& sigma,
+                   const PolynomialMatrix& Hv) {
+  Polynomial integrand;
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      for (std::size_t l = 0; l < 3; ++l) AddScaled(Product(Product(Hu[i][k], sigma[k][l]), Hv[i][l]), 1.0, &integrand);
+    }
+  }
+  return element.A.determinant() * IntegrateReference(integrand, element.type);
+}
+
+// u_e^T (k_G (x) I_3) v_e.
+double DiscreteEnergy(const Eigen::MatrixXd& k_G, const Eigen::Matrix3Xd& u_e, const Eigen::Matrix3Xd& v_e) {
+  return (u_e * k_G * v_e.transpose()).trace();
+}
+
+TEST(ElementGeometricStiffness, UniformStressGivesTheExactIntegralOfAQuadraticField) {
+  std::mt19937 rng(17);
+  for (const ElementType type : kAllTypes) {
+    // A quadratic field where the element has one; else the element's own (bi/tri-linear) space.
+    const std::vector<Exponents> monomials = fem::Traits(type).order == 2 ? Space(ElementType::kTet10) : Space(type);
+    const AffineElement element = RandomAffineElement(type, &rng);
+    const std::array<Polynomial, 3> u = RandomField(monomials, &rng), v = RandomField(monomials, &rng);
+    Eigen::Matrix3d sigma0 = Eigen::Matrix3d::Random() * 1e8;
+    sigma0 = (sigma0 + sigma0.transpose()).eval();
+    PolynomialMatrix uniform;
+    for (std::size_t k = 0; k < 3; ++k) {
+      for (std::size_t l = 0; l < 3; ++l) uniform[k][l][{0, 0, 0}] = sigma0(static_cast<Index>(k), static_cast<Index>(l));
+    }
+    fem::ElementIntegrator integrator(type);
+    Eigen::MatrixXd k_G;
+    ASSERT_GT(integrator.ScalarGeometricStiffness(element.X, sigma0, &k_G), 0.0);
+    const double exact = ExactEnergy(element, PhysicalGradient(element, u), uniform, PhysicalGradient(element, v));
+    const double computed = DiscreteEnergy(k_G, NodalValues(element, u), NodalValues(element, v));
+    EXPECT_NEAR(computed, exact, kRoundOff * std::abs(exact)) << fem::Traits(type).name;
+  }
+}
+
+TEST(ElementGeometricStiffness, IsExactForTheStressOfAFieldOfTheElementsOwnSpace) {
+  // On a straight-sided element the stress of a field w of the element's space and the
+  // gradients of u, v of that space make a polynomial integrand of three gradient factors,
+  // which the geometric-stiffness rule integrates exactly (element_integrator.h).
+  std::mt19937 rng(29);
+  for (const ElementType type : kAllTypes) {
+    const std::vector<Exponents> monomials = Space(type);
+    for (int trial = 0; trial < 2; ++trial) {
+      const AffineElement element = RandomAffineElement(type, &rng);
+      const std::array<Polynomial, 3> u = RandomField(monomials, &rng), v = RandomField(monomials, &rng),
+                                      w = RandomField(monomials, &rng);
+      fem::ElementIntegrator integrator(type);
+      Eigen::MatrixXd k_G;
+      ASSERT_GT(integrator.ScalarGeometricStiffness(element.X, kSteel, NodalValues(element, w), &k_G), 0.0);
+      const double exact = ExactEnergy(element, PhysicalGradient(element, u),
+                                       Stress(PhysicalGradient(element, w), kSteel), PhysicalGradient(element, v));
+      const double computed = DiscreteEnergy(k_G, NodalValues(element, u), NodalValues(element, v));
+      EXPECT_NEAR(computed, exact, kRoundOff * std::abs(exact)) << fem::Traits(type).name;
+    }
+  }
+}
+
+TEST(ElementGeometricStiffness, IsSymmetricAndRigidMotionsNeitherStressNorFeelIt) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (const ElementType type : kAllTypes) {
+    const AffineElement element = RandomAffineElement(type, &rng);
+    const Index n = element.X.cols();
+    Eigen::Matrix3Xd u_e(3, n);
+    for (Index i = 0; i < u_e.size(); ++i) u_e.data()[i] = 1e-4 * uniform(rng);
+    fem::ElementIntegrator integrator(type);
+    Eigen::MatrixXd k_G;
+    integrator.ScalarGeometricStiffness(element.X, kSteel, u_e, &k_G);
+    const double scale = k_G.cwiseAbs().maxCoeff();
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LE((k_G - k_G.transpose()).cwiseAbs().maxCoeff(), kRoundOff * scale) << fem::Traits(type).name;
+    // A rigid translation t: K_G,e (1 (x) t) = (k_G 1) (x) t, zero since sum_a grad N_a = 0.
+    EXPECT_LE((k_G * Eigen::VectorXd::Ones(n)).cwiseAbs().maxCoeff(), kRoundOff * scale) << fem::Traits(type).name;
+    // An infinitesimal rigid rotation theta x r has no strain, hence no stress.
+    const Eigen::Vector3d theta(1e-3, -2e-3, 0.5e-3);
+    Eigen::Matrix3Xd rotation(3, n);
+    for (Index a = 0; a < n; ++a) rotation.col(a) = theta.cross(element.X.col(a));
+    Eigen::MatrixXd k_rotation;
+    integrator.ScalarGeometricStiffness(element.X, kSteel, rotation, &k_rotation);
+    Eigen::MatrixXd k_strained;
+    const Eigen::Matrix3d stretch = 1e-3 * Eigen::Matrix3d::Identity();
+    integrator.ScalarGeometricStiffness(element.X, kSteel, stretch * element.X, &k_strained);
+    EXPECT_LE(k_rotation.cwiseAbs().maxCoeff(), kRoundOff * k_strained.cwiseAbs().maxCoeff()) << fem::Traits(type).name;
+  }
+}
+
+TEST(LinearElasticStress, UniaxialStrainStateGivesUniaxialStress) {
+  // eps = diag(e, -nu e, -nu e) is the strain of the uniaxial stress sigma_xx = E e.
+  const double e = 1e-4, nu = kSteel.poisson_ratio;
+  Eigen::Matrix3d grad_u = Eigen::Vector3d(e, -nu * e, -nu * e).asDiagonal();
+  grad_u(0, 1) = 3e-5;  // plus a rigid rotation about z: no stress
+  grad_u(1, 0) = -3e-5;
+  Eigen::Matrix3d expected = Eigen::Matrix3d::Zero();
+  expected(0, 0) = kSteel.youngs_modulus_pa * e;
+  EXPECT_LE((fem::LinearElasticStress(grad_u, kSteel) - expected).cwiseAbs().maxCoeff(), kRoundOff * expected(0, 0));
+}
+
+TEST(GeometricStiffness, ElementByElementProjectionEqualsTheProjectedAssembledMatrix) {
+  // A mixed hex20 / wedge15 box, distorted and curved (the two agree whatever the quadrature).
+  fem::testing::BoxMesh box = fem::testing::StructuredBox(ElementType::kHex20, {3, 2, 2}, {0.3, 0.1, 0.1},
+                                                          ElementType::kWedge15, 2);
+  std::mt19937 rng(3);
+  fem::testing::DistortInterior(&box, 0.15, 0.05, &rng);
+  fem::Mesh& mesh = box.mesh;
+  for (fem::ElementBlock& block : mesh.blocks) block.material = kSteel;
+  const Index dofs = mesh.num_dofs();
+  const Eigen::MatrixXd U = 1e-4 * Eigen::MatrixXd::Random(dofs, 3);
+  const Eigen::MatrixXd Phi = Eigen::MatrixXd::Random(dofs, 5);
+  const std::vector<Eigen::MatrixXd> projected = fem::ProjectedGeometricStiffness(mesh, U, Phi);
+  ASSERT_EQ(projected.size(), 3u);
+  const Eigen::SparseMatrix<double> pattern = fem::SystemPattern(mesh);
+  for (Index c = 0; c < 3; ++c) {
+    const Eigen::SparseMatrix<double> K_G = fem::AssembleGeometricStiffness(mesh, U.col(c));
+    EXPECT_EQ(K_G.nonZeros(), pattern.nonZeros());
+    const Eigen::SparseMatrix<double> K_G_T = K_G.transpose();
+    EXPECT_LE((K_G - K_G_T).norm(), kRoundOff * K_G.norm());
+    const Eigen::MatrixXd expected = Phi.transpose() * (K_G * Phi);
+    const Eigen::MatrixXd& got = projected[static_cast<std::size_t>(c)];
+    EXPECT_LE((got - expected).norm(), kRoundOff * expected.norm()) << "field " << c;
+    EXPECT_LE((got - got.transpose()).norm(), kRoundOff * expected.norm());
+  }
+}
+
+// ---- Buckling of a cantilever column -----------------------------------------------------
+
+constexpr double kColumnLength = 1.0, kColumnSide = 0.02;
+// The hex20 column of 16 x 2 x 2 cells, its root face sliding (u_x = 0, the section free to
+// contract): the Euler load pi^2 E I / (4 L^2) of the clamped-free column within the
+// discretisation error (measured +1.5e-2, +3.1e-3, +3.4e-4 on 4, 8, 16 cells: ~h^3) plus the
+// shear flexibility of the 3-D body (P_E / (k G A) = 2.6e-4 lower, Timoshenko).
+constexpr double kEulerTolerance = 1e-3;
+// With the root face fully clamped, the clamp's restraint of the Poisson contraction makes
+// singular edges (Williams 1952) that converge slowly: measured +1.36e-2, +5.5e-3, +2.5e-3 on
+// 8, 16, 32 cells (~h^1.4), towards +1e-3 or less.
+constexpr double kClampedEulerTolerance = 1e-2;
+// Rayleigh-Ritz on the ten lowest fixed-interface vibration modes (five per bending plane):
+// the buckling shape is not a vibration mode; measured +5.4e-4 above the full model's P_cr.
+constexpr double kRitzTolerance = 2e-3;
+// The dense generalized eigensolver's relative error in P_cr: eps cond(K), cond(K) ~ 1e8.
+constexpr double kDenseBucklingRoundOff = 1e-7;
+
+double EulerLoad() {
+  const double I = std::pow(kColumnSide, 4) / 12.0;
+  return std::pow(std::numbers::pi, 2) * kSteel.youngs_modulus_pa * I / (4.0 * kColumnLength * kColumnLength);
+}
+
+reduction::testing::Body Column() {
+  return reduction::testing::MakeBox(ElementType::kHex20, {16, 2, 2}, {kColumnLength, kColumnSide, kColumnSide},
+                                     kSteel);
+}
+
+// The smallest P > 0 with (K - P K_G1) x = 0 on the DOF selected by `free`: the buckling load
+// of a column whose unit tension has the geometric stiffness K_G1 (dense; K_G1 x = (1/P) K x).
+double LowestBucklingLoad(const Eigen::MatrixXd& K, const Eigen::MatrixXd& K_G1) {
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(K_G1, K, Eigen::EigenvaluesOnly);
+  return 1.0 / solver.eigenvalues().maxCoeff();
+}
+
+TEST(ColumnBuckling, UniaxialPrestressGivesTheEulerLoad) {
+  // The exact field of a unit axial tension, u = (x, -nu y, -nu z) / (E A), gives the uniform
+  // stress sigma_xx = 1 / A through the element stress; K with it buckles at P_E.
+  const reduction::testing::Body b = Column();
+  const double strain = 1.0 / (kSteel.youngs_modulus_pa * kColumnSide * kColumnSide);
+  Eigen::VectorXd u(b.mesh.num_dofs());
+  for (Index n = 0; n < b.mesh.num_nodes(); ++n) {
+    const Eigen::Vector3d x = b.mesh.nodes.col(n);
+    u.segment<3>(3 * n) = strain * Eigen::Vector3d(x(0), -kSteel.poisson_ratio * x(1), -kSteel.poisson_ratio * x(2));
+  }
+  const Eigen::SparseMatrix<double> K_G = fem::AssembleGeometricStiffness(b.mesh, u);
+  // The root face slides: u_x = 0 on it, u_y = 0 on its line y = h/2 and u_z = 0 on z = h/2
+  // (the symmetry lines of the section, which stay put when it contracts).
+  std::vector<Index> fixed;
+  for (const int n : reduction::testing::NodesAt(b.mesh, 0, 0.0)) {
+    fixed.push_back(3 * n);
+    for (int axis : {1, 2}) {
+      if (std::abs(b.mesh.nodes(axis, n) - 0.5 * kColumnSide) < 1e-12) fixed.push_back(3 * n + axis);
+    }
+  }
+  const reduction::FreeDofMap free(b.mesh.num_dofs(), fixed);
+  const double P = LowestBucklingLoad(Eigen::MatrixXd(free.Restrict(b.K)), Eigen::MatrixXd(free.Restrict(K_G)));
+  std::printf("[ numbers  ] column, uniaxial prestress: P_cr %.6g N, Euler %.6g N, error %+.2e\n", P, EulerLoad(),
+              P / EulerLoad() - 1.0);
+  EXPECT_NEAR(P / EulerLoad(), 1.0, kEulerTolerance);
+}
+
+TEST(ColumnBuckling, TipForceStiffeningOfAReducedColumnGivesTheEulerLoad) {
+  // A marker at the tip face (averaging), the column clamped at x = 0 and reduced to its lowest
+  // fixed-interface modes: K0F_x is the stiffening of a unit tension at the marker, so the
+  // reduced column buckles where Ke - P K0F_x turns singular. Rayleigh-Ritz on a subspace: P is
+  // an upper bound of the full model's P_cr with the same prestress (the static response to
+  // the same nodal load).
+  const reduction::testing::Body b = Column();
+  const std::vector<int> root = reduction::testing::NodesAt(b.mesh, 0, 0.0);
+  reduction::BoundaryConditions clamp;
+  clamp.supports.push_back({"root", root});
+  reduction::EigenOptions eigen;
+  eigen.num_modes = 10;
+  const reduction::ReducedBasis basis =
+      reduction::FixedInterfaceModalBasis(b.model(), clamp, eigen, reduction::testing::Spectra());
+  const reduction::InterfaceSpec tip{"tip", reduction::testing::NodesAt(b.mesh, 0, kColumnLength),
+                                     reduction::Coupling::kAveraging, std::nullopt, {}};
+  const reduction::StiffeningResult s =
+      reduction::ComputeGeometricStiffening(b.mesh, b.model(), clamp, basis.Phi, std::span(&tip, 1));
+  ASSERT_EQ(s.nodes.size(), 1u);
+  const double P_reduced = LowestBucklingLoad(basis.K_reduced, s.nodes[0].K0F[0]);
+
+  const Eigen::MatrixXd F = reduction::BuildStiffeningLoads(b.model(), std::span(&tip, 1));
+  const auto free = reduction::FreeDofMap::ClampNodes(b.mesh.num_nodes(), root);
+  const Eigen::MatrixXd K_ff = Eigen::MatrixXd(free.Restrict(b.K));
+  const Eigen::VectorXd x = free.Expand(Eigen::MatrixXd(K_ff.llt().solve(free.RestrictVectors(F.col(12)))));
+  const double P_full =
+      LowestBucklingLoad(K_ff, Eigen::MatrixXd(free.Restrict(fem::AssembleGeometricStiffness(b.mesh, x))));
+  std::printf("[ numbers  ] column, tip force, clamped: reduced P_cr %.6g N (%+.2e to full), full %.6g N (%+.2e to "
+              "Euler %.6g N)\n",
+              P_reduced, P_reduced / P_full - 1.0, P_full, P_full / EulerLoad() - 1.0, EulerLoad());
+  EXPECT_NEAR(P_full / EulerLoad(), 1.0, kClampedEulerTolerance);
+  EXPECT_GE(P_reduced / P_full - 1.0, -kDenseBucklingRoundOff);  // an upper bound
+  EXPECT_LE(P_reduced / P_full - 1.0, kRitzTolerance);
+}
+
+// ---- The stiffening load cases -----------------------------------------------------------
+
+TEST(StiffeningLoads, BodyForceLoadsHaveTheResultantsOfTheMassProperties) {
+  // Resultant force and moment about Bo of each body-force case against the mass properties
+  // integrated from the geometry (not from M): -m e_a and -m c x e_a; for -rho e_a x r the
+  // force -e_a x m c and moment -J_Bo e_a; for -rho W_l r the force -W_l m c and moment
+  // -int r x W_l r dm.
+  fem::Mesh mesh = fem::testing::StructuredBox(ElementType::kTet10, {3, 2, 2}, {0.3, 0.1, 0.2}).mesh;
+  fem::testing::Transform(&mesh, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.2, -0.1, 0.05));
+  const reduction::testing::Body b = reduction::testing::AssembleBody(mesh);
+  const fem::MassProperties props = fem::IntegrateMassProperties(b.mesh);
+  const double m = props.mass_kg;
+  const Eigen::Vector3d mc = m * props.p_BoCm_B;
+  // Second moment int r r^T dm about Bo.
+  const Eigen::Matrix3d J_cm = props.I_Cm_B;
+  const Eigen::Matrix3d S = (0.5 * J_cm.trace() * Eigen::Matrix3d::Identity() - J_cm) +
+                            m * props.p_BoCm_B * props.p_BoCm_B.transpose();
+  const Eigen::Matrix3d J_o = S.trace() * Eigen::Matrix3d::Identity() - S;
+
+  const reduction::InterfaceSpec marker{"m", reduction::testing::NodesAt(b.mesh, 0, 0.5),
+                                        reduction::Coupling::kRigid, Eigen::Vector3d(0.6, 0.0, 0.1), {}};
+  const Eigen::MatrixXd F = reduction::BuildStiffeningLoads(b.model(), std::span(&marker, 1));
+  ASSERT_EQ(F.cols(), 18);
+  auto resultant = [&](Index c, const Eigen::Vector3d& about) {
+    Eigen::Matrix<double, 6, 1> r = Eigen::Matrix<double, 6, 1>::Zero();
+    for (Index n = 0; n < b.mesh.num_nodes(); ++n) {
+      const Eigen::Vector3d f = F.block<3, 1>(3 * n, c);
+      r.head<3>() += f;
+      r.tail<3>() += (b.mesh.nodes.col(n) - about).cross(f);
+    }
+    return r;
+  };
+  const double force_scale = m, moment_scale = J_o.norm();
+  auto expect = [&](Index c, const Eigen::Vector3d& force, const Eigen::Vector3d& moment, const Eigen::Vector3d& about) {
+    const Eigen::Matrix<double, 6, 1> r = resultant(c, about);
+    EXPECT_LE((r.head<3>() - force).norm(), kRoundOff * force_scale) << "case " << c;
+    EXPECT_LE((r.tail<3>() - moment).norm(), kRoundOff * moment_scale) << "case " << c;
+  };
+  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d e = Eigen::Vector3d::Unit(a);
+    expect(a, -m * e, -mc.cross(e), origin);
+    expect(3 + a, -e.cross(mc), -J_o * e, origin);
+  }
+  for (int l = 0; l < 6; ++l) {
+    // W_l from its definition d(w~ w~)/d omega_q,l, by differences of w~ w~ (exact: quadratic).
+    auto ww = [](const Eigen::Vector3d& w) { return Eigen::Matrix3d(w * w.transpose() - w.squaredNorm() * Eigen::Matrix3d::Identity()); };
+    const int pairs[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+    Eigen::Matrix3d W;
+    if (l < 3) {
+      W = ww(Eigen::Vector3d::Unit(l));
+    } else {
+      const auto [i, j] = pairs[l - 3];
+      W = ww(Eigen::Vector3d::Unit(i) + Eigen::Vector3d::Unit(j)) - ww(Eigen::Vector3d::Unit(i)) -
+          ww(Eigen::Vector3d::Unit(j));
+    }
+    // int r x (W r) dm = sum over the skew of W S (S symmetric): component k = eps_kij (W S)_ji.
+    const Eigen::Matrix3d WS = W * S;
+    const Eigen::Vector3d moment(WS(2, 1) - WS(1, 2), WS(0, 2) - WS(2, 0), WS(1, 0) - WS(0, 1));
+    expect(6 + l, -W * mc, -moment, origin);
+  }
+  const Eigen::Vector3d p_marker = *marker.marker_position;
+  for (int a = 0; a < 3; ++a) {
+    expect(12 + a, Eigen::Vector3d::Unit(a), Eigen::Vector3d::Zero(), p_marker);
+    expect(15 + a, Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(a), p_marker);
+  }
+}
+
+TEST(GeometricStiffening, LoadsCarriedByTheHoldOrBalancedByInertiaReliefCauseNoStiffening) {
+  const reduction::testing::Body b = Column();
+  const std::vector<int> root = reduction::testing::NodesAt(b.mesh, 0, 0.0);
+  const std::vector<int> tip_nodes = reduction::testing::NodesAt(b.mesh, 0, kColumnLength);
+  const reduction::InterfaceSpec tip{"tip", tip_nodes, reduction::Coupling::kRigid, std::nullopt, {}};
+  const reduction::InterfaceSpec corner{"corner", {tip_nodes.front()}, reduction::Coupling::kNodes, std::nullopt, {}};
+  const reduction::InterfaceSpec nodes[] = {tip, corner};
+  reduction::EigenOptions eigen;
+  eigen.num_modes = 4;
+
+  // Held at the root (support) and the tip (interface): the tip's loads go into the hold.
+  reduction::BoundaryConditions held;
+  held.supports.push_back({"root", root});
+  held.interfaces.push_back(tip);
+  const reduction::ReducedBasis fixed =
+      reduction::FixedInterfaceModalBasis(b.model(), held, eigen, reduction::testing::Spectra());
+  const reduction::StiffeningResult s = reduction::ComputeGeometricStiffening(b.mesh, b.model(), held, fixed.Phi, nodes);
+  const double scale = s.body.K0omega[1].norm();  // centrifugal load of spin about y: bends nothing, stretches
+  ASSERT_GT(scale, 0.0);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(s.nodes[0].K0F[static_cast<std::size_t>(a)].norm(), 0.0);
+    EXPECT_EQ(s.nodes[0].K0M[static_cast<std::size_t>(a)].norm(), 0.0);
+    EXPECT_EQ(s.nodes[1].K0F[static_cast<std::size_t>(a)].norm(), 0.0);
+    EXPECT_EQ(s.nodes[1].K0M[static_cast<std::size_t>(a)].size(), 0);  // a single FE node takes no moment
+    EXPECT_GT(s.body.K0t[static_cast<std::size_t>(a)].norm(), 0.0);
+  }
+
+  // Free-free: a uniform acceleration is balanced by inertia entirely (no stress); a tip force
+  // and a spin are not.
+  reduction::FreeFreeOptions options;
+  options.eigen.num_modes = 4;
+  const reduction::ReducedBasis free =
+      reduction::FreeFreeModalBasis(b.model(), options, reduction::testing::Spectra());
+  const reduction::StiffeningResult f =
+      reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, free.Phi, std::span(&tip, 1));
+  const double free_scale = f.body.K0omega[1].norm();
+  ASSERT_GT(free_scale, 0.0);
+  // A uniform acceleration of the mass m equals the load; the relief cancels it to round-off
+  // times cond(K) (~1e8 for this column).
+  constexpr double kInertiaReliefResidual = 1e-7;
+  for (int a = 0; a < 3; ++a) {
+    const double relative = f.body.K0t[static_cast<std::size_t>(a)].norm() / free_scale;
+    std::printf("[ numbers  ] free column: |K0t_%d| / |K0omega_2| = %.1e\n", a, relative);
+    EXPECT_LE(relative, kInertiaReliefResidual) << "axis " << a;
+  }
+  EXPECT_GT(f.nodes[0].K0F[0].norm(), 0.0);
+}
+
+TEST(GeometricStiffening, RejectsBadNodesAndSizes) {
+  const reduction::testing::Body b = Column();
+  const Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(b.mesh.num_dofs(), 2);
+  const reduction::InterfaceSpec two{"pad", {1, 2}, reduction::Coupling::kNodes, std::nullopt, {}};
+  reduction::testing::ExpectInputError(
+      [&] { reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, Phi, std::span(&two, 1)); },
+      {"node 'pad': a node-set node must have exactly one FE node, not 2"});
+  const reduction::InterfaceSpec outside{"pad", {1, 999999}, reduction::Coupling::kAveraging, std::nullopt, {}};
+  reduction::testing::ExpectInputError(
+      [&] { reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, Phi, std::span(&outside, 1)); },
+      {"node 'pad': FE node 999999 is outside the mesh's node range"});
+  reduction::testing::ExpectInputError(
+      [&] { reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, Eigen::MatrixXd::Zero(6, 2)); },
+      {"geometric stiffening: the basis has 6 rows"});
+}
+
+}  // namespace
+}  // namespace flexmbs

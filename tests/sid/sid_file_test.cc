@@ -1,0 +1,261 @@
+// The `.sid.h5` file: exact round trip of every field, units on every numeric dataset, and
+// one-line errors for foreign, truncated, wrong-version, mislabelled and inconsistent files.
+#include "sid/sid_file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/h5_file.h"
+#include "tests/input_error.h"
+
+namespace flexmbs::sid {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path TempPath(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("flexmbs_sid_file_test_{}", getpid());
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// A Taylor block of random entries with `order` for n modes.
+TaylorMatrix RandomTaylor(Eigen::Index rows, Eigen::Index cols, Eigen::Index n, int order) {
+  TaylorMatrix block;
+  block.m0 = Eigen::MatrixXd::Random(rows, cols);
+  if (order >= 1) {
+    for (Eigen::Index j = 0; j < n; ++j) block.m1.push_back(Eigen::MatrixXd::Random(rows, cols));
+  }
+  if (order >= 2) {
+    for (Eigen::Index j = 0; j < n * n; ++j) block.m2.push_back(Eigen::MatrixXd::Random(rows, cols));
+  }
+  return block;
+}
+
+constexpr Eigen::Index kModes = 3;
+constexpr Eigen::Index kNodes = 5;
+
+ReducedBody SampleBody() {
+  const Eigen::Index n = kModes;
+  ReducedBody body;
+  body.name = "bracket";
+  body.mass = 1.25;
+  body.center_of_mass = Eigen::Vector3d(0.1, -0.2, 0.3);
+  body.inertia_about_center_of_mass << 1, 0.1, 0.2, 0.1, 2, 0.3, 0.2, 0.3, 3;
+  body.mode_names = {"constraint_tip_tx", "normal_1", "normal_2"};
+  body.mode_kinds = {"constraint", "normal", "normal"};
+  body.frequency_hz = Eigen::Vector3d(std::nan(""), 12.5, 80.25);
+  body.relative_residuals = Eigen::Vector3d(std::nan(""), 1e-12, 3e-11);
+  body.damping = "modal 2 %";
+  body.mdCM = RandomTaylor(3, 1, n, 1);
+  body.J = RandomTaylor(3, 3, n, 2);
+  body.Ct = RandomTaylor(n, 3, n, 1);
+  body.Cr = RandomTaylor(n, 3, n, 1);
+  body.Me = RandomTaylor(n, n, n, 0);
+  body.Gr = RandomTaylor(3, 3 * n, n, 1);
+  body.Ge = RandomTaylor(n, 3 * n, n, 0);
+  body.Oe = RandomTaylor(n, 6, n, 1);
+  body.Ke = RandomTaylor(n, n, n, 0);
+  body.De = RandomTaylor(n, n, n, 0);
+  body.ksigma = RandomTaylor(n, 1, n, 0);
+  for (auto* cases : {&body.stiffening.K0t, &body.stiffening.K0r}) {
+    for (Eigen::MatrixXd& K : *cases) K = Eigen::MatrixXd::Random(n, n);
+  }
+  for (Eigen::MatrixXd& K : body.stiffening.K0omega) K = Eigen::MatrixXd::Random(n, n);
+  body.node_positions = Eigen::Matrix3Xd::Random(3, kNodes);
+  body.node_sets = {{"clamp", {0, 1}}, {"tip", {3, 4}}};
+  body.phi = Eigen::MatrixXd::Random(3 * kNodes, n);
+  Node tip;
+  tip.name = "tip";
+  tip.fe_nodes = {3, 4};
+  tip.coupling = "rigid";
+  tip.origin = RandomTaylor(3, 1, n, 1);
+  tip.phi = RandomTaylor(3, n, n, 1);
+  tip.psi = RandomTaylor(3, n, n, 1);
+  tip.AP = RandomTaylor(3, 3, n, 1);
+  body.nodes = {tip};
+  ContactSurface pad;
+  pad.name = "pad";
+  pad.fe_nodes = {1, 2, 3, 4};
+  pad.vertices = Eigen::MatrixX3d::Random(4, 3);
+  pad.face_sizes = {3, 3};
+  pad.face_vertices = {0, 1, 2, 0, 2, 3};
+  pad.face_normals = Eigen::MatrixX3d::Random(2, 3);
+  pad.phi = Eigen::MatrixXd::Random(12, n);
+  body.surfaces = {pad};
+  body.provenance = {{"mesh", "bracket.msh"}, {"eigensolver", "spectra"}};
+  return body;
+}
+
+// Equal matrices, NaN where the other has NaN (HDF5 stores doubles unchanged).
+void ExpectSame(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  ASSERT_EQ(a.rows(), b.rows());
+  ASSERT_EQ(a.cols(), b.cols());
+  EXPECT_TRUE(((a.array() == b.array()) || (a.array().isNaN() && b.array().isNaN())).all());
+}
+
+TEST(SidFile, RoundTripIsExact) {
+  const fs::path path = TempPath("round_trip.sid.h5");
+  const ReducedBody written = SampleBody();
+  WriteReducedBody(path, written);
+  const ReducedBody read = ReadReducedBody(path);
+  EXPECT_EQ(read.name, written.name);
+  EXPECT_EQ(read.mass, written.mass);
+  ExpectSame(read.center_of_mass, written.center_of_mass);
+  ExpectSame(read.inertia_about_center_of_mass, written.inertia_about_center_of_mass);
+  EXPECT_EQ(read.mode_names, written.mode_names);
+  EXPECT_EQ(read.mode_kinds, written.mode_kinds);
+  ExpectSame(read.frequency_hz, written.frequency_hz);
+  ExpectSame(read.relative_residuals, written.relative_residuals);
+  EXPECT_EQ(read.damping, written.damping);
+  for (TaylorMatrix ReducedBody::*field : {&ReducedBody::mdCM, &ReducedBody::J, &ReducedBody::Ct,
+                                           &ReducedBody::Cr, &ReducedBody::Me, &ReducedBody::Gr,
+                                           &ReducedBody::Ge, &ReducedBody::Oe, &ReducedBody::Ke,
+                                           &ReducedBody::De, &ReducedBody::ksigma}) {
+    EXPECT_TRUE(read.*field == written.*field);
+  }
+  EXPECT_TRUE(read.stiffening.K0t == written.stiffening.K0t);
+  EXPECT_TRUE(read.stiffening.K0r == written.stiffening.K0r);
+  EXPECT_TRUE(read.stiffening.K0omega == written.stiffening.K0omega);
+  ExpectSame(read.node_positions, written.node_positions);
+  EXPECT_EQ(read.node_sets, written.node_sets);
+  ExpectSame(read.phi, written.phi);
+  ASSERT_EQ(read.nodes.size(), 1u);
+  const Node& node = read.nodes[0];
+  EXPECT_EQ(node.name, "tip");
+  EXPECT_EQ(node.coupling, "rigid");
+  EXPECT_EQ(node.fe_nodes, written.nodes[0].fe_nodes);
+  EXPECT_TRUE(node.origin == written.nodes[0].origin && node.phi == written.nodes[0].phi &&
+              node.psi == written.nodes[0].psi && node.AP == written.nodes[0].AP);
+  ASSERT_EQ(read.surfaces.size(), 1u);
+  const ContactSurface& surface = read.surfaces[0];
+  EXPECT_EQ(surface.name, "pad");
+  EXPECT_EQ(surface.fe_nodes, written.surfaces[0].fe_nodes);
+  EXPECT_EQ(surface.face_sizes, written.surfaces[0].face_sizes);
+  EXPECT_EQ(surface.face_vertices, written.surfaces[0].face_vertices);
+  ExpectSame(surface.vertices, written.surfaces[0].vertices);
+  ExpectSame(surface.face_normals, written.surfaces[0].face_normals);
+  ExpectSame(surface.phi, written.surfaces[0].phi);
+  EXPECT_EQ(read.provenance.at("mesh"), "bracket.msh");
+  EXPECT_TRUE(read.provenance.contains("tool_version"));
+}
+
+TEST(SidFile, BodyWithoutStiffeningNodesOrSurfacesRoundTrips) {
+  const fs::path path = TempPath("plain.sid.h5");
+  ReducedBody written = SampleBody();
+  written.stiffening = {};
+  written.nodes.clear();
+  written.surfaces.clear();
+  WriteReducedBody(path, written);
+  const ReducedBody read = ReadReducedBody(path);
+  EXPECT_TRUE(read.stiffening.empty());
+  EXPECT_TRUE(read.nodes.empty());
+  EXPECT_TRUE(read.surfaces.empty());
+  EXPECT_TRUE(read.J == written.J);
+}
+
+// Every dataset under `group`, recursively: numeric ones must carry units, string ones cannot.
+void ExpectUnitsEverywhere(const h5::Group& group, int* numeric_datasets) {
+  for (const std::string& name : group.ChildNames()) {
+    if (group.HasGroup(name)) {
+      ExpectUnitsEverywhere(group.OpenGroup(name), numeric_datasets);
+      continue;
+    }
+    bool is_string = true;
+    try {
+      group.ReadStrings(name);
+    } catch (const InputError&) {
+      is_string = false;
+    }
+    if (is_string) continue;
+    ++*numeric_datasets;
+    EXPECT_NO_THROW(group.ReadUnits(name)) << group.path() << "/" << name;
+  }
+}
+
+TEST(SidFile, EveryNumericDatasetHasUnits) {
+  const fs::path path = TempPath("units.sid.h5");
+  WriteReducedBody(path, SampleBody());
+  const h5::File file = h5::File::Open(path);
+  int numeric_datasets = 0;
+  ExpectUnitsEverywhere(file.root(), &numeric_datasets);
+  EXPECT_GT(numeric_datasets, 50);
+}
+
+TEST(SidFile, InconsistentBodyIsAnInternalErrorNotAFile) {
+  const fs::path path = TempPath("inconsistent.sid.h5");
+  ReducedBody body = SampleBody();
+  body.Gr.m1.pop_back();
+  EXPECT_THROW(WriteReducedBody(path, body), InternalError);
+  EXPECT_FALSE(fs::exists(path));
+}
+
+// The message of the InputError that reading `path` throws.
+std::string ReadError(const fs::path& path) {
+  return testing::InputErrorMessage([&] { ReadReducedBody(path); });
+}
+
+TEST(SidFile, ForeignHdf5FileIsRefusedByName) {
+  const fs::path path = TempPath("foreign.h5");
+  h5::File file = h5::File::Create(path);
+  file.root().WriteScalar("x", 1.0, "1");
+  file.Commit();
+  EXPECT_EQ(ReadError(path), path.string() + ": not a flexmbs reduced body (no format 'flexmbs-sid')");
+}
+
+TEST(SidFile, WrongSchemaVersionIsRefusedByName) {
+  const fs::path path = TempPath("old.sid.h5");
+  h5::File file = h5::File::Create(path);
+  file.root().SetStringAttribute("format", "flexmbs-sid");
+  file.root().SetIntegerAttribute("schema_version", 1);
+  file.Commit();
+  EXPECT_EQ(ReadError(path), fmt::format("{}: schema_version 1 is not supported (this flexmbs reads {}; "
+                                         "run `flexmbs reduce` again)",
+                                         path.string(), kSidSchemaVersion));
+}
+
+TEST(SidFile, TruncatedFileIsOneLineError) {
+  const fs::path path = TempPath("truncated.sid.h5");
+  WriteReducedBody(path, SampleBody());
+  fs::resize_file(path, fs::file_size(path) / 2);
+  const std::string error = ReadError(path);
+  EXPECT_EQ(error.rfind(path.string() + ": ", 0), 0u) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}
+
+// The sample file with the dataset /invariants/Ct/<dataset> replaced by zeros of rows x 3 with
+// `units`, altered by h5py (Debian's python3-h5py), an HDF5 writer independent of ours.
+fs::path WithAlteredCt(const std::string& file_name, const std::string& dataset, Eigen::Index rows,
+                       const std::string& units) {
+  const fs::path path = TempPath(file_name);
+  WriteReducedBody(path, SampleBody());
+  const std::string script = fmt::format(
+      "import h5py, numpy; f = h5py.File('{0}', 'r+'); g = f['/invariants/Ct']; del g['{1}']; "
+      "g.create_dataset('{1}', data=numpy.zeros(({2}, 3))).attrs['units'] = '{3}'; f.close()",
+      path.string(), dataset, rows, units);
+  FLEXMBS_CHECK(std::system(fmt::format("/usr/bin/python3 -c \"{}\"", script).c_str()) == 0,
+                "h5py could not alter the test file");
+  return path;
+}
+
+TEST(SidFile, WrongUnitsAreRefusedByName) {
+  const fs::path path = WithAlteredCt("units_mm.sid.h5", "m0", kModes, "g mm/q");
+  const std::string error = ReadError(path);
+  EXPECT_NE(error.find("/invariants/Ct/m0"), std::string::npos) << error;
+  EXPECT_NE(error.find("g mm/q"), std::string::npos) << error;
+}
+
+TEST(SidFile, MisShapedTaylorBlockIsRefusedByName) {
+  const fs::path path = WithAlteredCt("shape.sid.h5", "m1", kModes * kModes - 1, "kg m/q^2");
+  const std::string error = ReadError(path);
+  EXPECT_EQ(error, fmt::format("{}: /invariants/Ct/m1: {} x 3, expected {} blocks of {} x 3", path.string(),
+                               kModes * kModes - 1, kModes, kModes));
+}
+
+}  // namespace
+}  // namespace flexmbs::sid
