@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "sid/body_formats.h"
 
 namespace flexmbs::app {
 
@@ -50,6 +51,15 @@ nlohmann::json ToJson(const Eigen::MatrixXd& m) {
     rows.push_back(m.cols() == 1 ? row[0] : row);
   }
   return rows;
+}
+
+std::string FormatHelp() {
+  std::string help = "The format to write:";
+  for (const sid::BodyFormat& format : sid::BodyFormats()) {
+    help += fmt::format(" {} ({}),", format.name, format.description);
+  }
+  help.back() = '.';
+  return help;
 }
 
 }  // namespace flexmbs::app

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <string_view>
 
 namespace flexmbs::app {
@@ -37,6 +38,9 @@ double SecondsSince(std::chrono::steady_clock::time_point start);
 /// unless files can be created in the folder of `path`; `option` names the command-line
 /// option for the message. Called before any long work.
 void CheckOutputFolder(std::string_view option, const std::filesystem::path& path);
+
+/// The --help text of a --format option of reduced bodies: every sid::BodyFormats() entry.
+std::string FormatHelp();
 
 /// A vector as a JSON array, a matrix as an array of rows; NaN becomes null.
 nlohmann::json ToJson(const Eigen::MatrixXd& m);

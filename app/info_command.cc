@@ -15,6 +15,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/h5_file.h"
+#include "core/polygon.h"
 #include "reduction/modal_basis.h"
 #include "sid/sid_file.h"
 
@@ -30,24 +31,14 @@ struct InfoOptions {
 
 // --- reduced bodies (`.sid.h5`) ----------------------------------------------------------------
 
-/// The root `format` attribute of a reduced body file (docs/sid.md).
-constexpr std::string_view kBodyFormat = "flexmbs-sid";
-
-/// The area of a contact surface [m^2]: the sum over its faces of |1/2 sum_k v_k x v_(k+1)|
-/// (Newell's vector area, the area of a planar polygon).
+/// The area of a contact surface [m^2]: the sum of its polygons' areas.
 double SurfaceArea(const sid::ContactSurface& surface) {
   double area = 0.0;
   std::size_t first = 0;
   for (const int size : surface.face_sizes) {
-    Eigen::Vector3d twice_area = Eigen::Vector3d::Zero();
-    for (int k = 0; k < size; ++k) {
-      const auto v = static_cast<Eigen::Index>(surface.face_vertices[first + static_cast<std::size_t>(k)]);
-      const auto w = static_cast<Eigen::Index>(surface.face_vertices[first + static_cast<std::size_t>((k + 1) % size)]);
-      const Eigen::Vector3d p_v = surface.vertices.row(v).transpose(), p_w = surface.vertices.row(w).transpose();
-      twice_area += p_v.cross(p_w);
-    }
-    area += 0.5 * twice_area.norm();
-    first += static_cast<std::size_t>(size);
+    const auto count = static_cast<std::size_t>(size);
+    area += PolygonAreaVector(surface.vertices, std::span<const int>(surface.face_vertices).subspan(first, count)).norm();
+    first += count;
   }
   return area;
 }
@@ -72,7 +63,7 @@ std::string Vector3Text(const Eigen::Vector3d& v) { return fmt::format("[{:.6g},
 void PrintBodyJson(const fs::path& file, const sid::ReducedBody& body, const reduction::ModeCounts& counts) {
   nlohmann::json j;
   j["file"] = file.string();
-  j["format"] = kBodyFormat;
+  j["format"] = sid::kSidFormat;
   j["schema_version"] = sid::kSidSchemaVersion;
   j["name"] = body.name;
   j["mass_kg"] = body.mass;
@@ -104,7 +95,7 @@ void PrintBodyJson(const fs::path& file, const sid::ReducedBody& body, const red
 
 void PrintBodyText(const fs::path& file, const sid::ReducedBody& body, const reduction::ModeCounts& counts) {
   const Eigen::Matrix3d& I = body.inertia_about_center_of_mass;
-  fmt::print("file            {} ({} schema {})\n", file.string(), kBodyFormat, sid::kSidSchemaVersion);
+  fmt::print("file            {} ({} schema {})\n", file.string(), sid::kSidFormat, sid::kSidSchemaVersion);
   fmt::print("body            {}\n", body.name);
   fmt::print("mass            {:.6g} kg\n", body.mass);
   fmt::print("centre of mass  {} m\n", Vector3Text(body.center_of_mass));
@@ -155,7 +146,7 @@ struct FileKind {
   void (*report)(const fs::path& file, bool json);
 };
 
-constexpr std::array<FileKind, 1> kFileKinds{{{kBodyFormat, &ReportBody}}};
+constexpr std::array<FileKind, 1> kFileKinds{{{sid::kSidFormat, &ReportBody}}};
 
 /// The root `format` attribute of `file` ("" if it has none). Throws InputError for a missing,
 /// non-HDF5 or corrupt file.

@@ -19,7 +19,7 @@
 #include "reduction/sid_spec.h"
 #include "reduction/reduction_spec.h"
 #include "reduction/slepc_solver.h"
-#include "sid/sid_file.h"
+#include "sid/body_formats.h"
 
 namespace flexmbs::app {
 namespace {
@@ -27,6 +27,7 @@ namespace {
 struct ReduceOptions {
   std::string body_file;
   std::string output;
+  std::string format = "sid-h5";
   bool json = false;
 };
 
@@ -107,6 +108,7 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, 
 
 void RunReduce(const ReduceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const sid::BodyFormat& format = sid::FindBodyFormat(options.format);
   CheckOutputFolder("-o", options.output);
   Progress progress;
   const fem::BodySpec body = fem::LoadBodySpec(options.body_file);
@@ -148,7 +150,7 @@ void RunReduce(const ReduceOptions& options) {
   const sid::ReducedBody reduced = reduction::BuildReducedBody({body, spec, sid_spec, mesh, system}, basis);
   const double sid_seconds = SecondsSince(sid_start);
   progress.Clear();
-  sid::WriteReducedBody(options.output, reduced);
+  format.write(options.output, reduced);
   Report(options, basis, mesh, {mesh_seconds, assembly_seconds, reduction_seconds, sid_seconds});
 }
 
@@ -160,6 +162,7 @@ void AddReduceCommand(CLI::App& app) {
       "reduce", "Mesh, assemble and reduce a body (modal or Craig-Bampton) and write its .sid.h5 file");
   cmd->add_option("body", options->body_file, "Body file (YAML) with a 'reduction' section")->required();
   cmd->add_option("-o,--output", options->output, "The reduced body file to write (.sid.h5)")->required();
+  cmd->add_option("--format", options->format, FormatHelp())->default_str("sid-h5");
   cmd->add_flag("--json", options->json, "Print the report as JSON (keys documented in docs/cli.md)");
   cmd->callback([options] { RunReduce(*options); });
 }

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "core/error.h"
+#include "core/polygon.h"
 
 namespace flexmbs::fem {
 namespace {
@@ -166,17 +167,12 @@ PolygonSurface BoundarySurface(const Mesh& mesh, const std::vector<BoundaryFace>
   std::size_t first = 0;
   for (Eigen::Index f = 0; f < num_faces; ++f) {
     const auto size = static_cast<std::size_t>(surface.face_sizes[static_cast<std::size_t>(f)]);
-    // sum_k v_k x v_(k+1) with the vertices taken from the first one (same sum, less round-off).
-    auto vertex = [&](std::size_t k) {
-      return Eigen::Vector3d(surface.vertices.row(surface.face_vertices[first + k]).transpose());
-    };
-    Eigen::Vector3d twice_area = Eigen::Vector3d::Zero();
-    for (std::size_t k = 1; k + 1 < size; ++k)
-      twice_area += (vertex(k) - vertex(0)).cross(vertex(k + 1) - vertex(0));
-    const double norm = twice_area.norm();
+    const Eigen::Vector3d area = PolygonAreaVector(
+        surface.vertices, std::span<const int>(surface.face_vertices).subspan(first, size));
+    const double norm = area.norm();
     FLEXMBS_CHECK(norm > 0.0, "a boundary polygon of a valid element has a non-zero area");
-    surface.face_areas(f) = 0.5 * norm;
-    surface.face_normals.row(f) = (twice_area / norm).transpose();
+    surface.face_areas(f) = norm;
+    surface.face_normals.row(f) = (area / norm).transpose();
     first += size;
   }
   return surface;

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "fem/geometric_stiffness.h"
+#include "reduction/sid_invariants.h"
 #include "reduction/static_response.h"
 
 namespace flexmbs::reduction {
@@ -14,19 +15,6 @@ namespace {
 using Index = Eigen::Index;
 
 constexpr Index kBodyCases = 12;  // t_x..t_z, r_x..r_z, omega_1..omega_6
-
-// W_l = d(w~ w~)/d omega_q,l for omega_q = [w1^2, w2^2, w3^2, w1 w2, w2 w3, w3 w1].
-Eigen::Matrix3d CentrifugalMatrix(int l) {
-  Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
-  if (l < 3) {
-    W.diagonal().setConstant(-1.0);
-    W(l, l) = 0.0;
-  } else {
-    const int i = l - 3, j = (l - 2) % 3;  // (0, 1), (1, 2), (2, 0)
-    W(i, j) = W(j, i) = 1.0;
-  }
-  return W;
-}
 
 Index NumNodeCases(const InterfaceSpec& node) { return node.coupling == Coupling::kNodes ? 3 : 6; }
 
@@ -45,7 +33,7 @@ Eigen::MatrixXd BuildStiffeningLoads(const FeModel& model, std::span<const Inter
       b.block<3, 1>(3 * n, a) = -Eigen::Vector3d::Unit(a);
       b.block<3, 1>(3 * n, 3 + a) = -Eigen::Vector3d::Unit(a).cross(r);
     }
-    for (int l = 0; l < 6; ++l) b.block<3, 1>(3 * n, 6 + l) = -CentrifugalMatrix(l) * r;
+    for (int l = 0; l < 6; ++l) b.block<3, 1>(3 * n, 6 + l) = -CentrifugalBasis()[static_cast<std::size_t>(l)] * r;
   }
   Eigen::MatrixXd F = Eigen::MatrixXd::Zero(3 * num_nodes, num_cases);
   F.leftCols(kBodyCases) = model.M * b;

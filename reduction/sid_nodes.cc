@@ -5,21 +5,13 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/skew.h"
 #include "fem/nodal_rotation.h"
 
 namespace flexmbs::reduction {
 namespace {
 
 using Index = Eigen::Index;
-
-// x~ (x~ y = x cross y).
-Eigen::Matrix3d Skew(const Eigen::Vector3d& x) {
-  Eigen::Matrix3d s;
-  s << 0, -x(2), x(1),  //
-      x(2), 0, -x(0),   //
-      -x(1), x(0), 0;
-  return s;
-}
 
 // The SID node data from the node's position and its per-mode translations and rotations
 // (3 x n each), as in the file comment of sid_nodes.h.

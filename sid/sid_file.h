@@ -4,10 +4,14 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "sid/reduced_body.h"
 
 namespace flexmbs::sid {
+
+/// The root attribute `format` of every `.sid.h5` file.
+inline constexpr std::string_view kSidFormat = "flexmbs-sid";
 
 /// The `.sid.h5` schema this code writes and reads (bumped when the layout changes).
 inline constexpr int kSidSchemaVersion = 2;

@@ -9,8 +9,6 @@
 
 namespace flexmbs::sid::layout {
 
-inline constexpr std::string_view kFormat = "flexmbs-sid";
-
 /// The units of a Taylor block's m0, m1 and m2 ("q" is the unit of a modal coordinate).
 struct TaylorUnits {
   std::string_view m0, m1, m2;

@@ -114,8 +114,8 @@ std::vector<ContactSurface> ReadSurfaces(const h5::Group& root) {
 ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   const h5::File file = h5::File::Open(path);
   const h5::Group root = file.root();
-  if (!root.HasAttribute("format") || root.GetStringAttribute("format") != layout::kFormat) {
-    throw InputError(fmt::format("{}: not a flexmbs reduced body (no format '{}')", path.string(), layout::kFormat));
+  if (!root.HasAttribute("format") || root.GetStringAttribute("format") != kSidFormat) {
+    throw InputError(fmt::format("{}: not a flexmbs reduced body (no format '{}')", path.string(), kSidFormat));
   }
   const std::int64_t version = root.GetIntegerAttribute("schema_version");
   if (version != kSidSchemaVersion) {

@@ -74,7 +74,7 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   CheckConsistent(body);
   h5::File file = h5::File::Create(path);
   h5::Group root = file.root();
-  root.SetStringAttribute("format", layout::kFormat);
+  root.SetStringAttribute("format", kSidFormat);
   root.SetIntegerAttribute("schema_version", kSidSchemaVersion);
   root.SetStringAttribute("name", body.name);
 

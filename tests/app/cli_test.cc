@@ -16,16 +16,22 @@
 #include <vector>
 
 #include "sid/sid_file.h"
+#include "tests/app/flexmbs_process.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-// Exit codes documented in docs/cli.md.
+// Exit code of success (docs/cli.md); kExitInputError and the runner: flexmbs_process.h.
 constexpr int kExitOk = 0;
-constexpr int kExitInputError = 2;
+using flexmbs::testing::ExpectInputError;
+using flexmbs::testing::kExitInputError;
+using flexmbs::testing::kFlexmbsBinary;
+using flexmbs::testing::Lines;
+using flexmbs::testing::Outcome;
+using flexmbs::testing::ReadFile;
+using flexmbs::testing::ShellQuote;
 
-const fs::path kBinary = fs::path(FLEXMBS_BINARY_DIR) / "bin" / "flexmbs";
 const fs::path kData = fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data";
 
 constexpr double kSteelDensity = 7850.0;  // kg/m^3
@@ -33,45 +39,10 @@ constexpr double kCubeEdge = 0.1;         // m, tests/data/cube.geo
 // The tet mesh of a box fills it exactly: mass and centre agree to round-off.
 constexpr double kRoundOff = 1e-9;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// `arg` in single quotes for /bin/sh.
-std::string Quote(const std::string& arg) {
-  std::ostringstream quoted;
-  quoted << '\'';
-  for (char c : arg) {
-    if (c == '\'') {
-      quoted << "'\\''";
-    } else {
-      quoted << c;
-    }
-  }
-  quoted << '\'';
-  return quoted.str();
-}
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
+    ASSERT_TRUE(fs::exists(kFlexmbsBinary)) << kFlexmbsBinary << " is not built";
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
            (std::string("flexmbs_cli_") + info->name() + "_" + std::to_string(::getpid()));
@@ -83,20 +54,8 @@ class CliTest : public ::testing::Test {
     fs::remove_all(dir_, ec);
   }
 
-  // Runs `flexmbs args...` with stdin from /dev/null and stdout, stderr into files.
-  Outcome Flexmbs(const std::vector<std::string>& args) const {
-    std::ostringstream command;
-    command << Quote(kBinary.string());
-    for (const std::string& arg : args) command << ' ' << Quote(arg);
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    command << " </dev/null >" << Quote(out.string()) << " 2>" << Quote(err.string());
-    const int status = std::system(command.str().c_str());
-    Outcome run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out = ReadFile(out);
-    run.err = ReadFile(err);
-    return run;
-  }
+  // Runs `flexmbs args...` in this test's folder.
+  Outcome Flexmbs(const std::vector<std::string>& args) const { return flexmbs::testing::RunFlexmbs(args, dir_); }
 
   // A valid body: the cube of tests/data as a coarse tet4 mesh. Cases edit its text.
   std::string CubeBody() const {
@@ -136,17 +95,6 @@ std::string Replace(std::string text, const std::string& from, const std::string
   return at == std::string::npos ? text : text.replace(at, from.size(), to);
 }
 
-// Error runs: exit 2, nothing on stdout, exactly one line on stderr.
-void ExpectInputError(const Outcome& run, const std::string& expected_part) {
-  EXPECT_EQ(run.exit_code, kExitInputError) << run.err;
-  EXPECT_EQ(run.out, "");
-  const std::vector<std::string> lines = Lines(run.err);
-  ASSERT_EQ(lines.size(), 1u) << "stderr:\n" << run.err;
-  EXPECT_FALSE(run.err.empty() || run.err.back() != '\n') << "no final newline: " << run.err;
-  EXPECT_TRUE(lines[0].starts_with("flexmbs: error: ")) << lines[0];
-  EXPECT_NE(lines[0].find(expected_part), std::string::npos)
-      << "   stderr: " << lines[0] << "\nexpected: ..." << expected_part << "...";
-}
 
 // --- help and the command line ---
 
@@ -343,7 +291,7 @@ TEST_F(CliTest, ReduceUnderMpirunWithTwoRanksGivesTheSerialResult) {
   const fs::path serial = dir_ / "out" / "serial.sid.h5", mpi = dir_ / "out" / "mpi.sid.h5";
   ASSERT_EQ(Flexmbs({"reduce", (dir_ / "serial.yaml").string(), "-o", serial.string()}).exit_code, kExitOk);
   const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
-                              std::string(FLEXMBS_MPIEXEC) + " -n 2 " + kBinary.string() + " reduce " +
+                              std::string(FLEXMBS_MPIEXEC) + " -n 2 " + kFlexmbsBinary.string() + " reduce " +
                               (dir_ / "mpi.yaml").string() + " -o " + mpi.string() + " > /dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   const auto a = flexmbs::sid::ReadReducedBody(serial);

@@ -255,7 +255,7 @@ TEST_F(InfoTest, TruncatedBodyIsAnInputErrorForInfoAndExport) {
 
 TEST_F(InfoTest, ExportOfAnUnknownFormatIsAnInputError) {
   ExpectInputError(Run({"export", body_file_.string(), "-o", (dir_ / "out" / "c.txt").string(), "--format", "adams"}),
-                   "--format adams: unknown export format (known: sid-ascii)");
+                   "--format adams: unknown format (known: sid-h5, sid-ascii)");
   ExpectInputError(Run({"export", body_file_.string(), "-o", (dir_ / "out" / "c.txt").string()}),
                    "--format is required");
   EXPECT_TRUE(OutputFiles().empty());

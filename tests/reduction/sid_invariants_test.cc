@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/skew.h"
 #include "fem/assembly.h"
 #include "fem/mass_properties.h"
 #include "tests/fem/test_meshes.h"
@@ -48,15 +49,6 @@ constexpr double kDifferenceRoundOff = 1e-13;
 constexpr double kStepSize = 0.1;
 constexpr double kConfigurationSize = 0.05;
 const Vector3d kBoxSize(0.5, 0.3, 0.4);
-
-Matrix3d Skew(const Vector3d& x) {
-  Matrix3d S;
-  S << 0, -x(2), x(1), x(2), 0, -x(0), -x(1), x(0), 0;
-  return S;
-}
-
-// The vector of a skew matrix: Skew(Axial(S)) = S.
-Vector3d Axial(const Matrix3d& S) { return {S(2, 1), S(0, 2), S(1, 0)}; }
 
 // A DOF vector (3 node + axis) as 3 x N and back.
 Matrix3Xd Nodal(const VectorXd& u) { return Eigen::Map<const Matrix3Xd>(u.data(), 3, u.size() / 3); }

@@ -8,6 +8,7 @@
 
 #include "basis_test_support.h"
 #include "core/error.h"
+#include "core/skew.h"
 #include "reduction/craig_bampton.h"
 #include "tests/input_error.h"
 
@@ -22,12 +23,6 @@ constexpr double kRigidRoundOff = 1e-12;
 // Craig-Bampton constraint modes at an averaging interface: W u = q_b holds to the round-off of
 // the dependent-DOF solve and the interior Cholesky solve (interface_coupling.h).
 constexpr double kConstraintRoundOff = 1e-10;
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& x) {
-  Eigen::Matrix3d s;
-  s << 0, -x(2), x(1), x(2), 0, -x(0), -x(1), x(0), 0;
-  return s;
-}
 
 Eigen::Vector3d Centroid(const fem::Mesh& mesh, const std::vector<int>& nodes) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
