@@ -147,7 +147,9 @@ void RunReduce(const ReduceOptions& options) {
 
   progress.Show("computing the SID invariants ...");
   const auto sid_start = std::chrono::steady_clock::now();
-  const sid::ReducedBody reduced = reduction::BuildReducedBody({body, spec, sid_spec, mesh, system}, basis);
+  sid::ReducedBody reduced = reduction::BuildReducedBody({mesh, system, body.mass_matrix, sid_spec}, basis);
+  reduced.name = body.name;
+  reduced.provenance = reduction::ReductionProvenance(body, spec, sid_spec, mesh, basis);
   const double sid_seconds = SecondsSince(sid_start);
   progress.Clear();
   format.write(options.output, reduced);

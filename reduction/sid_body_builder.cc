@@ -67,22 +67,25 @@ std::vector<Eigen::MatrixXd> NodeStiffeningBlocks(const std::array<Eigen::Matrix
   return m1;
 }
 
-std::map<std::string, std::string> Provenance(const SidSource& source, const ReducedBasis& basis) {
-  const fem::Mesh& mesh = source.mesh;
+}  // namespace
+
+std::map<std::string, std::string> ReductionProvenance(const fem::BodySpec& body, const ReductionSpec& reduction,
+                                                       const SidSpec& sid, const fem::Mesh& mesh,
+                                                       const ReducedBasis& basis) {
   std::map<std::string, std::string> out = {
-      {"body_file", source.body.file.string()},
-      {"geometry_file", source.body.geometry_file.string()},
-      {"geometry_sha256", Sha256OfFile(source.body.geometry_file)},
+      {"body_file", body.file.string()},
+      {"geometry_file", body.geometry_file.string()},
+      {"geometry_sha256", Sha256OfFile(body.geometry_file)},
       {"mesh_sha256", fem::MeshSha256(mesh)},
       {"nodes", std::to_string(mesh.num_nodes())},
       {"elements", std::to_string(mesh.num_elements())},
-      {"mass_matrix", source.body.mass_matrix == fem::MassMatrixKind::kConsistent
+      {"mass_matrix", body.mass_matrix == fem::MassMatrixKind::kConsistent
                           ? "consistent"
                           : "lumped for the modes, consistent for the invariants"},
       {"reduction_method", basis.method},
       {"reduction", basis.description},
-      {"eigensolver", basis.eigensolver.empty() ? source.reduction.eigensolver : basis.eigensolver},
-      {"geometric_stiffening", source.sid.geometric_stiffening ? "yes" : "no"},
+      {"eigensolver", basis.eigensolver.empty() ? reduction.eigensolver : basis.eigensolver},
+      {"geometric_stiffening", sid.geometric_stiffening ? "yes" : "no"},
   };
   const double max_residual = MaxFinite(basis.relative_residuals);
   out["max_relative_residual"] = std::isnan(max_residual) ? "-" : fmt::format("{:.3g}", max_residual);
@@ -97,22 +100,19 @@ std::map<std::string, std::string> Provenance(const SidSource& source, const Red
   return out;
 }
 
-}  // namespace
-
 sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& basis) {
   const fem::Mesh& mesh = source.mesh;
   const Eigen::MatrixXd& Phi = basis.Phi;
   const Eigen::Index n = basis.num_modes();
   // The invariants need the consistent mass matrix even where the modes used a lumped one.
   std::optional<fem::SystemMatrices> consistent;
-  if (source.body.mass_matrix != fem::MassMatrixKind::kConsistent) {
+  if (source.mass_matrix != fem::MassMatrixKind::kConsistent) {
     consistent = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
   }
   const Eigen::SparseMatrix<double>& M = consistent ? consistent->mass : source.system.mass;
   const FeModel model{source.system.stiffness, source.system.mass, mesh.nodes};
 
   sid::ReducedBody out;
-  out.name = source.body.name;
   const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(M, mesh.nodes);
   out.mass = props.mass_kg;
   out.center_of_mass = props.p_BoCm_B;
@@ -154,7 +154,6 @@ sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& b
       out.nodes[k].psi.m1 = NodeStiffeningBlocks(stiffening.nodes[k].K0M);
     }
   }
-  out.provenance = Provenance(source, basis);
   return out;
 }
 
