@@ -5,7 +5,6 @@
 
 #include <cmath>
 
-#include "core/rotation.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -24,15 +23,6 @@ TEST(PositionDerivative, EulerParameterRateIsTheDerivativeOfARotationAboutAFixed
   Eigen::VectorXd expected(9);
   expected << 4.0, 5.0, 6.0, -0.5 * w * std::sin(w * t / 2), 0.5 * w * std::cos(w * t / 2) * n, 7.0, 8.0;
   EXPECT_LE((xdot - expected).cwiseAbs().maxCoeff(), kRoundOff);
-}
-
-TEST(Rotation, EulerParametersRoundTripThroughTheRotationMatrix) {
-  const Eigen::Vector4d e = Eigen::Vector4d(0.3, -0.5, 0.7, 0.1).normalized();
-  const Eigen::Matrix3d R = RotationFromEulerParameters(e);
-  EXPECT_LE((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), kRoundOff);
-  EXPECT_LE((EulerParametersFromRotation(R) - e).norm(), kRoundOff);
-  // The rotation of the axis (e1, e2, e3) leaves it fixed.
-  EXPECT_LE((R * e.tail<3>() - e.tail<3>()).norm(), kRoundOff);
 }
 
 }  // namespace

@@ -1,0 +1,160 @@
+#include "mbs/results_file.h"
+
+#include <chrono>
+#include <optional>
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/h5_file.h"
+#include "core/version.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+/// The appendable datasets of one body.
+struct BodySeries {
+  h5::AppendableDataset position, orientation, velocity, angular_velocity;
+  std::optional<h5::AppendableDataset> modal_coordinates, modal_velocities;
+  std::vector<h5::AppendableDataset> markers;
+};
+
+struct JointSeries {
+  h5::AppendableDataset force, torque;
+};
+
+}  // namespace
+
+struct ResultsWriter::Impl {
+  h5::File file;
+  std::optional<h5::AppendableDataset> time, kinetic, potential, total;
+  std::vector<BodySeries> bodies;
+  std::vector<JointSeries> joints;
+  std::chrono::steady_clock::time_point last_flush = std::chrono::steady_clock::now();
+  double flush_interval_seconds = 1.0;
+  bool finished = false;
+
+  explicit Impl(h5::File f) : file(std::move(f)) {}
+};
+
+namespace {
+
+BodySeries CreateBody(h5::Group& bodies, const ResultsLayout::Body& layout) {
+  h5::Group group = bodies.CreateGroup(layout.name);
+  group.SetStringAttribute("kind", layout.kind);
+  BodySeries series{group.CreateAppendable("position", {3}, "m"), group.CreateAppendable("orientation", {4}, "1"),
+                    group.CreateAppendable("velocity", {3}, "m/s"),
+                    group.CreateAppendable("angular_velocity", {3}, "rad/s"), std::nullopt, std::nullopt, {}};
+  if (!layout.mode_names.empty()) {
+    const auto n = static_cast<std::int64_t>(layout.mode_names.size());
+    group.WriteStrings("mode_names", layout.mode_names);
+    series.modal_coordinates = group.CreateAppendable("modal_coordinates", {n}, "q");
+    series.modal_velocities = group.CreateAppendable("modal_velocities", {n}, "q/s");
+  }
+  if (!layout.markers.empty()) {
+    h5::Group markers = group.CreateGroup("markers");
+    for (const std::string& marker : layout.markers) {
+      series.markers.push_back(markers.CreateAppendable(marker, {3}, "m"));
+    }
+  }
+  return series;
+}
+
+}  // namespace
+
+ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsLayout& layout,
+                             double flush_interval_seconds)
+    : impl_(std::make_unique<Impl>(h5::File::Create(path, h5::WriteMode::kInPlace))) {
+  impl_->flush_interval_seconds = flush_interval_seconds;
+  h5::Group root = impl_->file.root();
+  root.SetStringAttribute("format", kResultsFormat);
+  root.SetIntegerAttribute("schema_version", kResultsSchemaVersion);
+  root.SetIntegerAttribute("complete", 0);
+  root.SetStringAttribute("termination", "interrupted");
+  impl_->time = root.CreateAppendable("time", {}, "s");
+  h5::Group energy = root.CreateGroup("energy");
+  impl_->kinetic = energy.CreateAppendable("kinetic", {}, "J");
+  impl_->potential = energy.CreateAppendable("potential", {}, "J");
+  impl_->total = energy.CreateAppendable("total", {}, "J");
+  h5::Group bodies = root.CreateGroup("bodies");
+  for (const ResultsLayout::Body& body : layout.bodies) impl_->bodies.push_back(CreateBody(bodies, body));
+  h5::Group joints = root.CreateGroup("joints");
+  for (const ResultsLayout::Joint& joint : layout.joints) {
+    h5::Group group = joints.CreateGroup(joint.name);
+    group.SetStringAttribute("type", joint.type);
+    impl_->joints.push_back({group.CreateAppendable("force", {3}, "N"), group.CreateAppendable("torque", {3}, "N m")});
+  }
+  std::map<std::string, std::string> provenance = layout.provenance;
+  provenance["tool_version"] = std::string(Version());
+  std::vector<std::string> keys, values;
+  for (const auto& [key, value] : provenance) {
+    keys.push_back(key);
+    values.push_back(value);
+  }
+  h5::Group group = root.CreateGroup("provenance");
+  group.WriteStrings("keys", keys);
+  group.WriteStrings("values", values);
+  impl_->file.Flush();
+}
+
+ResultsWriter::~ResultsWriter() = default;
+
+void ResultsWriter::Append(const ResultsSample& sample) {
+  Impl& impl = *impl_;
+  FLEXMBS_CHECK(!impl.finished, "results file already finished");
+  FLEXMBS_CHECK(sample.positions.size() == impl.bodies.size() && sample.velocities.size() == impl.bodies.size() &&
+                    sample.marker_positions.size() == impl.bodies.size() &&
+                    sample.joint_forces.size() == impl.joints.size() &&
+                    sample.joint_torques.size() == impl.joints.size(),
+                "a results sample needs every body and joint of the layout");
+  for (std::size_t b = 0; b < impl.bodies.size(); ++b) {
+    BodySeries& series = impl.bodies[b];
+    const Eigen::VectorXd& x = sample.positions[b];
+    const Eigen::VectorXd& u = sample.velocities[b];
+    const Eigen::Index n = x.size() - 7;
+    FLEXMBS_CHECK(n >= 0 && u.size() == 6 + n && (n > 0) == series.modal_coordinates.has_value() &&
+                      sample.marker_positions[b].size() == series.markers.size(),
+                  "a results sample's body sizes differ from the layout");
+    series.position.AppendRow(Eigen::VectorXd(x.head<3>()));
+    series.orientation.AppendRow(Eigen::VectorXd(x.segment<4>(3)));
+    series.velocity.AppendRow(Eigen::VectorXd(u.head<3>()));
+    series.angular_velocity.AppendRow(Eigen::VectorXd(u.segment<3>(3)));
+    if (n > 0) {
+      series.modal_coordinates->AppendRow(Eigen::VectorXd(x.tail(n)));
+      series.modal_velocities->AppendRow(Eigen::VectorXd(u.tail(n)));
+    }
+    for (std::size_t m = 0; m < series.markers.size(); ++m) {
+      series.markers[m].AppendRow(Eigen::VectorXd(sample.marker_positions[b][m]));
+    }
+  }
+  for (std::size_t j = 0; j < impl.joints.size(); ++j) {
+    impl.joints[j].force.AppendRow(Eigen::VectorXd(sample.joint_forces[j]));
+    impl.joints[j].torque.AppendRow(Eigen::VectorXd(sample.joint_torques[j]));
+  }
+  impl.kinetic->AppendRow(sample.kinetic_energy);
+  impl.potential->AppendRow(sample.potential_energy);
+  impl.total->AppendRow(sample.kinetic_energy + sample.potential_energy);
+  // Time last: a reader takes the length of /time as the number of complete samples.
+  impl.time->AppendRow(sample.time);
+  const double since_flush =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - impl.last_flush).count();
+  if (since_flush >= impl.flush_interval_seconds) Flush();
+}
+
+void ResultsWriter::Flush() {
+  impl_->file.Flush();
+  impl_->last_flush = std::chrono::steady_clock::now();
+}
+
+void ResultsWriter::Finish(std::string_view termination) {
+  Impl& impl = *impl_;
+  FLEXMBS_CHECK(!impl.finished, "results file already finished");
+  h5::Group root = impl.file.root();
+  root.SetIntegerAttribute("complete", 1);
+  root.SetStringAttribute("termination", termination);
+  impl.finished = true;
+  impl.file.Commit();
+}
+
+std::int64_t ResultsWriter::samples() const { return impl_->time->rows(); }
+
+}  // namespace flexmbs::mbs

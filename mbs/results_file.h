@@ -1,0 +1,80 @@
+#pragma once
+// The results file of `flexmbs simulate` (layout: docs/results.md): time series of body
+// states, marker positions, joint loads and energies, written while the simulation runs. The
+// file is written in place and flushed at least every `flush_interval_seconds`, so a killed run
+// leaves a readable file with every sample up to the last flush; the root attribute `complete`
+// is 0 until Finish.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace flexmbs::mbs {
+
+/// The results file's format attribute and schema version.
+inline constexpr std::string_view kResultsFormat = "flexmbs-results";
+inline constexpr int kResultsSchemaVersion = 1;
+
+/// What the file records, fixed when it is created.
+struct ResultsLayout {
+  struct Body {
+    std::string name;
+    std::string kind;                     ///< "rigid" or "flexible"
+    std::vector<std::string> mode_names;  ///< the kept modes (empty for rigid bodies)
+    std::vector<std::string> markers;     ///< markers whose positions are recorded
+  };
+  struct Joint {
+    std::string name;
+    std::string type;  ///< "revolute", ...
+  };
+  std::vector<Body> bodies;
+  std::vector<Joint> joints;
+  /// Scene file, integrator, tolerances, tool version, ...: written as /provenance.
+  std::map<std::string, std::string> provenance;
+};
+
+/// One output time: per body its positions x_b = [p_WBo_W, e, q] and velocities
+/// u_b = [v_WBo_W, w_WB_B, qdot] (docs/mbs.md), marker positions p_WM_W per body and marker,
+/// joint loads per joint (force [N] and torque [N m] on the second body at its marker, in W),
+/// energies [J].
+struct ResultsSample {
+  double time = 0.0;
+  std::vector<Eigen::VectorXd> positions;
+  std::vector<Eigen::VectorXd> velocities;
+  std::vector<std::vector<Eigen::Vector3d>> marker_positions;
+  std::vector<Eigen::Vector3d> joint_forces;
+  std::vector<Eigen::Vector3d> joint_torques;
+  double kinetic_energy = 0.0;
+  double potential_energy = 0.0;
+};
+
+/// Writes a results file sample by sample.
+class ResultsWriter {
+ public:
+  /// Creates `path` (replacing an old file) with the datasets of `layout`. Throws InputError
+  /// naming `path` if it cannot be created.
+  ResultsWriter(const std::filesystem::path& path, const ResultsLayout& layout, double flush_interval_seconds = 1.0);
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// Appends one sample; flushes if the last flush is older than the interval. Precondition:
+  /// the sample's sizes match the layout (InternalError otherwise).
+  void Append(const ResultsSample& sample);
+  /// Writes everything so far to disk.
+  void Flush();
+  /// Marks the file complete with `termination` ("end time reached", "event ...") and closes it.
+  void Finish(std::string_view termination);
+  /// Samples written so far.
+  std::int64_t samples() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace flexmbs::mbs
