@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Preprocesses the steel cantilever: the FE model report, then two reduced bodies (clamped
-# normal modes; Craig-Bampton with a tip marker), written to out/.
+# normal modes; Craig-Bampton with a tip marker, a contact surface, damping and geometric
+# stiffening), its summary and its SIMPACK ASCII SID export, written to out/.
 # Usage: run.sh [path/to/flexmbs]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -12,4 +13,6 @@ mkdir -p "$out"
 "$flexmbs" reduce "$here/beam.yaml" -o "$out/beam.sid.h5"
 "$flexmbs" reduce "$here/beam_cb.yaml" -o "$out/beam_cb.sid.h5"
 "$flexmbs" compare "$out/beam.sid.h5" "$out/beam_cb.sid.h5"
-echo "wrote $out/beam.mesh.json, $out/beam.sid.h5, $out/beam_cb.sid.h5"
+"$flexmbs" info "$out/beam_cb.sid.h5"
+"$flexmbs" export "$out/beam_cb.sid.h5" -o "$out/beam_cb.SID_FEM" --format sid-ascii
+echo "wrote $out/beam.mesh.json, $out/beam.sid.h5, $out/beam_cb.sid.h5, $out/beam_cb.SID_FEM"
