@@ -175,4 +175,14 @@ double MOrthonormalityError(const Eigen::SparseMatrix<double>& M, const Eigen::M
   return (G - Eigen::MatrixXd::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
 }
 
+Eigen::Index GuardPairs(Eigen::Index wanted) { return std::max<Eigen::Index>(5, wanted / 5); }
+
+double SturmCutAfter(const Eigen::VectorXd& values, Eigen::Index wanted, double sigma) {
+  const double last = values(wanted - 1);
+  const double gap = kClusterGap * std::max(std::abs(last), std::abs(sigma));
+  Eigen::Index next = wanted;
+  while (next < values.size() && values(next) <= last + gap) ++next;
+  return next < values.size() ? 0.5 * (last + values(next)) : last + gap;
+}
+
 }  // namespace flexmbs::reduction

@@ -58,6 +58,18 @@ struct EigenOptions {
   MissedModeCheck check_missed_modes = MissedModeCheck::kAuto;
 };
 
+/// Relative gap that separates the last wanted eigenvalue from the next one when placing a
+/// Sturm cut (of max(|lambda|, |sigma|)); closer eigenvalues are one cluster, counted together.
+inline constexpr double kClusterGap = 1e-6;
+
+/// Extra pairs to compute beyond `wanted`, so that the gap after the last wanted one shows.
+Eigen::Index GuardPairs(Eigen::Index wanted);
+
+/// A Sturm cut after the first `wanted` of the ascending `values` (shift sigma): midway to the
+/// next value clearly above values(wanted - 1) (kClusterGap), or just above it if no such value
+/// is known. Precondition: 0 < wanted <= values.size().
+double SturmCutAfter(const Eigen::VectorXd& values, Eigen::Index wanted, double sigma);
+
 /// Eigenpairs of K phi = lambda M phi and how they were obtained.
 struct EigenSolution {
   /// lambda = omega^2 [rad^2/s^2], ascending. Rigid-body modes give |lambda| near round-off.

@@ -92,8 +92,11 @@ void MeasurePairs(Mat K, Mat M, EigenSolution* solution) {
       (gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols())).cwiseAbs().maxCoeff();
 }
 
-// Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky.
-void Configure(EPS eps, Mat K, Mat M, double sigma, const EigenOptions& options) {
+// Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, `nev`
+// pairs (not a band). Purification (one more solve per pair, removing components in M's null
+// space) only where fixed DOF make M singular: with M positive definite the shift-inverted
+// operator has no such components to remove.
+void Configure(EPS eps, Mat K, Mat M, double sigma, const EigenOptions& options, PetscInt nev, bool singular_mass) {
   ST st;
   KSP ksp;
   PC pc;
@@ -101,6 +104,7 @@ void Configure(EPS eps, Mat K, Mat M, double sigma, const EigenOptions& options)
   FLEXMBS_PETSC(EPSSetProblemType(eps, EPS_GHEP));
   FLEXMBS_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
   FLEXMBS_PETSC(EPSSetTolerances(eps, options.tolerance, options.max_iterations));
+  FLEXMBS_PETSC(EPSSetPurify(eps, singular_mass ? PETSC_TRUE : PETSC_FALSE));
   if (options.max_frequency_hz > 0.0) {
     // Spectrum slicing: every eigenvalue in [sigma, lambda_max], counted by the inertia of the
     // MUMPS factorisations (which needs ICNTL(13) = 1 in parallel; the ST prefixes its factor).
@@ -108,7 +112,7 @@ void Configure(EPS eps, Mat K, Mat M, double sigma, const EigenOptions& options)
     FLEXMBS_PETSC(EPSSetInterval(eps, sigma, ShiftFromHz(options.max_frequency_hz)));
     FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
   } else {
-    FLEXMBS_PETSC(EPSSetDimensions(eps, options.num_modes, PETSC_DEFAULT, PETSC_DEFAULT));
+    FLEXMBS_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
     FLEXMBS_PETSC(EPSSetTarget(eps, sigma));
     FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
   }
@@ -168,6 +172,35 @@ void ExtractPairs(EPS eps, Mat K, Mat M, int limit, EigenSolution* solution) {
   }
   FLEXMBS_PETSC(VecDestroy(&x));
   FLEXMBS_PETSC(VecDestroy(&mx));
+}
+
+// The number of eigenvalues of K phi = lambda M phi below `cut`: the negative inertia of
+// K - cut M (Sylvester; M positive semi-definite, fixed DOF have K = 1, M = 0 and count as
+// positive) from a MUMPS LDL^T factorisation. ICNTL(13) = 1 keeps the root node off ScaLAPACK,
+// which would not report the inertia on more than one rank.
+PetscInt EigenvaluesBelow(Mat K, Mat M, double cut) {
+  Mat A;
+  FLEXMBS_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &A));
+  FLEXMBS_PETSC(MatAXPY(A, -cut, M, DIFFERENT_NONZERO_PATTERN));
+  FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+  KSP ksp;
+  PC pc;
+  Mat factor;
+  FLEXMBS_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp));
+  FLEXMBS_PETSC(KSPSetOperators(ksp, A, A));
+  FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
+  FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
+  FLEXMBS_PETSC(PCSetType(pc, PCCHOLESKY));
+  FLEXMBS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  FLEXMBS_PETSC(PCFactorSetUpMatSolverType(pc));
+  FLEXMBS_PETSC(PCFactorGetMatrix(pc, &factor));
+  FLEXMBS_PETSC(MatMumpsSetIcntl(factor, 13, 1));
+  FLEXMBS_PETSC(KSPSetUp(ksp));
+  PetscInt negative = 0;  // zero and positive counts would need null-pivot detection (ICNTL(24))
+  FLEXMBS_PETSC(MatGetInertia(factor, &negative, nullptr, nullptr));
+  FLEXMBS_PETSC(KSPDestroy(&ksp));
+  FLEXMBS_PETSC(MatDestroy(&A));
+  return negative;
 }
 
 // Copies this rank's block of rows of the full matrix A into a new PETSc AIJ matrix.
@@ -268,28 +301,55 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     solution.shift = -1e-6 * trace_k / trace_m;
   }
   const bool band = options.max_frequency_hz > 0.0;
-  EPS eps;
-  FLEXMBS_PETSC(EPSCreate(PETSC_COMM_WORLD, &eps));
-  try {
-    Configure(eps, K, M, solution.shift, options);
-    FLEXMBS_PETSC(EPSSolve(eps));
-    PetscInt converged = 0, iterations = 0;
-    FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
-    FLEXMBS_PETSC(EPSGetIterationNumber(eps, &iterations));
-    solution.restarts = static_cast<int>(iterations);
-    if (band && converged == 0) {
-      throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+  // Lowest modes: a few guard pairs beyond the wanted ones show the gap where the Sturm cut goes.
+  PetscInt nev = band ? 0 : options.num_modes + static_cast<PetscInt>(GuardPairs(options.num_modes));
+  for (int attempt = 0;; ++attempt) {
+    EPS eps;
+    FLEXMBS_PETSC(EPSCreate(PETSC_COMM_WORLD, &eps));
+    try {
+      Configure(eps, K, M, solution.shift, options, nev, !fixed_dofs.empty());
+      FLEXMBS_PETSC(EPSSolve(eps));
+      PetscInt converged = 0, iterations = 0;
+      FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
+      FLEXMBS_PETSC(EPSGetIterationNumber(eps, &iterations));
+      solution.restarts += static_cast<int>(iterations);
+      ++solution.factorizations;
+      if (band && converged == 0) {
+        throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+      }
+      if (!band && converged < options.num_modes) {
+        throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations",
+                                     converged, options.num_modes, iterations));
+      }
+      ExtractPairs(eps, K, M, band ? options.num_modes : 0, &solution);
+      FLEXMBS_PETSC(EPSDestroy(&eps));
+    } catch (...) {
+      EPSDestroy(&eps);
+      throw;
     }
-    if (!band && converged < options.num_modes) {
-      throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations",
-                                   converged, options.num_modes, iterations));
+    if (band) {
+      // Spectrum slicing counts the interval's eigenvalues by the inertia itself.
+      solution.checked_cut = ShiftFromHz(options.max_frequency_hz);
+      break;
     }
-    ExtractPairs(eps, K, M, options.num_modes, &solution);
-    if (band) solution.checked_cut = ShiftFromHz(options.max_frequency_hz);
-    FLEXMBS_PETSC(EPSDestroy(&eps));
-  } catch (...) {
-    EPSDestroy(&eps);
-    throw;
+    // Sturm check: every eigenvalue below the cut after the wanted ones must have been found.
+    const double cut = SturmCutAfter(solution.eigenvalues, options.num_modes, solution.shift);
+    const auto found = static_cast<PetscInt>((solution.eigenvalues.array() < cut).count());
+    const PetscInt count = EigenvaluesBelow(K, M, cut);
+    ++solution.factorizations;
+    solution.sturm_count = static_cast<int>(count);
+    solution.sturm_cut = cut;
+    solution.checked_cut = cut;
+    if (count == found) {
+      solution.eigenvalues.conservativeResize(options.num_modes);
+      solution.modes.conservativeResize(Eigen::NoChange, options.num_modes);
+      break;
+    }
+    if (count < found || attempt > 0) {
+      throw InputError(fmt::format("eigenproblem: SLEPc found {} modes below {:.6g} Hz but the Sturm count is {}",
+                                   found, FrequenciesHz(Eigen::VectorXd::Constant(1, cut))(0), count));
+    }
+    nev = count + static_cast<PetscInt>(GuardPairs(count));  // SLEPc missed modes: once more, wider
   }
   MeasurePairs(K, M, &solution);
   const PairResiduals residuals{solution.relative_residuals, solution.residual_floors};
@@ -301,8 +361,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
                                  solution.relative_residuals(worst), options.residual_tolerance,
                                  kResidualFloorFactor, solution.residual_floors(worst)));
   }
-  solution.missed_mode_check = band ? MissedModeCheck::kSturmCount : MissedModeCheck::kNone;
-  solution.factorizations = 1;
+  solution.missed_mode_check = MissedModeCheck::kSturmCount;
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;
 }

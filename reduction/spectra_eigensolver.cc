@@ -39,9 +39,6 @@ constexpr double kOrthonormalityTarget = 1e-13;
 // Ritz vectors whose M-Gram eigenvalue is below this fraction of the largest are dependent
 // (a deflated run re-found a locked direction) and dropped before Rayleigh-Ritz.
 constexpr double kDependentDirection = 1e-10;
-// Relative gap that separates the last wanted eigenvalue from the next one when placing the
-// Sturm cut; closer eigenvalues are treated as one cluster and counted together.
-constexpr double kClusterGap = 1e-6;
 // kAuto makes the Sturm count (simplicial LDL^T, ~2 Gflop/s here, 5-20x slower than the
 // supernodal Cholesky) only if the factorisation takes at most this many flops (~2 s).
 constexpr double kAutoSturmMaxFlops = 5e9;
@@ -318,26 +315,6 @@ RitzPairs SolveDense(const SparseMatrix& K, const SparseMatrix& M) {
   return {dense.eigenvalues(), dense.eigenvectors()};
 }
 
-Index Guard(Index wanted) { return std::max<Index>(5, wanted / 5); }
-
-// The first index j >= from with values(j) clearly above values(from - 1), or values.size().
-Index NextDistinct(const Eigen::VectorXd& values, Index from, double sigma) {
-  const double last = values(from - 1);
-  const double gap = kClusterGap * std::max(std::abs(last), std::abs(sigma));
-  Index next = from;
-  while (next < values.size() && values(next) <= last + gap) ++next;
-  return next;
-}
-
-// A cut between the last wanted eigenvalue values(wanted - 1) and the next distinct one (or
-// just above it if none is known).
-double CutAfter(const Eigen::VectorXd& values, Index wanted, double sigma) {
-  const double last = values(wanted - 1);
-  const Index next = NextDistinct(values, wanted, sigma);
-  return next < values.size() ? 0.5 * (last + values(next))
-                              : last + kClusterGap * std::max(std::abs(last), std::abs(sigma));
-}
-
 [[noreturn]] void ThrowEmptyBand(double max_frequency_hz, std::optional<double> lowest_lambda) {
   throw InputError(fmt::format("eigenproblem: no mode below max_frequency_hz = {:g} Hz{}", max_frequency_hz,
                                lowest_lambda ? fmt::format(": the lowest mode is at {:g} Hz", HzOf(*lowest_lambda))
@@ -420,7 +397,7 @@ EigenSolution SpectraEigensolver::Solve(const SparseMatrix& K, const SparseMatri
   bool dense = wanted + 1 > n - 1;
   if (!dense) {
     Eigen::MatrixXd basis(n, 0);
-    Index nev = wanted > 0 ? wanted + Guard(wanted) : (cap > 0 ? cap + Guard(cap) : kInitialBandNev);
+    Index nev = wanted > 0 ? wanted + GuardPairs(wanted) : (cap > 0 ? cap + GuardPairs(cap) : kInitialBandNev);
     double cut = std::numeric_limits<double>::quiet_NaN();  // where the missed-mode check is made
     Index cut_count = -1;                                     // Sturm count at `cut`
     bool verifying = false;  // the last run was a deflated verification run below `cut`
@@ -469,7 +446,7 @@ EigenSolution SpectraEigensolver::Solve(const SparseMatrix& K, const SparseMatri
                                        band_count));
         }
         if (below_band < wanted) {
-          nev = wanted - below_band + Guard(wanted - below_band);
+          nev = wanted - below_band + GuardPairs(wanted - below_band);
           continue;
         }
       } else if (band) {
@@ -482,14 +459,14 @@ EigenSolution SpectraEigensolver::Solve(const SparseMatrix& K, const SparseMatri
         if (below_band == 0) ThrowEmptyBand(options.max_frequency_hz, ritz.values(0));
         wanted = cap > 0 ? std::min(cap, below_band) : below_band;
       } else if (found < wanted) {
-        nev = wanted - found + Guard(wanted - found);
+        nev = wanted - found + GuardPairs(wanted - found);
         continue;
       }
 
       // Where to check: the band edge if every mode below it is wanted, else after the last
       // wanted mode.
       const bool whole_band = band && (cap == 0 || below_band <= cap);
-      const double new_cut = whole_band ? lambda_max : CutAfter(ritz.values, wanted, sigma);
+      const double new_cut = whole_band ? lambda_max : SturmCutAfter(ritz.values, wanted, sigma);
       if (!(new_cut == cut)) {
         cut = new_cut;
         cut_count = -1;
@@ -516,7 +493,7 @@ EigenSolution SpectraEigensolver::Solve(const SparseMatrix& K, const SparseMatri
                                        "check", below_cut, HzOf(cut), cut_count));
         }
         if (below_cut == cut_count) break;
-        nev = cut_count - below_cut + Guard(cut_count - below_cut);  // missed modes: deflated run
+        nev = cut_count - below_cut + GuardPairs(cut_count - below_cut);  // missed modes: deflated run
         continue;
       }
       // kDeflatedLanczos: one more run, deflated against everything found, from a new start.

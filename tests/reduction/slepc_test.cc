@@ -56,6 +56,21 @@ TEST(SlepcBackend, AgreesWithSpectraOnAClampedBody) {
   EXPECT_LT(slepc.orthonormality_error, 1e-10);
 }
 
+TEST(SlepcBackend, SturmCountAfterTheWantedModesEqualsTheDenseCount) {
+  const auto [K, M] = ClampedMatrices(ClampedBox());
+  EigenOptions options;
+  options.num_modes = 7;
+  const EigenSolution slepc = MakeEigensolver("slepc")->Solve(K, M, options);
+  EXPECT_EQ(slepc.missed_mode_check, MissedModeCheck::kSturmCount);
+  ASSERT_GE(slepc.sturm_count, options.num_modes);
+  EXPECT_GT(slepc.sturm_cut, slepc.eigenvalues(options.num_modes - 1));
+  // The count from MUMPS' inertia against every eigenvalue of the dense problem (the clamped
+  // DOF give infinite eigenvalues there: K = 1, M = 0, excluded by the cut).
+  const testing::DenseEigen dense = testing::SolveDense(K, M, 0.0);
+  const auto below = (dense.values.array() < slepc.sturm_cut).count();
+  EXPECT_EQ(slepc.sturm_count, below);
+}
+
 TEST(SlepcBackend, FindsTheSixRigidModesOfAFreeBody) {
   const fem::Mesh mesh = testing::HexBox({4, 3, 2}, {0.2, 0.15, 0.1}, testing::Steel());
   const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
