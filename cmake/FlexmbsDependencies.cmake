@@ -71,3 +71,10 @@ endif()
 pkg_check_modules(FLEXMBS_HDF5 REQUIRED IMPORTED_TARGET hdf5-openmpi)
 add_library(ext::hdf5 INTERFACE IMPORTED)
 target_link_libraries(ext::hdf5 INTERFACE PkgConfig::FLEXMBS_HDF5)
+
+# SUNDIALS 6 (ARKODE): CMake config. libsundials_arkode holds the serial N_Vector and the dense
+# matrix and linear solver too; the targets are listed for clarity. A SUNContext comes first.
+find_package(SUNDIALS 6 REQUIRED CONFIG)
+add_library(ext::sundials INTERFACE IMPORTED)
+target_link_libraries(ext::sundials INTERFACE SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
+                      SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared)

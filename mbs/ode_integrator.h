@@ -22,15 +22,26 @@ enum class OdeMethod {
 std::string_view OdeMethodName(OdeMethod method);
 
 /// The problem: y' = f(t, y), optional events g_k(t, y) (a root is an event), optional
-/// projection of y after each accepted step (constraint manifolds).
+/// projection of y after each accepted step (constraint manifolds), optional Jacobian df/dy.
+/// The vectors are views of ARKODE's own storage (no copies); a callback may throw (the
+/// exception propagates out of Advance unchanged, after ARKODE has stopped cleanly).
 struct OdeProblem {
   Eigen::Index size = 0;
-  std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot)> rhs;
+  /// ydot = f(t, y).
+  std::function<void(double t, Eigen::Ref<const Eigen::VectorXd> y,
+                     Eigen::Ref<Eigen::VectorXd> ydot)>
+      rhs;
   /// Number of event functions and their values g(t, y) (size num_events).
   int num_events = 0;
-  std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g)> events;
+  std::function<void(double t, Eigen::Ref<const Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> g)>
+      events;
   /// Moves y onto the constraint manifold after an accepted step (may be empty).
-  std::function<void(double t, Eigen::VectorXd& y)> project;
+  std::function<void(double t, Eigen::Ref<Eigen::VectorXd> y)> project;
+  /// Implicit method only, may be empty: fills df/dy (size x size, arrives zeroed) at (t, y).
+  /// Empty: ARKODE's difference quotients (one rhs call per column of df/dy).
+  std::function<void(double t, Eigen::Ref<const Eigen::VectorXd> y,
+                     Eigen::Ref<Eigen::MatrixXd> dfdy)>
+      jacobian;
 };
 
 /// Settings.
@@ -38,16 +49,18 @@ struct OdeOptions {
   OdeMethod method = OdeMethod::kExplicit;
   double relative_tolerance = 1e-6;
   double absolute_tolerance = 1e-9;
-  double initial_step = 0.0;  ///< 0: chosen by ARKODE
-  double max_step = 0.0;      ///< 0: unlimited
-  double fixed_step = 0.0;    ///< > 0: no adaptivity, this step (the implicit method still iterates)
+  double initial_step = 0.0;  ///< [s], 0: chosen by ARKODE (also after Reset)
+  double max_step = 0.0;      ///< [s], 0: unlimited
+  /// [s], > 0: no adaptivity, this step (excludes initial_step and max_step). The implicit
+  /// method still iterates (up to 10 Newton iterations per stage: a fixed step cannot be cut).
+  double fixed_step = 0.0;
   long max_steps_per_call = 100000;
 };
 
-/// Counters since the last Reset.
+/// Counters since construction (Reset keeps counting).
 struct OdeStatistics {
   long steps = 0;
-  long rhs_evaluations = 0;
+  long rhs_evaluations = 0;  ///< including the difference quotients of the Jacobian
   long error_test_failures = 0;
   long newton_iterations = 0;     ///< implicit only
   long jacobian_evaluations = 0;  ///< implicit only
@@ -59,21 +72,32 @@ enum class OdeStop { kReachedTime, kEvent };
 /// An ARKODE integrator for one OdeProblem (pimpl: no SUNDIALS header reaches users).
 class OdeIntegrator {
  public:
-  /// Starts at (t0, y0). Throws InputError for bad options (non-positive tolerances, ...).
-  OdeIntegrator(OdeProblem problem, const OdeOptions& options, double t0, const Eigen::VectorXd& y0);
+  /// Starts at (t0, y0). Throws InputError (one line) for bad options (non-positive
+  /// tolerances, negative steps, ...).
+  OdeIntegrator(OdeProblem problem, const OdeOptions& options, double t0,
+                const Eigen::VectorXd& y0);
   ~OdeIntegrator();
   OdeIntegrator(const OdeIntegrator&) = delete;
   OdeIntegrator& operator=(const OdeIntegrator&) = delete;
 
-  /// Integrates to t_out, or to the first event before it. Afterwards time() and state() give
-  /// where it stopped (interpolated at t_out: steps may overshoot it). Throws InternalError
-  /// naming the time and ARKODE's reason (step size too small, Newton failure, ...).
+  /// Integrates to t_out >= time(), or to the first event before it, and returns which.
+  /// ARKODE steps on (ARK_NORMAL: steps end where the error control puts them, so f is also
+  /// evaluated up to one step beyond t_out) and interpolates back: afterwards time() is t_out
+  /// or the root, state() the interpolated state there. With problem.project, ARKODE's dense
+  /// output interpolates between projected step states, so the interpolated state is off the
+  /// manifold by the interpolation error: state() is projected once more (the integration
+  /// continues from ARKODE's own step, unaffected). Throws SimulationError naming the time and
+  /// ARKODE's reason (too many steps, step size too small, Newton failure, a state that is not
+  /// finite, ...); time() and state() then stay those of the last successful Advance, and only
+  /// Reset makes sense.
   OdeStop Advance(double t_out);
   /// After kEvent: which event functions have a root (+1 rising, -1 falling, 0 none).
   const std::vector<int>& event_directions() const;
-  /// Restarts from (t, y), e.g. after an impact changed velocities; keeps the options.
+  /// Restarts from (t, y), e.g. after an impact changed velocities; keeps the options, and
+  /// the next step size is chosen anew (or is the fixed step).
   void Reset(double t, const Eigen::VectorXd& y);
 
+  /// Where the last Advance stopped (or the start / Reset) [s], and the state there.
   double time() const;
   const Eigen::VectorXd& state() const;
   OdeStatistics statistics() const;
