@@ -1,0 +1,98 @@
+#pragma once
+// Force elements (docs/mbs.md, "Seams for contact"): applied loads that add generalised forces
+// to h in M u' = h + G^T lambda. Compliant contact laws plug in here; their Jacobians dh/dx,
+// dh/du for implicit integration are a later addition to this interface.
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+
+#include "mbs/body.h"
+#include "mbs/marker_ref.h"
+#include "mbs/time_function.h"
+
+namespace flexmbs::mbs {
+
+class MultibodySystem;
+
+/// An applied load. Immutable; reads the system's state through MultibodySystem::MarkerState.
+class ForceElement {
+ public:
+  virtual ~ForceElement() = default;
+  /// The element's name in the scene.
+  virtual const std::string& name() const = 0;
+  /// Adds the element's generalised forces at time t [s] and state y to h (the system's
+  /// velocity space, size system.num_velocities()) [N, N m, ...].
+  virtual void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                         Eigen::Ref<Eigen::VectorXd> h) const = 0;
+  /// The energy stored in the element [J]; 0 for loads without a potential.
+  virtual double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+};
+
+/// The frame of a point load's components.
+enum class LoadFrame {
+  kWorld,   ///< W
+  kMarker,  ///< the marker's frame, turning with it (a follower load)
+};
+
+/// A force f [N] at the origin of a marker and a torque tau [N m] on its body, each component a
+/// time function (a null function is 0).
+class PointLoad final : public ForceElement {
+ public:
+  PointLoad(std::string name, MarkerRef at, std::array<TimeFunctionPtr, 3> force, std::array<TimeFunctionPtr, 3> torque,
+            LoadFrame frame);
+  const std::string& name() const override { return name_; }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const override;
+
+ private:
+  std::string name_;
+  MarkerRef at_;
+  std::array<TimeFunctionPtr, 3> force_, torque_;
+  LoadFrame frame_;
+};
+
+/// A linear spring-damper between the origins of markers A and B: tension
+/// F = k (l - free_length) + c dl/dt along the line from A to B (pulling B towards A for F > 0);
+/// potential energy k (l - free_length)^2 / 2. Throws SimulationError if the two points meet
+/// (no direction).
+class SpringDamper final : public ForceElement {
+ public:
+  /// free_length [m] >= 0, stiffness k [N/m] >= 0, damping c [N s/m] >= 0; InputError otherwise.
+  SpringDamper(std::string name, MarkerRef a, MarkerRef b, double free_length, double stiffness, double damping);
+  const std::string& name() const override { return name_; }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const override;
+  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+
+ private:
+  std::string name_;
+  MarkerRef a_, b_;
+  double free_length_, stiffness_, damping_;
+};
+
+/// A bushing between marker frames I and J, for small relative rotations: with the offset
+/// d = R_WI^T (p_WJ - p_WI) and the rotation vector theta of R_WI^T R_WJ (both in I), and their
+/// rates (relative to I), the load on J is
+///   f_I = -(K_t d + C_t d'),  tau_I = -(K_r theta + C_r w_IJ_I)
+/// (diagonal K = diag(stiffness), C = diag(damping), translations first), and body i carries
+/// the opposite load at the same point. Potential (d^T K_t d + theta^T K_r theta) / 2, exact for
+/// the translations; the torque is the potential's gradient to first order in theta.
+class Bushing final : public ForceElement {
+ public:
+  /// stiffness [N/m x3, N m/rad x3] >= 0, damping [N s/m x3, N m s/rad x3] >= 0; InputError
+  /// otherwise.
+  Bushing(std::string name, MarkerRef marker_i, MarkerRef marker_j, const Eigen::Matrix<double, 6, 1>& stiffness,
+          const Eigen::Matrix<double, 6, 1>& damping);
+  const std::string& name() const override { return name_; }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const override;
+  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+
+ private:
+  std::string name_;
+  MarkerRef marker_i_, marker_j_;
+  Eigen::Matrix<double, 6, 1> stiffness_, damping_;
+};
+
+}  // namespace flexmbs::mbs

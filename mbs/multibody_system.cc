@@ -1,0 +1,232 @@
+#include "mbs/multibody_system.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+#include "mbs/constraint_solver.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+template <typename Items, typename NameOf>
+void RequireNewName(const Items& items, const std::string& name, std::string_view kind, NameOf name_of) {
+  for (const auto& item : items) {
+    if (name_of(item) == name) throw InputError(fmt::format("{} '{}' defined twice", kind, name));
+  }
+}
+
+}  // namespace
+
+MultibodySystem::MultibodySystem(const Eigen::Vector3d& g_W) : g_W_(g_W) {}
+
+int MultibodySystem::AddBody(std::unique_ptr<Body> body) {
+  FLEXMBS_CHECK(body != nullptr, "MultibodySystem::AddBody: null body");
+  RequireNewName(bodies_, body->name(), "body", [](const auto& b) { return b->name(); });
+  // Positions of all bodies come first in y: the velocities move back by n_x of the new body.
+  position_offsets_.push_back(num_positions_);
+  velocity_offsets_.push_back(num_velocities_);
+  num_positions_ += body->num_positions();
+  num_velocities_ += body->num_velocities();
+  bodies_.push_back(std::move(body));
+  return num_bodies() - 1;
+}
+
+int MultibodySystem::AddJoint(Joint joint) {
+  RequireNewName(joints_, joint.name(), "joint", [](const Joint& j) { return j.name(); });
+  for (const MarkerRef* marker : {&joint.marker_i(), &joint.marker_j()}) {
+    if (marker->body != kGround && (marker->body < 0 || marker->body >= num_bodies())) {
+      throw InputError(fmt::format("joint '{}': body index {} is not in the system", joint.name(), marker->body));
+    }
+  }
+  constraint_offsets_.push_back(num_constraints_);
+  num_constraints_ += joint.num_equations();
+  joints_.push_back(std::move(joint));
+  return num_joints() - 1;
+}
+
+int MultibodySystem::AddForceElement(std::unique_ptr<ForceElement> element) {
+  FLEXMBS_CHECK(element != nullptr, "MultibodySystem::AddForceElement: null element");
+  RequireNewName(force_elements_, element->name(), "force element", [](const auto& e) { return e->name(); });
+  force_elements_.push_back(std::move(element));
+  return num_force_elements() - 1;
+}
+
+int MultibodySystem::FindBody(std::string_view name) const {
+  for (int b = 0; b < num_bodies(); ++b) {
+    if (body(b).name() == name) return b;
+  }
+  return -1;
+}
+
+MarkerRef MultibodySystem::Marker(std::string_view body_name, std::string_view marker_name) const {
+  const int b = FindBody(body_name);
+  if (b < 0) throw InputError(fmt::format("marker '{}' of body '{}': no such body", marker_name, body_name));
+  const int marker = body(b).FindMarker(marker_name);
+  if (marker < 0) throw InputError(fmt::format("body '{}' has no marker '{}'", body_name, marker_name));
+  return MarkerRef::OnBody(b, marker);
+}
+
+int MultibodySystem::JointOfConstraint(Eigen::Index row) const {
+  FLEXMBS_CHECK(row >= 0 && row < num_constraints_, "MultibodySystem::JointOfConstraint: row out of range");
+  const auto after = std::upper_bound(constraint_offsets_.begin(), constraint_offsets_.end(), row);
+  return static_cast<int>(after - constraint_offsets_.begin()) - 1;
+}
+
+Eigen::VectorXd MultibodySystem::NeutralState() const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(state_size());
+  for (int b = 0; b < num_bodies(); ++b) y(position_offset(b) + 3) = 1.0;
+  return y;
+}
+
+Eigen::Map<const Eigen::VectorXd> MultibodySystem::BodyPositions(const ConstVectorRef& y, int b) const {
+  return {y.data() + position_offset(b), body(b).num_positions()};
+}
+
+Eigen::Map<const Eigen::VectorXd> MultibodySystem::BodyVelocities(const ConstVectorRef& y, int b) const {
+  return {y.data() + num_positions_ + velocity_offset(b), body(b).num_velocities()};
+}
+
+void MultibodySystem::SetBodyState(int b, const ConstVectorRef& x_b, const ConstVectorRef& u_b,
+                                   Eigen::Ref<Eigen::VectorXd> y) const {
+  FLEXMBS_CHECK(x_b.size() == body(b).num_positions() && u_b.size() == body(b).num_velocities(),
+                "MultibodySystem::SetBodyState: sizes do not match the body");
+  y.segment(position_offset(b), x_b.size()) = x_b;
+  y.segment(num_positions_ + velocity_offset(b), u_b.size()) = u_b;
+}
+
+MarkerKinematics MultibodySystem::MarkerState(const MarkerRef& marker, const ConstVectorRef& y) const {
+  if (marker.is_ground()) {
+    MarkerKinematics ground;
+    ground.p_WM_W = marker.p_WM_W;
+    ground.R_WM = marker.R_WM;
+    ground.jacobian.resize(6, 0);
+    return ground;
+  }
+  return body(marker.body).Marker(marker.marker, BodyPositions(y, marker.body), BodyVelocities(y, marker.body));
+}
+
+void MultibodySystem::AddMarkerLoad(const MarkerRef& marker, const MarkerKinematics& kinematics,
+                                    const Eigen::Vector3d& f_W, const Eigen::Vector3d& tau_W,
+                                    Eigen::Ref<Eigen::VectorXd> h) const {
+  if (marker.is_ground()) return;
+  Eigen::Matrix<double, 6, 1> load;
+  load << f_W, tau_W;
+  h.segment(velocity_offset(marker.body), body(marker.body).num_velocities()) += kinematics.jacobian.transpose() * load;
+}
+
+Eigen::MatrixXd MultibodySystem::BodyMassMatrix(int b, const ConstVectorRef& y) const {
+  const Eigen::Index n = body(b).num_velocities();
+  Eigen::MatrixXd M(n, n);
+  body(b).MassMatrix(BodyPositions(y, b), M);
+  return M;
+}
+
+Eigen::VectorXd MultibodySystem::Forces(double t, const ConstVectorRef& y) const {
+  Eigen::VectorXd h(num_velocities_);
+  for (int b = 0; b < num_bodies(); ++b) {
+    body(b).Forces(t, BodyPositions(y, b), BodyVelocities(y, b), g_W_,
+                   h.segment(velocity_offset(b), body(b).num_velocities()));
+  }
+  for (const auto& element : force_elements_) element->AddForces(t, *this, y, h);
+  return h;
+}
+
+SystemConstraints MultibodySystem::Constraints(double t, const ConstVectorRef& y) const {
+  SystemConstraints c;
+  c.g.resize(num_constraints_);
+  c.g_t.resize(num_constraints_);
+  c.gamma.resize(num_constraints_);
+  c.G = Eigen::MatrixXd::Zero(num_constraints_, num_velocities_);
+  for (int k = 0; k < num_joints(); ++k) {
+    const Joint& j = joint(k);
+    const JointEquations e = j.Evaluate(t, MarkerState(j.marker_i(), y), MarkerState(j.marker_j(), y));
+    const Eigen::Index row = constraint_offset(k), m = j.num_equations();
+    c.g.segment(row, m) = e.g;
+    c.g_t.segment(row, m) = e.g_t;
+    c.gamma.segment(row, m) = e.gamma;
+    if (!j.marker_i().is_ground()) c.G.block(row, velocity_offset(j.marker_i().body), m, e.G_i.cols()) += e.G_i;
+    if (!j.marker_j().is_ground()) c.G.block(row, velocity_offset(j.marker_j().body), m, e.G_j.cols()) += e.G_j;
+  }
+  return c;
+}
+
+void MultibodySystem::Accelerations(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> u_dot,
+                                    Eigen::Ref<Eigen::VectorXd> lambda) const {
+  const Eigen::VectorXd h = Forces(t, y);
+  const SystemConstraints c = Constraints(t, y);
+  const ConstraintSolver solver(*this, t, y, c.G);
+  if (num_constraints_ == 0) {
+    u_dot = solver.SolveMass(h);
+    return;
+  }
+  solver.RequireFullRank(t, settings_.singular_pivot);
+  const double omega = settings_.baumgarte_frequency;
+  const Eigen::VectorXd u = y.tail(num_velocities_);
+  const Eigen::VectorXd Minv_h = solver.SolveMass(h);
+  // G u' = gamma - 2 omega (G u + g_t) - omega^2 g with u' = M^-1 (h + G^T lambda).
+  const Eigen::VectorXd target = c.gamma - 2.0 * omega * (c.G * u + c.g_t) - omega * omega * c.g;
+  lambda = solver.SolveSchur(target - c.G * Minv_h);
+  u_dot = Minv_h + solver.mass_inverse_G_transpose() * lambda;
+}
+
+void MultibodySystem::Derivative(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> y_dot) const {
+  for (int b = 0; b < num_bodies(); ++b) {
+    PositionDerivative(BodyPositions(y, b), BodyVelocities(y, b),
+                       y_dot.segment(position_offset(b), body(b).num_positions()));
+  }
+  Eigen::VectorXd lambda(num_constraints_);
+  Accelerations(t, y, y_dot.tail(num_velocities_), lambda);
+}
+
+JointLoad MultibodySystem::ConstraintLoad(int k, double t, const ConstVectorRef& y, const ConstVectorRef& lambda) const {
+  const Joint& j = joint(k);
+  const JointEquations e = j.Evaluate(t, MarkerState(j.marker_i(), y), MarkerState(j.marker_j(), y));
+  const Eigen::Matrix<double, 6, 1> load = e.D_J.transpose() * lambda.segment(constraint_offset(k), j.num_equations());
+  return {load.head<3>(), load.tail<3>()};
+}
+
+void MultibodySystem::DisplacePositions(const ConstVectorRef& du, Eigen::Ref<Eigen::VectorXd> y) const {
+  for (int b = 0; b < num_bodies(); ++b) {
+    const Eigen::Index px = position_offset(b), pu = velocity_offset(b), n = body(b).num_modes();
+    y.segment<3>(px) += du.segment<3>(pu);
+    const Eigen::Vector3d rotation = du.segment<3>(pu + 3);
+    const Eigen::Quaterniond e(y(px + 3), y(px + 4), y(px + 5), y(px + 6));
+    const double angle = rotation.norm();
+    const Eigen::Quaterniond step =
+        angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) : Eigen::Quaterniond::Identity();
+    const Eigen::Quaterniond moved = e * step;
+    y.segment<4>(px + 3) << moved.w(), moved.x(), moved.y(), moved.z();
+    y.segment(px + 7, n) += du.segment(pu + 6, n);
+  }
+}
+
+double MultibodySystem::NormalizeEulerParameters(Eigen::Ref<Eigen::VectorXd> y) const {
+  double worst = 0.0;
+  for (int b = 0; b < num_bodies(); ++b) {
+    auto e = y.segment<4>(position_offset(b) + 3);
+    const double norm = e.norm();
+    worst = std::max(worst, std::abs(norm - 1.0));
+    e /= norm;
+  }
+  return worst;
+}
+
+double MultibodySystem::KineticEnergy(const ConstVectorRef& y) const {
+  double energy = 0.0;
+  for (int b = 0; b < num_bodies(); ++b) energy += body(b).KineticEnergy(BodyPositions(y, b), BodyVelocities(y, b));
+  return energy;
+}
+
+double MultibodySystem::PotentialEnergy(double t, const ConstVectorRef& y) const {
+  double energy = 0.0;
+  for (int b = 0; b < num_bodies(); ++b) energy += body(b).PotentialEnergy(BodyPositions(y, b), g_W_);
+  for (const auto& element : force_elements_) energy += element->PotentialEnergy(t, *this, y);
+  return energy;
+}
+
+}  // namespace flexmbs::mbs

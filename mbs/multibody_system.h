@@ -1,0 +1,138 @@
+#pragma once
+// A multibody system (docs/mbs.md): bodies, joints, force elements and gravity, the layout of
+// its state y = [x_1 .. x_B, u_1 .. u_B], and its equations of motion
+//   M u' = h + G^T lambda,   G u' = gamma - 2 zeta omega_B (G u + g_t) - omega_B^2 g   (zeta = 1),
+// solved at every evaluation by the Schur complement G M^-1 G^T (constraint_solver.h).
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mbs/body.h"
+#include "mbs/force_element.h"
+#include "mbs/joint.h"
+#include "mbs/marker_ref.h"
+
+namespace flexmbs::mbs {
+
+/// How the constraints are solved at every evaluation.
+struct ConstraintSettings {
+  /// omega_B [rad/s] of the Baumgarte terms (zeta = 1); 0: none.
+  double baumgarte_frequency = 0.0;
+  /// The Schur complement is rank deficient when a pivot of its pivoted LDL^T, scaled to unit
+  /// diagonal, is below this: a constraint row within about sqrt(singular_pivot) rad (in the
+  /// metric M^-1) of the span of the others.
+  double singular_pivot = 1e-10;
+};
+
+/// All joints' equations stacked in joint order (JointEquations, assembled over the bodies).
+struct SystemConstraints {
+  Eigen::VectorXd g;      ///< m
+  Eigen::VectorXd g_t;    ///< m
+  Eigen::MatrixXd G;      ///< m x num_velocities()
+  Eigen::VectorXd gamma;  ///< m
+};
+
+/// The load a joint puts on its body j, at the origin of marker J, in W.
+struct JointLoad {
+  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();    ///< [N]
+  Eigen::Vector3d tau_W = Eigen::Vector3d::Zero();  ///< [N m]
+};
+
+/// A multibody system. Built once (Add*), then evaluated; all state is passed in.
+class MultibodySystem {
+ public:
+  /// Gravity g_W [m/s^2].
+  explicit MultibodySystem(const Eigen::Vector3d& g_W = Eigen::Vector3d(0.0, 0.0, -9.81));
+
+  /// Adds a body; returns its index. Throws InputError if its name is taken.
+  int AddBody(std::unique_ptr<Body> body);
+  /// Adds a joint between bodies already added; returns its index. Throws InputError for a
+  /// taken name or a body index out of range.
+  int AddJoint(Joint joint);
+  /// Adds a force element; returns its index. Throws InputError if its name is taken.
+  int AddForceElement(std::unique_ptr<ForceElement> element);
+
+  /// The index of body `name`, or -1.
+  int FindBody(std::string_view name) const;
+  /// Marker `marker` of body `body`; throws InputError naming both if either is unknown.
+  MarkerRef Marker(std::string_view body, std::string_view marker) const;
+
+  int num_bodies() const { return static_cast<int>(bodies_.size()); }
+  const Body& body(int b) const { return *bodies_.at(static_cast<std::size_t>(b)); }
+  int num_joints() const { return static_cast<int>(joints_.size()); }
+  const Joint& joint(int k) const { return joints_.at(static_cast<std::size_t>(k)); }
+  int num_force_elements() const { return static_cast<int>(force_elements_.size()); }
+  const ForceElement& force_element(int k) const { return *force_elements_.at(static_cast<std::size_t>(k)); }
+  const Eigen::Vector3d& gravity() const { return g_W_; }
+  const ConstraintSettings& constraint_settings() const { return settings_; }
+  void set_constraint_settings(const ConstraintSettings& settings) { settings_ = settings; }
+
+  /// Sizes: positions (sum of 7 + n), velocities (sum of 6 + n), the state y, constraints m.
+  Eigen::Index num_positions() const { return num_positions_; }
+  Eigen::Index num_velocities() const { return num_velocities_; }
+  Eigen::Index state_size() const { return num_positions_ + num_velocities_; }
+  Eigen::Index num_constraints() const { return num_constraints_; }
+  /// Where body b's x_b starts in y, where its u_b starts in u (y = [x; u]), and where joint k's
+  /// equations start in the stacked constraints.
+  Eigen::Index position_offset(int b) const { return position_offsets_.at(static_cast<std::size_t>(b)); }
+  Eigen::Index velocity_offset(int b) const { return velocity_offsets_.at(static_cast<std::size_t>(b)); }
+  Eigen::Index constraint_offset(int k) const { return constraint_offsets_.at(static_cast<std::size_t>(k)); }
+  /// The joint whose equations contain stacked constraint row `row`.
+  int JointOfConstraint(Eigen::Index row) const;
+
+  /// Every body at the origin of W, unrotated (e = (1, 0, 0, 0)), undeformed and at rest.
+  Eigen::VectorXd NeutralState() const;
+  /// Views of body b's positions x_b and velocities u_b in y.
+  Eigen::Map<const Eigen::VectorXd> BodyPositions(const ConstVectorRef& y, int b) const;
+  Eigen::Map<const Eigen::VectorXd> BodyVelocities(const ConstVectorRef& y, int b) const;
+  /// Writes x_b and u_b of body b into y.
+  void SetBodyState(int b, const ConstVectorRef& x_b, const ConstVectorRef& u_b, Eigen::Ref<Eigen::VectorXd> y) const;
+
+  /// The kinematics of a marker (the ground: its fixed frame, at rest, a 6 x 0 jacobian).
+  MarkerKinematics MarkerState(const MarkerRef& marker, const ConstVectorRef& y) const;
+  /// Adds force f_W [N] at the origin of `marker` and torque tau_W [N m] to h (size
+  /// num_velocities()), with `kinematics` = MarkerState(marker, y); nothing for the ground.
+  void AddMarkerLoad(const MarkerRef& marker, const MarkerKinematics& kinematics, const Eigen::Vector3d& f_W,
+                     const Eigen::Vector3d& tau_W, Eigen::Ref<Eigen::VectorXd> h) const;
+
+  /// The block-diagonal mass matrix's block of body b at y.
+  Eigen::MatrixXd BodyMassMatrix(int b, const ConstVectorRef& y) const;
+  /// h(t, y): the bodies' forces (gravity, inertia, elastic) and the force elements.
+  Eigen::VectorXd Forces(double t, const ConstVectorRef& y) const;
+  /// The joints' equations at (t, y).
+  SystemConstraints Constraints(double t, const ConstVectorRef& y) const;
+  /// u' and lambda (size num_constraints()) at (t, y), with Baumgarte terms per
+  /// constraint_settings(). Throws SimulationError at t naming the joints when G M^-1 G^T is rank
+  /// deficient (redundant joints, or a closed loop in a singular configuration).
+  void Accelerations(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> u_dot,
+                     Eigen::Ref<Eigen::VectorXd> lambda) const;
+  /// y' = [x'; u'] (x' from body.h's PositionDerivative).
+  void Derivative(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> y_dot) const;
+  /// The load of joint k on its body j at marker J from the multipliers lambda of Accelerations.
+  JointLoad ConstraintLoad(int k, double t, const ConstVectorRef& y, const ConstVectorRef& lambda) const;
+
+  /// Moves the positions in y by the velocity-space increment du (size num_velocities()):
+  /// p += du_v, e = e (x) exp(du_w / 2) (a rotation by du_w in B), q += du_q.
+  void DisplacePositions(const ConstVectorRef& du, Eigen::Ref<Eigen::VectorXd> y) const;
+  /// Scales every body's Euler parameters to unit norm; returns the largest | |e| - 1 | before.
+  double NormalizeEulerParameters(Eigen::Ref<Eigen::VectorXd> y) const;
+
+  /// Kinetic energy [J]; potential energy [J]: gravity and elastic energy of the bodies and the
+  /// force elements' stored energy.
+  double KineticEnergy(const ConstVectorRef& y) const;
+  double PotentialEnergy(double t, const ConstVectorRef& y) const;
+
+ private:
+  Eigen::Vector3d g_W_;
+  ConstraintSettings settings_;
+  std::vector<std::unique_ptr<Body>> bodies_;
+  std::vector<Joint> joints_;
+  std::vector<std::unique_ptr<ForceElement>> force_elements_;
+  std::vector<Eigen::Index> position_offsets_, velocity_offsets_, constraint_offsets_;
+  Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_constraints_ = 0;
+};
+
+}  // namespace flexmbs::mbs

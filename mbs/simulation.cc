@@ -1,0 +1,122 @@
+#include "mbs/simulation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+#include "mbs/constraint_solver.h"
+#include "mbs/simulation_error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+// When the integrator gives up where the scaled Schur complement has a pivot below this, the
+// failure is blamed on a nearly singular configuration (velocities and multipliers grow like
+// 1 / sqrt(pivot) there).
+constexpr double kNearSingularPivot = 1e-6;
+
+void CheckOptions(const SimulationOptions& options) {
+  if (!(options.end_time > options.start_time)) {
+    throw InputError(fmt::format("simulation: end time {} s must be > start time {} s", options.end_time,
+                                 options.start_time));
+  }
+  if (!(options.output_interval > 0.0)) {
+    throw InputError(fmt::format("simulation: output interval {} s must be > 0", options.output_interval));
+  }
+  if (!(options.singular_pivot > 0.0 && options.singular_pivot < 1.0)) {
+    throw InputError(fmt::format("simulation: singular pivot {} must be in (0, 1)", options.singular_pivot));
+  }
+}
+
+double BaumgarteFrequency(const SimulationOptions& options) {
+  if (options.baumgarte_frequency >= 0.0) return options.baumgarte_frequency;
+  const OdeOptions& ode = options.integrator;
+  const double h = ode.fixed_step > 0.0 ? ode.fixed_step : ode.max_step > 0.0 ? ode.max_step : options.output_interval;
+  return 1.0 / h;
+}
+
+// The output times: start_time + k output_interval, then end_time (a last interval shorter than
+// 1e-9 output intervals is merged into the one before).
+std::vector<double> OutputTimes(const SimulationOptions& options) {
+  std::vector<double> times;
+  const double span = options.end_time - options.start_time;
+  const long count = static_cast<long>(std::ceil(span / options.output_interval - 1e-9));
+  for (long k = 1; k < count; ++k) times.push_back(options.start_time + static_cast<double>(k) * options.output_interval);
+  times.push_back(options.end_time);
+  return times;
+}
+
+}  // namespace
+
+SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
+                              const OutputCallback& output) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  CheckOptions(options);
+  if (y0.size() != system.state_size()) {
+    throw InputError(fmt::format("simulation: the initial state has {} entries, the system {}", y0.size(),
+                                 system.state_size()));
+  }
+  SimulationStatistics statistics;
+  statistics.baumgarte_frequency = BaumgarteFrequency(options);
+  system.set_constraint_settings({statistics.baumgarte_frequency, options.singular_pivot});
+  statistics.initial_conditions = MakeConsistent(system, options.start_time, y0, options.initial_conditions);
+
+  bool model_failed = false;  // the failure came from the model's own check, already explained
+  double last_step_time = options.start_time;  // the last projected step, to explain a failure
+  Eigen::VectorXd last_step_state = y0;
+  OdeProblem problem;
+  problem.size = system.state_size();
+  problem.rhs = [&](double t, Eigen::Ref<const Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> y_dot) {
+    try {
+      system.Derivative(t, y, y_dot);
+    } catch (const SimulationError&) {
+      model_failed = true;
+      throw;
+    }
+  };
+  problem.project = [&](double t, Eigen::Ref<Eigen::VectorXd> y) {
+    try {
+      const ProjectionResult result = ProjectPositions(system, t, y, options.projection);
+      ProjectVelocities(system, t, y);
+      statistics.max_projection_iterations = std::max(statistics.max_projection_iterations, result.iterations);
+      statistics.max_drift = std::max(statistics.max_drift, result.initial_residual);
+      ++statistics.projections;
+      last_step_time = t;
+      last_step_state = y;
+    } catch (const SimulationError&) {
+      model_failed = true;
+      throw;
+    }
+  };
+
+  Eigen::VectorXd u_dot(system.num_velocities()), lambda(system.num_constraints());
+  const auto emit = [&](double t, const Eigen::VectorXd& y) {
+    system.Accelerations(t, y, u_dot, lambda);
+    output(t, y, lambda);
+    ++statistics.outputs;
+  };
+  emit(options.start_time, y0);
+  OdeIntegrator integrator(std::move(problem), options.integrator, options.start_time, y0);
+  for (const double t_out : OutputTimes(options)) {
+    try {
+      integrator.Advance(t_out);
+    } catch (const SimulationError& error) {
+      if (model_failed || system.num_constraints() == 0) throw;
+      const ConstraintSolver solver(system, last_step_time, last_step_state,
+                                    system.Constraints(last_step_time, last_step_state).G);
+      if (!(solver.smallest_relative_pivot() < kNearSingularPivot)) throw;
+      throw SimulationError(error.time(), fmt::format("{}; near a singular configuration: {}", error.what(),
+                                                      solver.DescribeRankDeficiency(last_step_time, kNearSingularPivot)));
+    }
+    emit(integrator.time(), integrator.state());
+  }
+  statistics.integrator = integrator.statistics();
+  statistics.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return statistics;
+}
+
+}  // namespace flexmbs::mbs

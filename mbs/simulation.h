@@ -1,0 +1,54 @@
+#pragma once
+// The multibody step loop (docs/mbs.md, "Integrators"): checks the initial conditions, hands
+// the equations of motion and the projection to an OdeIntegrator, and reports the state and
+// the multipliers at fixed output times.
+
+#include <Eigen/Core>
+#include <functional>
+
+#include "mbs/constraint_projection.h"
+#include "mbs/multibody_system.h"
+#include "mbs/ode_integrator.h"
+
+namespace flexmbs::mbs {
+
+/// Settings of one simulation.
+struct SimulationOptions {
+  OdeOptions integrator;
+  double start_time = 0.0;       ///< [s]
+  double end_time = 1.0;         ///< [s], > start_time
+  double output_interval = 0.01; ///< [s] > 0: outputs at start_time + k output_interval and at end_time
+  /// omega_B [rad/s] of the Baumgarte terms; < 0: 1 / h with h the fixed step, else the maximum
+  /// step, else the output interval (the projection after every step keeps the drift at its
+  /// tolerance; omega_B h = 1 stays well inside the explicit method's stability region).
+  double baumgarte_frequency = -1.0;
+  /// ConstraintSettings::singular_pivot.
+  double singular_pivot = 1e-10;
+  ProjectionOptions projection;
+  ConsistencyOptions initial_conditions;
+};
+
+/// What a run did.
+struct SimulationStatistics {
+  ConsistencyReport initial_conditions;
+  OdeStatistics integrator;
+  long outputs = 0;
+  long projections = 0;               ///< position + velocity projections (one per step and output)
+  int max_projection_iterations = 0;  ///< Gauss-Newton iterations of the worst projection
+  double max_drift = 0.0;             ///< largest max |g| a projection started from [m or 1]
+  double baumgarte_frequency = 0.0;   ///< the omega_B used [rad/s]
+  double wall_seconds = 0.0;
+};
+
+/// Called at every output time with the state y and the multipliers lambda (per joint in joint
+/// order; MultibodySystem::ConstraintLoad turns them into loads).
+using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda)>;
+
+/// Integrates `system` from y0 at options.start_time to options.end_time. Sets the system's
+/// constraint settings from the options. Throws InputError for bad options or inconsistent
+/// initial conditions (MakeConsistent), SimulationError (with the time) when the integration
+/// fails; a failure near a singular configuration is reported with the joints of the loop.
+SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
+                              const OutputCallback& output);
+
+}  // namespace flexmbs::mbs
