@@ -1,0 +1,359 @@
+#include "mbs/flexible_body.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+#include "core/rotation.h"
+#include "core/skew.h"
+#include "mbs/mode_selection.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+using Eigen::Index;
+using Eigen::Matrix3d;
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+[[noreturn]] void Fail(std::string_view body_name, std::string_view problem) {
+  throw InputError(fmt::format("body '{}': {}", body_name, problem));
+}
+
+/// Checks one Taylor block's shape and order against docs/sid.md.
+void CheckBlock(std::string_view body_name, const sid::TaylorMatrix& X, std::string_view block, Index rows, Index cols,
+                int max_order, Index n) {
+  if (X.m0.rows() != rows || X.m0.cols() != cols) {
+    Fail(body_name, fmt::format("SID block {} is {} x {}, expected {} x {} for {} modes", block, X.m0.rows(),
+                                X.m0.cols(), rows, cols, n));
+  }
+  if (X.order() > max_order) {
+    Fail(body_name, fmt::format("SID block {} has order {}; it has at most order {} (docs/sid.md)", block, X.order(),
+                                max_order));
+  }
+  if (!X.IsConsistent(n)) Fail(body_name, fmt::format("SID block {}: its order-1/2 terms do not fit {} modes", block, n));
+}
+
+/// The order-1 terms of an n x 3 or n x 6 block side by side: [X_1 .. X_c] (n x c n) with
+/// X_a(i, j) = m1[j](i, a); zero if the block has order 0.
+MatrixXd SideBySide(const sid::TaylorMatrix& X, Index n) {
+  const Index c = X.m0.cols();
+  MatrixXd out = MatrixXd::Zero(n, c * n);
+  for (Index j = 0; j < static_cast<Index>(X.m1.size()); ++j) {
+    for (Index a = 0; a < c; ++a) out.col(a * n + j) = X.m1[static_cast<std::size_t>(j)].col(a);
+  }
+  return out;
+}
+
+/// [K0_1 .. K0_c] side by side, or zero (n x c n) if the body has no stiffening matrices.
+template <std::size_t C>
+MatrixXd SideBySide(const std::array<MatrixXd, C>& K0, Index n) {
+  MatrixXd out = MatrixXd::Zero(n, static_cast<Index>(C) * n);
+  if (K0[0].size() == 0) return out;
+  for (std::size_t a = 0; a < C; ++a) out.middleCols(static_cast<Index>(a) * n, n) = K0[a];
+  return out;
+}
+
+/// w_q = [w1^2, w2^2, w3^2, w1 w2, w2 w3, w3 w1] (docs/sid.md).
+Eigen::Matrix<double, 6, 1> AngularVelocityProducts(const Vector3d& w) {
+  Eigen::Matrix<double, 6, 1> w_q;
+  w_q << w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.y() * w.z(), w.z() * w.x();
+  return w_q;
+}
+
+/// The n x 3 block X0 + [X_1 q, X_2 q, X_3 q] of SideBySide order-1 terms X1.
+Eigen::MatrixX3d LinearBlock(const Eigen::MatrixX3d& X0, const MatrixXd& X1, const VectorXd& q) {
+  const Index n = q.size();
+  Eigen::MatrixX3d X = X0;
+  for (Index a = 0; a < 3; ++a) X.col(a) += X1.middleCols(a * n, n) * q;
+  return X;
+}
+
+/// The Kronecker product a (x) b: block i is a_i b.
+VectorXd Kronecker(const VectorXd& a, const VectorXd& b) {
+  VectorXd out(a.size() * b.size());
+  for (Index i = 0; i < a.size(); ++i) out.segment(i * b.size(), b.size()) = a(i) * b;
+  return out;
+}
+
+/// The coefficients of the rotation vector theta (t = |theta|): exp(theta~) = I + s theta~ +
+/// a theta~^2 and T = I + a theta~ + b theta~^2 with s = sin t / t, a = (1 - cos t) / t^2,
+/// b = (t - sin t) / t^3, and c = a'(t) / t, d = b'(t) / t for dT/dt. Power series below
+/// t = 0.5 (ten terms: truncation < 1e-20), where the closed forms lose digits to cancellation.
+struct RotationCoefficients {
+  double s, a, b, c, d;
+};
+
+RotationCoefficients Coefficients(double t) {
+  if (t >= 0.5) {
+    const double sin_t = std::sin(t), one_minus_cos = 2.0 * std::sin(0.5 * t) * std::sin(0.5 * t);
+    const double t2 = t * t;
+    return {sin_t / t, one_minus_cos / t2, (t - sin_t) / (t2 * t), (t * sin_t - 2.0 * one_minus_cos) / (t2 * t2),
+            (one_minus_cos * t - 3.0 * (t - sin_t)) / (t2 * t2 * t)};
+  }
+  // s = sum_k (-1)^k t^2k / (2k+1)!, a: / (2k+2)!, b: / (2k+3)!; c = sum_k>=1 (-1)^k 2k t^(2k-2)
+  // / (2k+2)!, d: / (2k+3)!.
+  static constexpr std::array<double, 24> inverse_factorial = [] {
+    std::array<double, 24> out{};
+    out[0] = 1.0;
+    for (std::size_t m = 1; m < out.size(); ++m) out[m] = out[m - 1] / static_cast<double>(m);
+    return out;
+  }();
+  RotationCoefficients out{0.0, 0.0, 0.0, 0.0, 0.0};
+  const double t2 = t * t;
+  double power = 1.0, previous_power = 0.0;  // t^2k, t^(2k-2)
+  for (std::size_t k = 0; k < 10; ++k) {
+    const double sign = k % 2 == 0 ? 1.0 : -1.0;
+    out.s += sign * power * inverse_factorial[2 * k + 1];
+    out.a += sign * power * inverse_factorial[2 * k + 2];
+    out.b += sign * power * inverse_factorial[2 * k + 3];
+    out.c += sign * 2.0 * static_cast<double>(k) * previous_power * inverse_factorial[2 * k + 2];
+    out.d += sign * 2.0 * static_cast<double>(k) * previous_power * inverse_factorial[2 * k + 3];
+    previous_power = power;
+    power *= t2;
+  }
+  return out;
+}
+
+}  // namespace
+
+FlexibleBody::FlexibleBody(std::string name, sid::ReducedBody data, bool geometric_stiffening)
+    : name_(std::move(name)), data_(std::move(data)), geometric_stiffening_(geometric_stiffening), n_(data_.num_modes()) {
+  const Index n = n_;
+  const sid::ReducedBody& d = data_;
+  if (!(d.mass > 0.0)) Fail(name_, fmt::format("mass {} kg must be > 0", d.mass));
+  if (static_cast<Index>(d.mode_names.size()) != n || static_cast<Index>(d.mode_kinds.size()) != n) {
+    Fail(name_, fmt::format("{} mode names and {} kinds for {} modes", d.mode_names.size(), d.mode_kinds.size(), n));
+  }
+  CheckBlock(name_, d.mdCM, "mdCM", 3, 1, 1, n);
+  CheckBlock(name_, d.J, "J", 3, 3, 2, n);
+  CheckBlock(name_, d.Ct, "Ct", n, 3, 1, n);
+  CheckBlock(name_, d.Cr, "Cr", n, 3, 1, n);
+  CheckBlock(name_, d.Me, "Me", n, n, 0, n);
+  CheckBlock(name_, d.Gr, "Gr", 3, 3 * n, 1, n);
+  CheckBlock(name_, d.Ge, "Ge", n, 3 * n, 0, n);
+  CheckBlock(name_, d.Oe, "Oe", n, 6, 1, n);
+  CheckBlock(name_, d.Ke, "Ke", n, n, 0, n);
+  CheckBlock(name_, d.De, "De", n, n, 0, n);
+  CheckBlock(name_, d.ksigma, "ksigma", n, 1, 0, n);
+  const sid::GeometricStiffening& K0 = d.stiffening;
+  if (K0.empty()) {
+    if (d.Ct.order() > 0) Fail(name_, "Ct has order-1 (stiffening) terms but the body has no stiffening matrices");
+  } else {
+    for (const auto* list : {&K0.K0t, &K0.K0r}) {
+      for (const MatrixXd& matrix : *list) {
+        if (matrix.rows() != n || matrix.cols() != n) Fail(name_, "stiffening matrices K0t/K0r are not n x n");
+      }
+    }
+    for (const MatrixXd& matrix : K0.K0omega) {
+      if (matrix.rows() != n || matrix.cols() != n) Fail(name_, "stiffening matrices K0omega are not n x n");
+    }
+  }
+  CheckNoRigidBodyMotion(d, name_);
+
+  mass_ = d.mass;
+  mdCM0_ = d.mdCM.m0.col(0);
+  mdCM1_ = Eigen::Matrix3Xd::Zero(3, n);
+  for (Index j = 0; j < static_cast<Index>(d.mdCM.m1.size()); ++j) mdCM1_.col(j) = d.mdCM.m1[static_cast<std::size_t>(j)];
+  J0_ = d.J.m0;
+  J1_ = MatrixXd::Zero(9, n);
+  J2_ = MatrixXd::Zero(9, n * n);
+  for (Index j = 0; j < static_cast<Index>(d.J.m1.size()); ++j) {
+    J1_.col(j) = d.J.m1[static_cast<std::size_t>(j)].reshaped();
+  }
+  for (Index jk = 0; jk < static_cast<Index>(d.J.m2.size()); ++jk) J2_.col(jk) = d.J.m2[static_cast<std::size_t>(jk)].reshaped();
+
+  // The file's order-1 blocks hold kinematics + stiffening: the kinematic part is their
+  // difference, and M_b, h_b add the stiffening back if it is on.
+  const MatrixXd K0t = SideBySide(K0.K0t, n), K0r = SideBySide(K0.K0r, n), K0omega = SideBySide(K0.K0omega, n);
+  Ct0_ = d.Ct.m0;
+  Cr0_ = d.Cr.m0;
+  Ct1_kin_ = SideBySide(d.Ct, n) - K0t;
+  Cr1_kin_ = SideBySide(d.Cr, n) - K0r;
+  Ct1_ = geometric_stiffening_ ? SideBySide(d.Ct, n) : Ct1_kin_;
+  Cr1_ = geometric_stiffening_ ? SideBySide(d.Cr, n) : Cr1_kin_;
+  Oe0_ = d.Oe.m0;
+  Oe1_ = geometric_stiffening_ ? SideBySide(d.Oe, n) : MatrixXd(SideBySide(d.Oe, n) - K0omega);
+  Me_ = d.Me.m0;
+  Ke_ = d.Ke.m0;
+  De_ = d.De.m0;
+  ksigma_ = d.ksigma.m0.col(0);
+  Gr0_ = d.Gr.m0;
+  Gr1_ = MatrixXd::Zero(9 * n, n);
+  for (Index k = 0; k < static_cast<Index>(d.Gr.m1.size()); ++k) Gr1_.col(k) = d.Gr.m1[static_cast<std::size_t>(k)].reshaped();
+  Ge0_ = d.Ge.m0;
+
+  for (const sid::Node& node : d.nodes) {
+    const std::string where = fmt::format("node '{}'", node.name);
+    if (node.name == kOriginMarker) Fail(name_, where + " has the name of the body-frame marker");
+    for (const NodeFrame& other : nodes_) {
+      if (other.name == node.name) Fail(name_, where + " appears twice");
+    }
+    CheckBlock(name_, node.origin, where + " origin", 3, 1, 1, n);
+    CheckBlock(name_, node.psi, where + " psi", 3, n, 1, n);
+    CheckBlock(name_, node.phi, where + " phi", 3, n, 1, n);
+    if (node.AP.m0.rows() != 3 || node.AP.m0.cols() != 3 ||
+        (node.AP.m0.transpose() * node.AP.m0 - Matrix3d::Identity()).norm() > 1e-9 || node.AP.m0.determinant() < 0.0) {
+      Fail(name_, where + " AP.m0 is not a rotation matrix");
+    }
+    NodeFrame frame;
+    frame.name = node.name;
+    frame.o0 = node.origin.m0.col(0);
+    frame.Phi = Eigen::Matrix3Xd::Zero(3, n);
+    for (Index j = 0; j < static_cast<Index>(node.origin.m1.size()); ++j) frame.Phi.col(j) = node.origin.m1[static_cast<std::size_t>(j)];
+    frame.Psi = node.psi.m0;
+    frame.AP0 = node.AP.m0;
+    if (geometric_stiffening_) {
+      for (const MatrixXd& block : node.phi.m1) frame.phi1.emplace_back(block);
+      for (const MatrixXd& block : node.psi.m1) frame.psi1.emplace_back(block);
+    }
+    nodes_.push_back(std::move(frame));
+  }
+}
+
+FlexibleBody::Blocks FlexibleBody::Evaluate(const VectorXd& q, bool with_stiffening) const {
+  Blocks b;
+  b.mdCM = mdCM0_ + mdCM1_ * q;
+  const VectorXd qq = (q * q.transpose()).reshaped();
+  b.J = J0_ + (J1_ * q + J2_ * qq).reshaped(3, 3);
+  b.Ct = LinearBlock(Ct0_, with_stiffening ? Ct1_ : Ct1_kin_, q);
+  b.Cr = LinearBlock(Cr0_, with_stiffening ? Cr1_ : Cr1_kin_, q);
+  return b;
+}
+
+void FlexibleBody::MassMatrix(const ConstVectorRef& x, Eigen::Ref<MatrixXd> M) const {
+  const Index n = n_;
+  const VectorXd q = x.tail(n);
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  const Blocks b = Evaluate(q, geometric_stiffening_);
+  M.setZero();
+  M.topLeftCorner<3, 3>() = mass_ * Matrix3d::Identity();
+  const Matrix3d R_S = R * Skew(b.mdCM).transpose();
+  M.block<3, 3>(0, 3) = R_S;
+  M.block<3, 3>(3, 0) = R_S.transpose();
+  M.block(0, 6, 3, n) = R * b.Ct.transpose();
+  M.block(6, 0, n, 3) = b.Ct * R.transpose();
+  M.block<3, 3>(3, 3) = b.J;
+  M.block(3, 6, 3, n) = b.Cr.transpose();
+  M.block(6, 3, n, 3) = b.Cr;
+  M.bottomRightCorner(n, n) = Me_;
+}
+
+void FlexibleBody::Forces(double, const ConstVectorRef& x, const ConstVectorRef& u, const Vector3d& g_W,
+                          Eigen::Ref<VectorXd> h) const {
+  const Index n = n_;
+  const VectorXd q = x.tail(n), qdot = u.tail(n);
+  const Vector3d w = u.segment<3>(3);
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  const Blocks b = Evaluate(q, geometric_stiffening_);
+  const Matrix3d W = Skew(w);
+  const Vector3d g_B = R.transpose() * g_W;
+  const VectorXd qdot_w = Kronecker(qdot, w);  // block j: qdot_j w
+  h.head<3>() = mass_ * g_W - R * (W * (W * b.mdCM) + 2.0 * (W * (b.Ct.transpose() * qdot)));
+  const MatrixXd Gr = Gr0_ + (Gr1_ * q).reshaped(3, 3 * n);
+  h.segment<3>(3) = b.mdCM.cross(g_B) - W * (b.J * w) - Gr * qdot_w;
+  const Eigen::Matrix<double, 6, 1> w_q = AngularVelocityProducts(w);
+  h.tail(n) = b.Ct * g_B - Oe0_ * w_q - Oe1_ * Kronecker(w_q, q) - Ge0_ * qdot_w - Ke_ * q - De_ * qdot - ksigma_;
+}
+
+VectorXd FlexibleBody::KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const {
+  const Index n = n_;
+  const VectorXd q = x.tail(n), qdot = u.tail(n);
+  const Vector3d v = u.head<3>(), w = u.segment<3>(3);
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  const Blocks b = Evaluate(q, false);
+  const Vector3d v_B = R.transpose() * v;
+  VectorXd out(6 + n);
+  out.head<3>() = mass_ * v + R * (w.cross(b.mdCM) + b.Ct.transpose() * qdot);
+  out.segment<3>(3) = b.mdCM.cross(v_B) + b.J * w + b.Cr.transpose() * qdot;
+  out.tail(n) = b.Ct * v_B + b.Cr * w + Me_ * qdot;
+  return out;
+}
+
+double FlexibleBody::KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const {
+  return 0.5 * u.dot(KinematicMomenta(x, u));
+}
+
+double FlexibleBody::PotentialEnergy(const ConstVectorRef& x, const Vector3d& g_W) const {
+  const VectorXd q = x.tail(n_);
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  const Vector3d mdCM = mdCM0_ + mdCM1_ * q;
+  return 0.5 * q.dot(Ke_ * q) + ksigma_.dot(q) - g_W.dot(mass_ * x.head<3>() + R * mdCM);
+}
+
+Momentum FlexibleBody::ComputeMomentum(const ConstVectorRef& x, const ConstVectorRef& u) const {
+  const VectorXd momenta = KinematicMomenta(x, u);
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  Momentum out;
+  out.linear_W = momenta.head<3>();
+  out.angular_Wo_W = Vector3d(x.head<3>()).cross(out.linear_W) + R * momenta.segment<3>(3);
+  return out;
+}
+
+int FlexibleBody::FindMarker(std::string_view name) const {
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    if (nodes_[k].name == name) return static_cast<int>(k);
+  }
+  return name == kOriginMarker ? static_cast<int>(nodes_.size()) : -1;
+}
+
+MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const {
+  FLEXMBS_CHECK(marker >= 0 && marker <= static_cast<int>(nodes_.size()), "marker index from FindMarker");
+  const Index n = n_;
+  const Vector3d p = x.head<3>(), v = u.head<3>(), w = u.segment<3>(3);
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  MarkerKinematics out;
+  out.jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, 6 + n);
+  out.jacobian.topLeftCorner<3, 3>().setIdentity();
+  out.jacobian.block<3, 3>(3, 3) = R;
+  if (marker == static_cast<int>(nodes_.size())) {  // the body frame
+    out.p_WM_W = p;
+    out.R_WM = R;
+    out.v_WM_W = v;
+    out.w_WM_W = R * w;
+    return out;
+  }
+  const NodeFrame& node = nodes_[static_cast<std::size_t>(marker)];
+  const VectorXd q = x.tail(n), qdot = u.tail(n);
+  const Vector3d s = node.o0 + node.Phi * q;
+  const Vector3d theta = node.Psi * q, theta_dot = node.Psi * qdot;
+  const RotationCoefficients k = Coefficients(theta.norm());
+  const Matrix3d Theta = Skew(theta), Theta2 = Theta * Theta;
+  const Matrix3d T = Matrix3d::Identity() + k.a * Theta + k.b * Theta2;
+  // dT/dt theta_dot = c (theta . theta_dot) theta x theta_dot + d (theta . theta_dot) theta x
+  // (theta x theta_dot) + b theta_dot x (theta x theta_dot) (the other terms of dT/dt vanish on theta_dot).
+  const double rate = theta.dot(theta_dot);
+  const Vector3d cross = theta.cross(theta_dot);
+  const Vector3d T_dot_theta_dot = k.c * rate * cross + k.d * rate * theta.cross(cross) + k.b * theta_dot.cross(cross);
+  const Vector3d elastic_velocity = node.Phi * qdot, angular_rate = T * theta_dot;
+
+  out.p_WM_W = p + R * s;
+  out.R_WM = R * (Matrix3d::Identity() + k.s * Theta + k.a * Theta2) * node.AP0;
+  out.v_WM_W = v + R * (w.cross(s) + elastic_velocity);
+  out.w_WM_W = R * (w + angular_rate);
+  out.jacobian.block<3, 3>(0, 3) = -R * Skew(s);
+  out.jacobian.block(0, 6, 3, n) = R * node.Phi;
+  out.jacobian.block(3, 6, 3, n) = R * T * node.Psi;
+  out.bias.head<3>() = R * (w.cross(w.cross(s)) + 2.0 * w.cross(elastic_velocity));
+  out.bias.tail<3>() = R * (w.cross(angular_rate) + T_dot_theta_dot);
+  return out;
+}
+
+VectorXd FlexibleBody::NodeLoadStiffening(int marker, const ConstVectorRef& x, const Vector3d& f_W,
+                                          const Vector3d& tau_W) const {
+  FLEXMBS_CHECK(marker >= 0 && marker <= static_cast<int>(nodes_.size()), "marker index from FindMarker");
+  VectorXd h = VectorXd::Zero(6 + n_);
+  if (marker == static_cast<int>(nodes_.size())) return h;
+  const NodeFrame& node = nodes_[static_cast<std::size_t>(marker)];
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  const Vector3d f_B = R.transpose() * f_W, tau_B = R.transpose() * tau_W;
+  for (std::size_t j = 0; j < node.phi1.size(); ++j) h.tail(n_) += x(7 + static_cast<Index>(j)) * (node.phi1[j].transpose() * f_B);
+  for (std::size_t j = 0; j < node.psi1.size(); ++j) h.tail(n_) += x(7 + static_cast<Index>(j)) * (node.psi1[j].transpose() * tau_B);
+  return h;
+}
+
+}  // namespace flexmbs::mbs

@@ -1,0 +1,140 @@
+#pragma once
+// A floating-frame-of-reference flexible body (docs/mbs.md, "Equations of motion of a body"):
+// the SID invariants of a reduced body (docs/sid.md) turned into M_b(x) and h_b(t, x, u).
+//
+// Positions x = [p_WBo_W, e, q], velocities u = [v_WBo_W, w_WB_B, qdot] (mbs/body.h). With
+// R = R_WB(e) and the Taylor blocks at q,
+//
+//   M_b = [ m I          R mdCM~^T   R Ct^T ]    h_b = [ m g_W - R (w~ w~ mdCM + 2 w~ Ct^T qdot)                     ]
+//         [ mdCM~ R^T    J           Cr^T   ]          [ mdCM~ R^T g_W - w~ J w - sum_j Gr_j w qdot_j                ]
+//         [ Ct R^T       Cr          Me     ]          [ Ct R^T g_W - Oe w_q - sum_j Ge_j w qdot_j - Ke q - De qdot - ksigma ]
+//
+// Geometric stiffening (docs/sid.md): the SID order-1 blocks of Ct, Cr and Oe carry the
+// stiffening matrices K0t, K0r, K0omega. With it on they are used as they are; with it off the
+// stiffening matrices are subtracted (the kinematic blocks remain). Energies and momenta are
+// always those of the kinematic blocks, the exact integrals of the FE model's mass.
+//
+// Markers: the SID nodes, in their order, then the body frame itself, named "origin". A node K
+// with p_BoK_B(q) = origin(q) = o0 + Phi_K q and small rotation theta = Psi_K q (Psi_K = psi.m0)
+// has the frame
+//
+//   p_WK_W = p_WBo_W + R (o0 + Phi_K q),   R_WK = R exp(theta~) AP0,
+//
+// the exponential map making R_WK a rotation for any q (exp(theta~) = I + theta~ + O(theta^2),
+// SID's AP(q) to first order), and velocities exactly the derivatives of that pose:
+//
+//   v_WK_W = v + R (w~ s + Phi_K qdot),   w_WK_W = R (w + T(theta) Psi_K qdot),   s = o0 + Phi_K q,
+//
+// T(theta) = I + (1 - cos t)/t^2 theta~ + (t - sin t)/t^3 theta~^2 (t = |theta|), the left
+// Jacobian of SO(3) (the angular velocity of exp(theta~) in its fixed frame). A moment at the
+// node thus does the work of T^T Psi_K^T R^T tau, SID's psi^T M to first order in theta. The
+// nodes' stiffening blocks (phi.m1, psi.m1: unit nodal loads) are not kinematics and are not in
+// the Jacobian; NodeLoadStiffening gives their force.
+
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mbs/body.h"
+#include "sid/reduced_body.h"
+
+namespace flexmbs::mbs {
+
+/// Linear momentum P [kg m/s] and angular momentum about the world origin Wo [kg m^2/s] of a
+/// body, both in W: P = int v_P dm, L = int r_WoP_W x v_P dm.
+struct Momentum {
+  Eigen::Vector3d linear_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_Wo_W = Eigen::Vector3d::Zero();
+};
+
+/// A reduced flexible body in a floating frame of reference.
+class FlexibleBody final : public Body {
+ public:
+  /// The name of the marker of the body frame B (origin Bo, axes of B).
+  static constexpr std::string_view kOriginMarker = "origin";
+
+  /// The body `name` from SID data `data` restricted to the scene's modes (mode_selection.h),
+  /// with geometric stiffening on or off. Throws InputError "body '<name>': ..." for blocks of
+  /// the wrong shape or order (docs/sid.md: Me, Ge, Ke, De, ksigma of order 0; mdCM, Ct, Cr, Gr,
+  /// Oe of at most 1; J of at most 2), stiffening matrices of the wrong size or order-1 Ct
+  /// without them, a non-positive mass, linearly dependent modes or kept modes that move the
+  /// body rigidly (CheckNoRigidBodyMotion), a node named "origin" or twice, and a node whose AP0
+  /// is not a rotation.
+  FlexibleBody(std::string name, sid::ReducedBody data, bool geometric_stiffening);
+
+  const std::string& name() const override { return name_; }
+  Eigen::Index num_modes() const override { return n_; }
+
+  void MassMatrix(const ConstVectorRef& x, Eigen::Ref<Eigen::MatrixXd> M) const override;
+  void Forces(double t, const ConstVectorRef& x, const ConstVectorRef& u, const Eigen::Vector3d& g_W,
+              Eigen::Ref<Eigen::VectorXd> h) const override;
+  /// 1/2 u^T M_kin u, M_kin the mass matrix of the kinematic blocks [J].
+  double KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const override;
+  /// 1/2 q^T Ke q + ksigma^T q - g_W . (m p_WBo_W + R mdCM(q)) [J].
+  double PotentialEnergy(const ConstVectorRef& x, const Eigen::Vector3d& g_W) const override;
+
+  /// Node markers by their SID names (indices 0 .. nodes - 1), the body frame by kOriginMarker.
+  int FindMarker(std::string_view name) const override;
+  MarkerKinematics Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const override;
+
+  /// P = m v + R (w~ mdCM + Ct^T qdot), L = p x P + R (mdCM~ R^T v + J w + Cr^T qdot): the
+  /// first two block rows of M_kin u (Schwertassek & Wallrapp 1999, ch. 6).
+  Momentum ComputeMomentum(const ConstVectorRef& x, const ConstVectorRef& u) const;
+
+  /// The stiffening part of the generalised force of a force f_W [N] and moment tau_W [N m] at
+  /// node marker `marker`: [0; 0; (sum_j q_j phi1_j)^T f_B + (sum_j q_j psi1_j)^T tau_B] with
+  /// f_B = R^T f_W, tau_B = R^T tau_W (docs/sid.md, nodes: -K0F(f_B) q - K0M(tau_B) q), to add to
+  /// MarkerLoad. Zero with stiffening off, for the "origin" marker and for nodes without
+  /// stiffening blocks.
+  Eigen::VectorXd NodeLoadStiffening(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
+                                     const Eigen::Vector3d& tau_W) const;
+
+  /// The SID data as given.
+  const sid::ReducedBody& data() const { return data_; }
+  bool geometric_stiffening() const { return geometric_stiffening_; }
+
+ private:
+  /// A node marker's data, from sid::Node.
+  struct NodeFrame {
+    std::string name;
+    Eigen::Vector3d o0;                 ///< p_BoK_B at q = 0 [m]
+    Eigen::Matrix3Xd Phi;               ///< 3 x n: origin.m1 side by side [m/q]
+    Eigen::Matrix3Xd Psi;               ///< 3 x n: psi.m0 [rad/q]
+    Eigen::Matrix3d AP0;                ///< node frame in B
+    std::vector<Eigen::Matrix3Xd> phi1, psi1;  ///< stiffening blocks (empty if none or off)
+  };
+  /// The blocks at q that M_b and h_b need.
+  struct Blocks {
+    Eigen::Vector3d mdCM;
+    Eigen::Matrix3d J;
+    Eigen::MatrixX3d Ct, Cr;  ///< n x 3
+  };
+  Blocks Evaluate(const Eigen::VectorXd& q, bool with_stiffening) const;
+  /// M_kin u split as [translation (W); rotation (B); elastic].
+  Eigen::VectorXd KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const;
+
+  std::string name_;
+  sid::ReducedBody data_;
+  bool geometric_stiffening_;
+  Eigen::Index n_;
+  double mass_;
+  Eigen::Vector3d mdCM0_;
+  Eigen::Matrix3Xd mdCM1_;      ///< 3 x n
+  Eigen::Matrix3d J0_;
+  Eigen::MatrixXd J1_, J2_;     ///< 9 x n, 9 x n^2 (column j n + k: vec(m2[j n + k]))
+  Eigen::MatrixX3d Ct0_, Cr0_;  ///< n x 3
+  /// Order-1 parts as n x 3n [X_x X_y X_z], X_a(i, j) = m1[j](i, a): kinematic only, and as
+  /// M_b and h_b use them (with the stiffening matrices if geometric stiffening is on).
+  Eigen::MatrixXd Ct1_kin_, Cr1_kin_, Ct1_, Cr1_;
+  Eigen::MatrixXd Me_, Ke_, De_;
+  Eigen::VectorXd ksigma_;
+  Eigen::MatrixXd Gr0_;         ///< 3 x 3n
+  Eigen::MatrixXd Gr1_;         ///< 9n x n: column k = vec(m1[k])
+  Eigen::MatrixXd Ge0_;         ///< n x 3n
+  Eigen::MatrixXd Oe0_;         ///< n x 6
+  Eigen::MatrixXd Oe1_;         ///< n x 6n: [Oe_1 .. Oe_6], Oe_l(i, j) = m1[j](i, l), stiffening as chosen
+  std::vector<NodeFrame> nodes_;
+};
+
+}  // namespace flexmbs::mbs
