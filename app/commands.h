@@ -24,4 +24,8 @@ void AddInfoCommand(CLI::App& app);
 /// program's file format.
 void AddExportCommand(CLI::App& app);
 
+/// Registers `flexmbs simulate scene.yaml -o results.h5 [--json]`: integrate a scene and write
+/// its results file.
+void AddSimulateCommand(CLI::App& app);
+
 }  // namespace flexmbs::app

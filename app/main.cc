@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   flexmbs::app::AddCompareCommand(app);
   flexmbs::app::AddInfoCommand(app);
   flexmbs::app::AddExportCommand(app);
+  flexmbs::app::AddSimulateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

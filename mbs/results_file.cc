@@ -145,11 +145,11 @@ void ResultsWriter::Flush() {
   impl_->last_flush = std::chrono::steady_clock::now();
 }
 
-void ResultsWriter::Finish(std::string_view termination) {
+void ResultsWriter::Finish(std::string_view termination, bool complete) {
   Impl& impl = *impl_;
   FLEXMBS_CHECK(!impl.finished, "results file already finished");
   h5::Group root = impl.file.root();
-  root.SetIntegerAttribute("complete", 1);
+  root.SetIntegerAttribute("complete", complete ? 1 : 0);
   root.SetStringAttribute("termination", termination);
   impl.finished = true;
   impl.file.Commit();

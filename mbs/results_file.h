@@ -67,8 +67,9 @@ class ResultsWriter {
   void Append(const ResultsSample& sample);
   /// Writes everything so far to disk.
   void Flush();
-  /// Marks the file complete with `termination` ("end time reached", "event ...") and closes it.
-  void Finish(std::string_view termination);
+  /// Records why the run ended (`termination`: "end time reached", "failed at t = ...") and
+  /// whether it reached its end (`complete`), and closes the file.
+  void Finish(std::string_view termination, bool complete = true);
   /// Samples written so far.
   std::int64_t samples() const;
 

@@ -1,0 +1,160 @@
+// `flexmbs simulate`: load a scene, integrate it and write its results file.
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/command_support.h"
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/sha256.h"
+#include "mbs/constraint_projection.h"
+#include "mbs/flexible_body.h"
+#include "mbs/results_file.h"
+#include "mbs/scene.h"
+#include "mbs/simulation_error.h"
+
+namespace flexmbs::app {
+namespace {
+
+struct SimulateOptions {
+  std::string scene_file;
+  std::string output;
+  bool json = false;
+};
+
+mbs::ResultsLayout Layout(const mbs::Scene& scene) {
+  const mbs::MultibodySystem& system = *scene.system;
+  mbs::ResultsLayout layout;
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    mbs::ResultsLayout::Body body{system.body(b).name(), scene.body_kinds[static_cast<std::size_t>(b)], {}, {}};
+    if (const auto* flexible = dynamic_cast<const mbs::FlexibleBody*>(&system.body(b))) {
+      body.mode_names = flexible->data().mode_names;
+    }
+    for (const mbs::RecordedMarker& marker : scene.recorded_markers) {
+      if (marker.body == b) body.markers.push_back(marker.name);
+    }
+    layout.bodies.push_back(std::move(body));
+  }
+  for (int k = 0; k < system.num_joints(); ++k) {
+    layout.joints.push_back({system.joint(k).name(), std::string(mbs::JointTypeName(system.joint(k).type()))});
+  }
+  const mbs::OdeOptions& ode = scene.options.integrator;
+  layout.provenance = {{"scene_file", scene.file.string()},
+                       {"scene_sha256", Sha256OfFile(scene.file)},
+                       {"integrator", fmt::format("{}, rtol {:g}, atol {:g}", mbs::OdeMethodName(ode.method),
+                                                  ode.relative_tolerance, ode.absolute_tolerance)}};
+  for (std::size_t b = 0; b < scene.body_files.size(); ++b) {
+    if (scene.body_files[b].empty()) continue;
+    layout.provenance["body_file " + system.body(static_cast<int>(b)).name()] =
+        fmt::format("{} (sha256 {})", scene.body_files[b].string(), Sha256OfFile(scene.body_files[b]));
+  }
+  return layout;
+}
+
+/// The results of one output time.
+mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda) {
+  const mbs::MultibodySystem& system = *scene.system;
+  mbs::ResultsSample sample;
+  sample.time = t;
+  sample.marker_positions.resize(static_cast<std::size_t>(system.num_bodies()));
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    sample.positions.emplace_back(system.BodyPositions(y, b));
+    sample.velocities.emplace_back(system.BodyVelocities(y, b));
+  }
+  for (const mbs::RecordedMarker& marker : scene.recorded_markers) {
+    sample.marker_positions[static_cast<std::size_t>(marker.body)].push_back(
+        system.MarkerState(mbs::MarkerRef::OnBody(marker.body, marker.marker), y).p_WM_W);
+  }
+  for (int k = 0; k < system.num_joints(); ++k) {
+    const mbs::JointLoad load = system.ConstraintLoad(k, t, y, lambda);
+    sample.joint_forces.push_back(load.f_W);
+    sample.joint_torques.push_back(load.tau_W);
+  }
+  sample.kinetic_energy = system.KineticEnergy(y);
+  sample.potential_energy = system.PotentialEnergy(t, y);
+  return sample;
+}
+
+void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::SimulationStatistics& stats,
+            double energy_start, double energy_end) {
+  const double simulated = scene.options.end_time - scene.options.start_time;
+  const double real_time_factor = stats.wall_seconds / simulated;
+  if (options.json) {
+    nlohmann::json j;
+    j["output"] = options.output;
+    j["bodies"] = scene.system->num_bodies();
+    j["joints"] = scene.system->num_joints();
+    j["end_time"] = scene.options.end_time;
+    j["outputs"] = stats.outputs;
+    j["steps"] = stats.integrator.steps;
+    j["rhs_evaluations"] = stats.integrator.rhs_evaluations;
+    j["error_test_failures"] = stats.integrator.error_test_failures;
+    j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
+    j["energy_j"] = {{"start", energy_start}, {"end", energy_end}};
+    j["wall_seconds"] = stats.wall_seconds;
+    j["real_time_factor"] = real_time_factor;
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("wrote           {}\n", options.output);
+  fmt::print("scene           {} bodies, {} joints, {} force elements\n", scene.system->num_bodies(),
+             scene.system->num_joints(), scene.system->num_force_elements());
+  fmt::print("initial state   {}\n", stats.initial_conditions.Describe(*scene.system));
+  fmt::print("integration     {} steps, {} function evaluations, {} error-test failures\n", stats.integrator.steps,
+             stats.integrator.rhs_evaluations, stats.integrator.error_test_failures);
+  fmt::print("energy          {:.9g} J -> {:.9g} J\n", energy_start, energy_end);
+  fmt::print("time            {:.3f} s for {:g} s simulated (real-time factor {:.3g})\n", stats.wall_seconds, simulated,
+             real_time_factor);
+}
+
+void RunSimulate(const SimulateOptions& options) {
+  CheckOutputFolder("-o", options.output);
+  const mbs::Scene scene = mbs::LoadScene(options.scene_file);
+  // Checked (and projected if slightly off) before the results file exists, so a refused
+  // initial state leaves no file.
+  Eigen::VectorXd y0 = scene.initial_state;
+  mbs::ConsistencyReport initial;
+  try {
+    initial = mbs::MakeConsistent(*scene.system, scene.options.start_time, y0, scene.options.initial_conditions);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", options.scene_file, e.what()));
+  }
+  mbs::ResultsWriter writer(options.output, Layout(scene));
+  Progress progress;
+  double energy_start = std::nan(""), energy_end = std::nan("");
+  const double end_time = scene.options.end_time;
+  auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda) {
+    const mbs::ResultsSample sample = Sample(scene, t, y, lambda);
+    if (std::isnan(energy_start)) energy_start = sample.kinetic_energy + sample.potential_energy;
+    energy_end = sample.kinetic_energy + sample.potential_energy;
+    writer.Append(sample);
+    progress.Show(fmt::format("t = {:.6g} s of {:g} s", t, end_time));
+  };
+  mbs::SimulationStatistics stats;
+  try {
+    stats = mbs::Simulate(*scene.system, scene.options, y0, record);
+  } catch (const mbs::SimulationError& e) {
+    progress.Clear();
+    writer.Finish(e.what(), false);
+    throw;
+  }
+  progress.Clear();
+  writer.Finish("end time reached");
+  stats.initial_conditions = initial;
+  Report(options, scene, stats, energy_start, energy_end);
+}
+
+}  // namespace
+
+void AddSimulateCommand(CLI::App& app) {
+  auto options = std::make_shared<SimulateOptions>();
+  CLI::App* cmd = app.add_subcommand("simulate", "Integrate a scene of rigid and reduced flexible bodies and write its results");
+  cmd->add_option("scene", options->scene_file, "Scene file (YAML, docs/scene.md)")->required();
+  cmd->add_option("-o,--output", options->output, "The results file to write (.h5, docs/results.md)")->required();
+  cmd->add_flag("--json", options->json, "Print the report as JSON (keys documented in docs/cli.md)");
+  cmd->callback([options] { RunSimulate(*options); });
+}
+
+}  // namespace flexmbs::app

@@ -1,0 +1,194 @@
+#include "mbs/scene.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "mbs/force_element.h"
+#include "mbs/joint.h"
+#include "mbs/scene_bodies.h"
+#include "mbs/scene_values.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+/// Runs `build`, turning an InputError of the mbs classes into one naming `node`.
+template <typename Build>
+auto Within(const YamlNode& node, Build build) -> decltype(build()) {
+  try {
+    return build();
+  } catch (const InputError& e) {
+    node.Fail(e.what());
+  }
+}
+
+/// One end of a joint or force element: `{body: ground, position: [...], rotation: {...}}` or
+/// `{body: <name>, marker: <name>}`.
+MarkerRef ReadMarkerRef(const YamlNode& node, const MultibodySystem& system) {
+  const std::string body = node.Required("body").AsString();
+  if (body == "ground") {
+    node.RejectUnknownKeys({"body", "position", "rotation"});
+    return MarkerRef::Ground(node.Has("position") ? ReadVector3(node.Required("position")) : Eigen::Vector3d::Zero(),
+                             node.Has("rotation") ? ReadRotation(node.Required("rotation")) : Eigen::Matrix3d::Identity());
+  }
+  node.RejectUnknownKeys({"body", "marker"});
+  return Within(node, [&] { return system.Marker(body, node.Required("marker").AsString()); });
+}
+
+void ReadJoint(const YamlNode& node, MultibodySystem* system) {
+  node.RejectUnknownKeys({"name", "type", "i", "j", "driver"});
+  const std::string name = node.Required("name").AsString();
+  const YamlNode type = node.Required("type");
+  const JointType joint_type = Within(type, [&] { return ParseJointType(type.AsString()); });
+  const MarkerRef i = ReadMarkerRef(node.Required("i"), *system);
+  const MarkerRef j = ReadMarkerRef(node.Required("j"), *system);
+  const TimeFunctionPtr driver = node.Has("driver") ? ReadTimeFunction(node.Required("driver")) : nullptr;
+  Within(node, [&] { return system->AddJoint(Joint(name, joint_type, i, j, driver)); });
+}
+
+/// Three time functions (numbers or functions), or zeros if `key` is absent.
+std::array<TimeFunctionPtr, 3> ReadFunctionVector(const YamlNode& node, std::string_view key) {
+  std::array<TimeFunctionPtr, 3> functions{MakeConstant(0.0), MakeConstant(0.0), MakeConstant(0.0)};
+  if (!node.Has(key)) return functions;
+  const YamlNode item = node.Required(key);
+  const std::vector<YamlNode> components = item.AsList();
+  if (components.size() != 3) item.Fail(fmt::format("expected 3 components, got {}", components.size()));
+  for (std::size_t a = 0; a < 3; ++a) functions[a] = ReadTimeFunction(components[a]);
+  return functions;
+}
+
+Eigen::Matrix<double, 6, 1> ReadVector6(const YamlNode& node) {
+  const std::vector<YamlNode> values = node.AsList();
+  if (values.size() != 6) node.Fail(fmt::format("expected 6 numbers, got {}", values.size()));
+  Eigen::Matrix<double, 6, 1> vector;
+  for (int k = 0; k < 6; ++k) vector(k) = values[static_cast<std::size_t>(k)].AsDouble();
+  return vector;
+}
+
+void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
+  const std::string name = node.Required("name").AsString();
+  const YamlNode type_node = node.Required("type");
+  const std::string type = type_node.AsString();
+  std::unique_ptr<ForceElement> element;
+  if (type == "point_load") {
+    node.RejectUnknownKeys({"name", "type", "at", "force", "torque", "frame"});
+    const MarkerRef at = ReadMarkerRef(node.Required("at"), *system);
+    LoadFrame frame = LoadFrame::kWorld;
+    if (node.Has("frame")) {
+      const YamlNode frame_node = node.Required("frame");
+      const std::string frame_name = frame_node.AsString();
+      if (frame_name == "marker") {
+        frame = LoadFrame::kMarker;
+      } else if (frame_name != "world") {
+        frame_node.Fail(fmt::format("'{}' must be one of: world, marker", frame_name));
+      }
+    }
+    element = Within(node, [&] {
+      return std::make_unique<PointLoad>(name, at, ReadFunctionVector(node, "force"), ReadFunctionVector(node, "torque"),
+                                         frame);
+    });
+  } else if (type == "spring_damper") {
+    node.RejectUnknownKeys({"name", "type", "a", "b", "free_length", "stiffness", "damping"});
+    const MarkerRef a = ReadMarkerRef(node.Required("a"), *system), b = ReadMarkerRef(node.Required("b"), *system);
+    element = Within(node, [&] {
+      return std::make_unique<SpringDamper>(name, a, b, node.Required("free_length").AsDouble(),
+                                            node.Required("stiffness").AsDouble(),
+                                            node.Has("damping") ? node.Required("damping").AsDouble() : 0.0);
+    });
+  } else if (type == "bushing") {
+    node.RejectUnknownKeys({"name", "type", "i", "j", "stiffness", "damping"});
+    const MarkerRef i = ReadMarkerRef(node.Required("i"), *system), j = ReadMarkerRef(node.Required("j"), *system);
+    element = Within(node, [&] {
+      return std::make_unique<Bushing>(name, i, j, ReadVector6(node.Required("stiffness")),
+                                       node.Has("damping") ? ReadVector6(node.Required("damping"))
+                                                           : Eigen::Matrix<double, 6, 1>::Zero());
+    });
+  } else {
+    type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing", type));
+  }
+  Within(node, [&] { return system->AddForceElement(std::move(element)); });
+}
+
+SimulationOptions ReadSimulation(const YamlNode& node) {
+  node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
+                          "max_step", "fixed_step", "baumgarte_frequency"});
+  SimulationOptions options;
+  options.end_time = node.Required("end_time").AsDouble();
+  if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
+  options.output_interval = node.Has("output_interval") ? node.Required("output_interval").AsDouble()
+                                                        : options.end_time / 100.0;
+  if (options.output_interval <= 0.0) {
+    node.Required("output_interval").Fail(fmt::format("{:g} must be > 0", options.output_interval));
+  }
+  if (node.Has("method")) {
+    const YamlNode method = node.Required("method");
+    const std::string name = method.AsString();
+    if (name == "implicit") {
+      options.integrator.method = OdeMethod::kImplicit;
+    } else if (name != "explicit") {
+      method.Fail(fmt::format("'{}' must be one of: explicit, implicit", name));
+    }
+  }
+  auto positive = [&](std::string_view key, double* value) {
+    if (!node.Has(key)) return;
+    const YamlNode item = node.Required(key);
+    *value = item.AsDouble();
+    if (*value <= 0.0) item.Fail(fmt::format("{:g} must be > 0", *value));
+  };
+  positive("relative_tolerance", &options.integrator.relative_tolerance);
+  positive("absolute_tolerance", &options.integrator.absolute_tolerance);
+  positive("max_step", &options.integrator.max_step);
+  positive("fixed_step", &options.integrator.fixed_step);
+  positive("baumgarte_frequency", &options.baumgarte_frequency);
+  return options;
+}
+
+/// `output: {markers: [body.marker, ...]}`.
+std::vector<RecordedMarker> ReadOutput(const YamlNode& node, const MultibodySystem& system) {
+  node.RejectUnknownKeys({"markers"});
+  std::vector<RecordedMarker> markers;
+  if (!node.Has("markers")) return markers;
+  for (const YamlNode& item : node.Required("markers").AsList()) {
+    const std::string text = item.AsString();
+    const std::size_t dot = text.find('.');
+    if (dot == std::string::npos) item.Fail(fmt::format("'{}' must be <body>.<marker>", text));
+    const MarkerRef ref = Within(item, [&] { return system.Marker(text.substr(0, dot), text.substr(dot + 1)); });
+    markers.push_back({ref.body, ref.marker, text.substr(dot + 1)});
+  }
+  return markers;
+}
+
+}  // namespace
+
+Scene LoadScene(const std::filesystem::path& file) {
+  const YamlNode root = YamlNode::LoadFile(file);
+  root.RejectUnknownKeys({"gravity", "bodies", "joints", "forces", "simulation", "output"});
+  Scene scene;
+  scene.file = file;
+  scene.system = std::make_unique<MultibodySystem>(root.Has("gravity") ? ReadVector3(root.Required("gravity"))
+                                                                         : Eigen::Vector3d(0.0, 0.0, -9.81));
+  std::vector<SceneBody> bodies;
+  const YamlNode bodies_node = root.Required("bodies");
+  for (const auto& [name, item] : bodies_node.AsMap()) {
+    if (name == "ground") item.Fail("'ground' is the fixed frame; give the body another name");
+    bodies.push_back(ReadSceneBody(name, item, file.parent_path()));
+    SceneBody& body = bodies.back();
+    scene.body_kinds.push_back(body.kind);
+    scene.body_files.push_back(body.file);
+    Within(item, [&] { return scene.system->AddBody(std::move(body.body)); });
+  }
+  if (root.Has("joints")) {
+    for (const YamlNode& joint : root.Required("joints").AsList()) ReadJoint(joint, scene.system.get());
+  }
+  if (root.Has("forces")) {
+    for (const YamlNode& element : root.Required("forces").AsList()) ReadForceElement(element, scene.system.get());
+  }
+  scene.initial_state = scene.system->NeutralState();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    scene.system->SetBodyState(static_cast<int>(b), bodies[b].x0, bodies[b].u0, scene.initial_state);
+  }
+  scene.options = ReadSimulation(root.Required("simulation"));
+  if (root.Has("output")) scene.recorded_markers = ReadOutput(root.Required("output"), *scene.system);
+  return scene;
+}
+
+}  // namespace flexmbs::mbs

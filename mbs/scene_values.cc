@@ -1,0 +1,94 @@
+#include "mbs/scene_values.h"
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+std::vector<double> ReadNumbers(const YamlNode& node) {
+  std::vector<double> values;
+  for (const YamlNode& item : node.AsList()) values.push_back(item.AsDouble());
+  return values;
+}
+
+double OptionalDouble(const YamlNode& node, std::string_view key, double fallback) {
+  return node.Has(key) ? node.Required(key).AsDouble() : fallback;
+}
+
+/// Runs a factory of time_function.h, turning its InputError into one naming `node`.
+template <typename Factory>
+TimeFunctionPtr Make(const YamlNode& node, Factory factory) {
+  try {
+    return factory();
+  } catch (const InputError& e) {
+    node.Fail(e.what());
+  }
+}
+
+}  // namespace
+
+Eigen::Vector3d ReadVector3(const YamlNode& node) {
+  const std::vector<YamlNode> xyz = node.AsList();
+  if (xyz.size() != 3) node.Fail(fmt::format("expected 3 numbers, got {}", xyz.size()));
+  return Eigen::Vector3d(xyz[0].AsDouble(), xyz[1].AsDouble(), xyz[2].AsDouble());
+}
+
+Eigen::Matrix3d ReadRotation(const YamlNode& node) {
+  node.RejectUnknownKeys({"axis", "angle"});
+  const YamlNode axis_node = node.Required("axis");
+  const Eigen::Vector3d axis = ReadVector3(axis_node);
+  if (axis.norm() == 0.0) axis_node.Fail("a rotation axis must not be zero");
+  return Eigen::AngleAxisd(node.Required("angle").AsDouble(), axis.normalized()).toRotationMatrix();
+}
+
+TimeFunctionPtr ReadTimeFunction(const YamlNode& node) {
+  if (!node.Has("ramp") && !node.Has("polynomial") && !node.Has("harmonic") && !node.Has("smooth_step") &&
+      !node.Has("table")) {
+    return MakeConstant(node.AsDouble());  // a number, or an InputError naming the item
+  }
+  node.RejectUnknownKeys({"ramp", "polynomial", "harmonic", "smooth_step", "table"});
+  if (node.AsMap().size() != 1) node.Fail("a time function is exactly one of ramp, polynomial, harmonic, smooth_step, table");
+  if (node.Has("ramp")) {
+    const YamlNode ramp = node.Required("ramp");
+    ramp.RejectUnknownKeys({"offset", "slope"});
+    return Make(ramp, [&] { return MakeRamp(OptionalDouble(ramp, "offset", 0.0), ramp.Required("slope").AsDouble()); });
+  }
+  if (node.Has("polynomial")) {
+    const YamlNode polynomial = node.Required("polynomial");
+    return Make(polynomial, [&] { return MakePolynomial(ReadNumbers(polynomial)); });
+  }
+  if (node.Has("harmonic")) {
+    const YamlNode harmonic = node.Required("harmonic");
+    harmonic.RejectUnknownKeys({"amplitude", "angular_frequency", "phase", "offset"});
+    return Make(harmonic, [&] {
+      return MakeHarmonic(harmonic.Required("amplitude").AsDouble(), harmonic.Required("angular_frequency").AsDouble(),
+                          OptionalDouble(harmonic, "phase", 0.0), OptionalDouble(harmonic, "offset", 0.0));
+    });
+  }
+  if (node.Has("smooth_step")) {
+    const YamlNode step = node.Required("smooth_step");
+    step.RejectUnknownKeys({"t0", "f0", "t1", "f1", "order"});
+    SmoothStepOrder order = SmoothStepOrder::kQuintic;
+    if (step.Has("order")) {
+      const YamlNode order_node = step.Required("order");
+      const std::string name = order_node.AsString();
+      if (name == "cubic") {
+        order = SmoothStepOrder::kCubic;
+      } else if (name != "quintic") {
+        order_node.Fail(fmt::format("'{}' must be one of: cubic, quintic", name));
+      }
+    }
+    return Make(step, [&] {
+      return MakeSmoothStep(step.Required("t0").AsDouble(), step.Required("f0").AsDouble(),
+                            step.Required("t1").AsDouble(), step.Required("f1").AsDouble(), order);
+    });
+  }
+  const YamlNode table = node.Required("table");
+  table.RejectUnknownKeys({"times", "values"});
+  return Make(table, [&] { return MakeCubicSpline(ReadNumbers(table.Required("times")), ReadNumbers(table.Required("values"))); });
+}
+
+}  // namespace flexmbs::mbs

@@ -1,0 +1,216 @@
+// End-to-end tests of `flexmbs simulate` (docs/cli.md, docs/scene.md): a rigid pendulum and a
+// free-flying reduced flexible cube through the command line into results files, checked
+// against analytic values and conservation laws; bad scenes give one line and exit 2 and leave
+// no results file; a mechanism driven into a singular configuration stops with the time and
+// keeps its results up to there.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/h5_file.h"
+#include "tests/app/flexmbs_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using flexmbs::testing::ExpectInputError;
+using flexmbs::testing::Outcome;
+
+const fs::path kData = fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data";
+constexpr int kExitOk = 0;
+constexpr int kExitOtherError = 1;  // docs/cli.md: the simulation failed (a valid scene)
+constexpr double kGravity = 9.81;
+
+// A uniform rod (1 kg, 1 m along x of B) hinged at B's origin about W's y axis: the hinge's
+// z axis (free axis) is turned onto y by a rotation about x by -pi/2 on both sides.
+const char* kPendulum = R"(
+gravity: [0, 0, -9.81]
+bodies:
+  rod:
+    rigid:
+      mass: 1.0
+      center_of_mass: [0.5, 0, 0]
+      inertia: [[1e-4, 0, 0], [0, 0.0833333333333333, 0], [0, 0, 0.0833333333333333]]
+    markers:
+      pivot: {rotation: {axis: [1, 0, 0], angle: -1.5707963267948966}}
+      tip: {position: [1, 0, 0]}
+joints:
+  - name: hinge
+    type: revolute
+    i: {body: ground, rotation: {axis: [1, 0, 0], angle: -1.5707963267948966}}
+    j: {body: rod, marker: pivot}
+simulation: {end_time: 1.0, output_interval: 0.01, relative_tolerance: 1e-10, absolute_tolerance: 1e-12}
+output: {markers: [rod.tip]}
+)";
+
+class SimulateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::exists(flexmbs::testing::kFlexmbsBinary)) << "flexmbs is not built";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / (std::string("flexmbs_simulate_") + info->name() + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  Outcome Run(const std::vector<std::string>& args) const { return flexmbs::testing::RunFlexmbs(args, dir_); }
+  fs::path Write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  // Runs the scene `text`; returns the outcome, the results file in results_.
+  Outcome Simulate(const std::string& text, std::vector<std::string> extra = {}) {
+    results_ = dir_ / "results.h5";
+    std::vector<std::string> args = {"simulate", Write("scene.yaml", text).string(), "-o", results_.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return Run(args);
+  }
+  fs::path dir_, results_;
+};
+
+TEST_F(SimulateTest, PendulumResultsHoldEnergyAndTheAnalyticHingeLoad) {
+  const Outcome run = Simulate(kPendulum, {"--json"});
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["outputs"], 101);
+  const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+  const flexmbs::h5::Group root = file.root();
+  EXPECT_EQ(root.GetIntegerAttribute("complete"), 1);
+  const Eigen::VectorXd time = root.ReadVector("time");
+  ASSERT_EQ(time.size(), 101);
+  EXPECT_DOUBLE_EQ(time(100), 1.0);
+  // Released horizontally from rest: the hinge carries m g / 4 upwards at t = 0 (the centre of
+  // mass falls with 3 g / 4 for a uniform rod hinged at its end).
+  const Eigen::MatrixXd force = root.OpenGroup("joints").OpenGroup("hinge").ReadMatrix("force");
+  EXPECT_NEAR(force(0, 2), kGravity / 4.0, 1e-9);
+  EXPECT_NEAR(force(0, 0), 0.0, 1e-9);
+  // Energy is conserved to the integrator's tolerance; the tip stays 1 m from the hinge.
+  const Eigen::VectorXd energy = root.OpenGroup("energy").ReadVector("total");
+  EXPECT_LT((energy.array() - energy(0)).abs().maxCoeff(), 1e-7);
+  const Eigen::MatrixXd tip = root.OpenGroup("bodies").OpenGroup("rod").OpenGroup("markers").ReadMatrix("tip");
+  EXPECT_LT((tip.rowwise().norm().array() - 1.0).abs().maxCoeff(), 1e-9);
+  // The tip passes its lowest point after a quarter period of the pendulum released at 90
+  // degrees: T / 4 = sqrt(I / (m g d)) K(sin 45 deg) = 0.48329 s (I = m L^2 / 3, d = L / 2),
+  // to within the output interval.
+  Eigen::Index lowest = 0;
+  tip.col(2).minCoeff(&lowest);
+  const double quarter_period = std::sqrt((1.0 / 3.0) / (kGravity * 0.5)) * std::comp_ellint_1(std::sqrt(0.5));
+  EXPECT_NEAR(time(lowest), quarter_period, 0.01);
+  EXPECT_NEAR(tip(lowest, 2), -1.0, 1e-3);
+}
+
+TEST_F(SimulateTest, FreeFlyingFlexibleCubeConservesEnergy) {
+  const fs::path body = Write("cube.yaml", "name: cube\ngeometry: {file: " + (kData / "cube.geo").string() +
+                                               ", mesh_size: 0.05, element_order: 1}\n"
+                                               "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, "
+                                               "density: 7850}}\nmaterial: steel\nnode_sets: [bottom, top]\n"
+                                               "reduction: {method: free_free, modes: 2}\n"
+                                               "sid: {markers: [{name: lid, node_set: top, coupling: averaging}]}\n");
+  const Outcome reduce = Run({"reduce", body.string(), "-o", (dir_ / "cube.sid.h5").string()});
+  ASSERT_EQ(reduce.exit_code, kExitOk) << reduce.err;
+  const Outcome run = Simulate(R"(
+gravity: [0, 0, 0]
+bodies:
+  cube:
+    flexible: {file: cube.sid.h5, modes: {kinds: [normal]}}
+    initial: {velocity: [1, 0, 0], angular_velocity: [0, 2, 5], modal_velocities: [0.01, -0.02]}
+simulation: {end_time: 0.01, output_interval: 0.001, relative_tolerance: 1e-10, absolute_tolerance: 1e-14}
+output: {markers: [cube.lid]}
+)");
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+  const flexmbs::h5::Group cube = file.root().OpenGroup("bodies").OpenGroup("cube");
+  EXPECT_EQ(cube.ReadStrings("mode_names"), (std::vector<std::string>{"normal_1", "normal_2"}));
+  EXPECT_EQ(cube.ReadMatrix("modal_coordinates").cols(), 2);
+  const Eigen::VectorXd energy = file.root().OpenGroup("energy").ReadVector("total");
+  EXPECT_GT(energy(0), 0.0);
+  EXPECT_LT((energy.array() - energy(0)).abs().maxCoeff(), 1e-8 * energy(0));
+  // The body frame moves with the initial velocity (no forces; the free-free modes carry no
+  // momentum of their own, so Bo's drift is only what the rotation of mdCM adds: small here).
+  EXPECT_NEAR(cube.ReadMatrix("position")(10, 0), 0.01, 1e-3);
+}
+
+TEST_F(SimulateTest, FailedIntegrationStopsWithTheTimeAndKeepsItsResults) {
+  // A spring of 1e9 N/m on the pendulum's tip integrated explicitly with fixed steps of 1 ms:
+  // far outside the stability region (omega h ~ 30), so the state blows up within a few steps.
+  const Outcome run = Simulate(std::string(kPendulum).replace(
+      std::string(kPendulum).find("simulation:"), std::string::npos,
+      "forces:\n  - {name: stiff, type: spring_damper, a: {body: rod, marker: tip}, b: {body: ground, position: [1, 0, 0.1]},"
+      " free_length: 0, stiffness: 1e9}\n"
+      "simulation: {end_time: 1.0, output_interval: 0.001, fixed_step: 0.001}\n"));
+  EXPECT_EQ(run.exit_code, kExitOtherError) << run.err;
+  EXPECT_NE(run.err.find("t = "), std::string::npos) << run.err;
+  ASSERT_TRUE(fs::exists(results_));
+  const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+  EXPECT_EQ(file.root().GetIntegerAttribute("complete"), 0);
+  EXPECT_NE(file.root().GetStringAttribute("termination").find("t = "), std::string::npos);
+  const Eigen::VectorXd time = file.root().ReadVector("time");
+  ASSERT_GE(time.size(), 1);
+  EXPECT_LT(time(time.size() - 1), 1.0);
+}
+
+// Bad scenes: one line naming the scene file and item, exit 2, no results file.
+class BadSceneTest : public SimulateTest {
+ protected:
+  void ExpectRefused(const std::string& text, const std::string& expected_part) {
+    ExpectInputError(Simulate(text), expected_part);
+    EXPECT_FALSE(fs::exists(results_));
+  }
+};
+
+TEST_F(BadSceneTest, UnknownBodyInAJointIsNamed) {
+  std::string text = kPendulum;
+  text.replace(text.find("j: {body: rod"), 13, "j: {body: rox");
+  ExpectRefused(text, "joints[0].j: marker 'pivot' of body 'rox': no such body");
+}
+
+TEST_F(BadSceneTest, UnknownMarkerIsNamed) {
+  std::string text = kPendulum;
+  text.replace(text.find("marker: pivot"), 13, "marker: pivox");
+  ExpectRefused(text, "pivox");
+}
+
+TEST_F(BadSceneTest, JointFromABodyToItselfIsRefused) {
+  std::string text = kPendulum;
+  text.replace(text.find("i: {body: ground, rotation: {axis: [1, 0, 0], angle: -1.5707963267948966}}"), 75,
+               "i: {body: rod, marker: tip}");
+  ExpectRefused(text, "scene.yaml:");
+}
+
+TEST_F(BadSceneTest, NonFiniteNumberIsNamed) {
+  std::string text = kPendulum;
+  text.replace(text.find("mass: 1.0"), 9, "mass: .nan");
+  ExpectRefused(text, "bodies.rod.rigid.mass");
+}
+
+TEST_F(BadSceneTest, BodyFileOfAnotherSchemaIsNamed) {
+  flexmbs::h5::File old = flexmbs::h5::File::Create(dir_ / "old.sid.h5");
+  old.root().SetStringAttribute("format", "flexmbs-sid");
+  old.root().SetIntegerAttribute("schema_version", 1);
+  old.Commit();
+  ExpectRefused("bodies:\n  b: {flexible: {file: old.sid.h5}}\nsimulation: {end_time: 1}\n",
+                "schema_version 1 is not supported");
+}
+
+TEST_F(BadSceneTest, UnknownKeyAndMissingEndTimeAreNamed) {
+  ExpectRefused(std::string(kPendulum) + "colour: red\n", "colour");
+  std::string text = kPendulum;
+  text.replace(text.find("end_time: 1.0, "), 15, "");
+  ExpectRefused(text, "simulation: missing key 'end_time'");
+}
+
+TEST_F(BadSceneTest, InconsistentInitialStateIsRefusedNamingTheJoint) {
+  std::string text = kPendulum;
+  text.replace(text.find("pivot: {rotation"), 16, "pivot: {position: [0, 0.01, 0], rotation");
+  ExpectRefused(text, "scene.yaml: inconsistent initial conditions at t = 0 s: positions violate joint 'hinge' by 0.01");
+}
+
+}  // namespace
