@@ -60,10 +60,34 @@ struct StiffeningResult {
 /// Precondition: a valid model.
 Eigen::MatrixXd BuildStiffeningLoads(const FeModel& model, std::span<const InterfaceSpec> nodes);
 
+/// How ProjectedStiffeningMatrices forms Phi^T K_G(sigma(x_c)) Phi; the results agree to round-off.
+enum class StiffeningProjection {
+  /// kAssembled where AssembledProjectionIsFaster, else kElementByElement.
+  kAuto,
+  /// fem::ProjectedGeometricStiffness: per quadrature point, O(points n^2 (C + 6)) in all.
+  kElementByElement,
+  /// Per case: K_G assembled (fem::AssembleGeometricStiffness), its scalar part K_Gs
+  /// (K_G = K_Gs (x) I_3), then sum_a Phi_a^T K_Gs Phi_a over the components a of the modes:
+  /// O(C (nnz(K_G) + nnz(K_Gs) n + num_nodes n^2)) in all.
+  kAssembled,
+};
+
+/// Whether kAssembled is the faster way for n modes and C load cases: n >= min(24 + C / 3, 40)
+/// (the measurement: geometric_stiffening.cc).
+bool AssembledProjectionIsFaster(Eigen::Index num_modes, Eigen::Index num_cases);
+
+/// Phi^T K_G(sigma(x_c)) Phi (n x n, symmetric) [N/m per unit modal coordinate squared, per unit
+/// load] for every column x_c of X (3 num_nodes x C) [m], Phi (3 num_nodes x n) [m per unit
+/// modal coordinate]; a zero column gives a zero matrix. Throws InputError for rows other than
+/// the mesh's DOF and for an element with a non-positive Jacobian (fem/geometric_stiffness.h).
+std::vector<Eigen::MatrixXd> ProjectedStiffeningMatrices(const fem::Mesh& mesh, const Eigen::MatrixXd& X,
+                                                         const Eigen::MatrixXd& Phi,
+                                                         StiffeningProjection how = StiffeningProjection::kAuto);
+
 /// K0t, K0r, K0omega of the body and K0F, K0M of every node in `nodes` for the basis Phi
 /// (3 num_nodes x n), all load cases solved with one factorisation (SolveStaticResponses) of
-/// the body held as `held_by` (the basis's held_by), and projected element by element
-/// (fem::ProjectedGeometricStiffness). `model` is the FE model of `mesh` with its consistent
+/// the body held as `held_by` (the basis's held_by), and projected by
+/// ProjectedStiffeningMatrices (kAuto). `model` is the FE model of `mesh` with its consistent
 /// mass matrix. Throws a one-line InputError for: a bad model, a mesh of another node count,
 /// a basis of another size, bad nodes (BuildStiffeningLoads), conditions that do not hold the
 /// body, and the static solve's errors.

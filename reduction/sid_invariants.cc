@@ -58,29 +58,6 @@ sid::TaylorMatrix Order0(MatrixXd m0) { return {std::move(m0), {}, {}}; }
 
 }  // namespace
 
-const std::array<Eigen::Matrix3d, 6>& CentrifugalBasis() {
-  static const std::array<Matrix3d, 6> W = [] {
-    std::array<Matrix3d, 6> w;
-    w[0] = Eigen::Vector3d(0, -1, -1).asDiagonal();
-    w[1] = Eigen::Vector3d(-1, 0, -1).asDiagonal();
-    w[2] = Eigen::Vector3d(-1, -1, 0).asDiagonal();
-    for (int l = 0; l < 3; ++l) {
-      const int a = l, b = (l + 1) % 3;  // (1, 2), (2, 3), (3, 1)
-      w[static_cast<std::size_t>(3 + l)].setZero();
-      w[static_cast<std::size_t>(3 + l)](a, b) = 1.0;
-      w[static_cast<std::size_t>(3 + l)](b, a) = 1.0;
-    }
-    return w;
-  }();
-  return W;
-}
-
-Eigen::Matrix<double, 6, 1> AngularVelocityProducts(const Eigen::Vector3d& w) {
-  Eigen::Matrix<double, 6, 1> w_q;
-  w_q << w(0) * w(0), w(1) * w(1), w(2) * w(2), w(0) * w(1), w(1) * w(2), w(2) * w(0);
-  return w_q;
-}
-
 Eigen::SparseMatrix<double> ScalarMassMatrix(const Eigen::SparseMatrix<double>& M) {
   FLEXMBS_CHECK(M.rows() == M.cols() && M.rows() % 3 == 0, "mass matrix must be 3N x 3N");
   const Index N = M.rows() / 3;

@@ -30,6 +30,7 @@
 #include <Eigen/SparseCore>
 #include <array>
 
+#include "core/centrifugal.h"  // CentrifugalBasis, AngularVelocityProducts (Oe's columns)
 #include "sid/taylor.h"
 
 namespace flexmbs::reduction {
@@ -63,13 +64,6 @@ struct InertiaInvariants {
   /// = int Phi^T W_l r dm; m1[j](i, l) = int phi_i^T W_l phi_j dm (kinematic part).
   sid::TaylorMatrix Oe;
 };
-
-/// W_1 .. W_6 with w~ w~ = sum_l w_q(l) W_l (AngularVelocityProducts): diag(0, -1, -1),
-/// diag(-1, 0, -1), diag(-1, -1, 0), e1 e2^T + e2 e1^T, e2 e3^T + e3 e2^T, e3 e1^T + e1 e3^T.
-const std::array<Eigen::Matrix3d, 6>& CentrifugalBasis();
-
-/// w_q = [w1^2, w2^2, w3^2, w1 w2, w2 w3, w3 w1] [rad^2/s^2] of an angular velocity w [rad/s].
-Eigen::Matrix<double, 6, 1> AngularVelocityProducts(const Eigen::Vector3d& w);
 
 /// The scalar mass matrix M_s (N x N) of a mass matrix M (3N x 3N, DOF 3 node + axis) with
 /// M = M_s (x) I_3, as every FE mass matrix of flexmbs (consistent or lumped). Checks that

@@ -329,6 +329,36 @@ TEST(GeometricStiffness, ElementByElementProjectionEqualsTheProjectedAssembledMa
   }
 }
 
+TEST(GeometricStiffness, AssembledAndElementByElementStiffeningMatricesAgree) {
+  // The distorted mixed box again; the second field is zero (a load carried by the hold).
+  fem::testing::BoxMesh box = fem::testing::StructuredBox(ElementType::kHex20, {3, 2, 2}, {0.3, 0.1, 0.1},
+                                                          ElementType::kWedge15, 2);
+  std::mt19937 rng(5);
+  fem::testing::DistortInterior(&box, 0.15, 0.05, &rng);
+  fem::Mesh& mesh = box.mesh;
+  for (fem::ElementBlock& block : mesh.blocks) block.material = kSteel;
+  Eigen::MatrixXd U = 1e-4 * Eigen::MatrixXd::Random(mesh.num_dofs(), 3);
+  U.col(1).setZero();
+  using reduction::StiffeningProjection;
+  Index first_assembled = 1;  // the fewest modes for which kAuto assembles 3 cases
+  while (!reduction::AssembledProjectionIsFaster(first_assembled, 3)) ++first_assembled;
+  for (const Index n : {first_assembled - 1, first_assembled}) {
+    const Eigen::MatrixXd Phi = Eigen::MatrixXd::Random(mesh.num_dofs(), n);
+    const auto element = reduction::ProjectedStiffeningMatrices(mesh, U, Phi, StiffeningProjection::kElementByElement);
+    const auto assembled = reduction::ProjectedStiffeningMatrices(mesh, U, Phi, StiffeningProjection::kAssembled);
+    const auto automatic = reduction::ProjectedStiffeningMatrices(mesh, U, Phi);
+    ASSERT_EQ(assembled.size(), 3u);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double scale = element[0].norm();
+      EXPECT_LE((assembled[c] - element[c]).norm(), kRoundOff * scale) << "n " << n << ", field " << c;
+      EXPECT_EQ(assembled[c], assembled[c].transpose());
+      // kAuto picks one of the two: the same numbers bit for bit.
+      EXPECT_EQ(automatic[c], n < first_assembled ? element[c] : assembled[c]);
+    }
+    EXPECT_TRUE(assembled[1].isZero(0.0));
+  }
+}
+
 // ---- Buckling of a cantilever column -----------------------------------------------------
 
 constexpr double kColumnLength = 1.0, kColumnSide = 0.02;
