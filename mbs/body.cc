@@ -7,9 +7,21 @@ namespace flexmbs::mbs {
 Eigen::VectorXd Body::MarkerLoad(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
                                  const Eigen::Vector3d& tau_W) const {
   const MarkerKinematics kinematics = Marker(marker, x, Eigen::VectorXd::Zero(num_velocities()));
+  return GeneralizedForce(kinematics, f_W, tau_W);
+}
+
+bool Body::AddAccelerationDependentForces(const ConstVectorRef& /*x*/, const ConstVectorRef& /*u*/,
+                                          const ConstVectorRef& /*u_dot*/, Eigen::Ref<Eigen::VectorXd> /*h*/) const {
+  return false;
+}
+
+Eigen::VectorXd GeneralizedForce(const MarkerKinematics& kinematics, const Eigen::Vector3d& f_W,
+                                 const Eigen::Vector3d& tau_W) {
   Eigen::Matrix<double, 6, 1> load;
   load << f_W, tau_W;
-  return kinematics.jacobian.transpose() * load;
+  Eigen::VectorXd h = kinematics.jacobian.transpose() * load;
+  if (kinematics.load_stiffening.size() > 0) h += kinematics.load_stiffening * load;
+  return h;
 }
 
 void PositionDerivative(const ConstVectorRef& x, const ConstVectorRef& u, Eigen::Ref<Eigen::VectorXd> xdot) {

@@ -16,7 +16,8 @@ using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
 
 /// The pose and velocity of a marker frame M on a body, and how they depend on the body's
 /// velocities u: [v_WM_W; w_WM_W] = jacobian * u, and the part of the marker's acceleration
-/// that does not depend on u̇: [a_WM_W; alpha_WM_W] = jacobian * u̇ + bias.
+/// that does not depend on u̇: [a_WM_W; alpha_WM_W] = jacobian * u̇ + bias. A load [f_W; tau_W]
+/// at the marker's origin has the generalised force (jacobian^T + load_stiffening) [f_W; tau_W].
 struct MarkerKinematics {
   Eigen::Vector3d p_WM_W = Eigen::Vector3d::Zero();      ///< position [m]
   Eigen::Matrix3d R_WM = Eigen::Matrix3d::Identity();    ///< orientation
@@ -24,6 +25,10 @@ struct MarkerKinematics {
   Eigen::Vector3d w_WM_W = Eigen::Vector3d::Zero();      ///< angular velocity [rad/s]
   Eigen::Matrix<double, 6, Eigen::Dynamic> jacobian;     ///< 6 x n_u
   Eigen::Matrix<double, 6, 1> bias = Eigen::Matrix<double, 6, 1>::Zero();  ///< [m/s^2; rad/s^2]
+  /// n_u x 6, or empty (0 x 0) for none: the part of a load's generalised force that is not
+  /// the virtual work of the marker's motion, the geometric stiffening of a flexible body by a
+  /// load at one of its nodes (FlexibleBody; docs/sid.md, nodes) [the units of jacobian^T].
+  Eigen::Matrix<double, Eigen::Dynamic, 6> load_stiffening;
 };
 
 /// One body. Implementations are immutable after construction; all state is passed in.
@@ -41,9 +46,17 @@ class Body {
   /// The mass matrix M_b(x) (n_u x n_u, symmetric positive definite) [kg, kg m, kg m^2, ...].
   virtual void MassMatrix(const ConstVectorRef& x, Eigen::Ref<Eigen::MatrixXd> M) const = 0;
   /// The right-hand side h_b(t, x, u) of M_b u̇ = h_b: gravity g_W [m/s^2], velocity-dependent
-  /// inertia forces, elastic and damping forces (docs/mbs.md), without joint or force-element forces.
+  /// inertia forces, elastic and damping forces (docs/mbs.md), without joint or force-element forces
+  /// and without the acceleration-dependent forces below.
   virtual void Forces(double t, const ConstVectorRef& x, const ConstVectorRef& u, const Eigen::Vector3d& g_W,
                       Eigen::Ref<Eigen::VectorXd> h) const = 0;
+  /// Adds to h (size n_u) the forces that depend linearly on the accelerations u_dot but are
+  /// left out of the symmetric M_b: a flexible body's geometric stiffening by the inertia loads
+  /// of its frame's acceleration (docs/mbs.md, "Geometric stiffening"). The system solves with
+  /// u_dot from a first solve without them (MultibodySystem::Accelerations). Returns whether the
+  /// body has such forces (false: h is unchanged); the default has none.
+  virtual bool AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef& u,
+                                              const ConstVectorRef& u_dot, Eigen::Ref<Eigen::VectorXd> h) const;
   /// Kinetic energy [J] and potential energy (elastic and gravity, g_W) [J].
   virtual double KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const = 0;
   virtual double PotentialEnergy(const ConstVectorRef& x, const Eigen::Vector3d& g_W) const = 0;
@@ -54,10 +67,15 @@ class Body {
   virtual MarkerKinematics Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const = 0;
 
   /// The generalised force [N, N m, N m/q] of a force f_W [N] and torque tau_W [N m] acting at
-  /// marker `marker`: jacobian^T [f_W; tau_W].
+  /// marker `marker`: (jacobian^T + load_stiffening) [f_W; tau_W] (MarkerKinematics).
   Eigen::VectorXd MarkerLoad(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
                              const Eigen::Vector3d& tau_W) const;
 };
+
+/// The generalised force (size n_u) [N, N m, N m/q] of a force f_W [N] at the origin of a
+/// marker with `kinematics` and a torque tau_W [N m]: (jacobian^T + load_stiffening) [f_W; tau_W].
+Eigen::VectorXd GeneralizedForce(const MarkerKinematics& kinematics, const Eigen::Vector3d& f_W,
+                                 const Eigen::Vector3d& tau_W);
 
 /// xdot = [v, 1/2 e (x) (0, w_B), qdot]: the time derivative of a body's positions.
 void PositionDerivative(const ConstVectorRef& x, const ConstVectorRef& u, Eigen::Ref<Eigen::VectorXd> xdot);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/centrifugal.h"
 #include "core/error.h"
 #include "core/rotation.h"
 #include "core/skew.h"
@@ -58,18 +59,11 @@ MatrixXd SideBySide(const std::array<MatrixXd, C>& K0, Index n) {
   return out;
 }
 
-/// w_q = [w1^2, w2^2, w3^2, w1 w2, w2 w3, w3 w1] (docs/sid.md).
-Eigen::Matrix<double, 6, 1> AngularVelocityProducts(const Vector3d& w) {
-  Eigen::Matrix<double, 6, 1> w_q;
-  w_q << w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.y() * w.z(), w.z() * w.x();
-  return w_q;
-}
-
-/// The n x 3 block X0 + [X_1 q, X_2 q, X_3 q] of SideBySide order-1 terms X1.
-Eigen::MatrixX3d LinearBlock(const Eigen::MatrixX3d& X0, const MatrixXd& X1, const VectorXd& q) {
+/// The n x 3 block [X_1 q, X_2 q, X_3 q] of SideBySide order-1 terms X1.
+Eigen::MatrixX3d OrderOneBlock(const MatrixXd& X1, const VectorXd& q) {
   const Index n = q.size();
-  Eigen::MatrixX3d X = X0;
-  for (Index a = 0; a < 3; ++a) X.col(a) += X1.middleCols(a * n, n) * q;
+  Eigen::MatrixX3d X(n, 3);
+  for (Index a = 0; a < 3; ++a) X.col(a) = X1.middleCols(a * n, n) * q;
   return X;
 }
 
@@ -168,14 +162,16 @@ FlexibleBody::FlexibleBody(std::string name, sid::ReducedBody data, bool geometr
   for (Index jk = 0; jk < static_cast<Index>(d.J.m2.size()); ++jk) J2_.col(jk) = d.J.m2[static_cast<std::size_t>(jk)].reshaped();
 
   // The file's order-1 blocks hold kinematics + stiffening: the kinematic part is their
-  // difference, and M_b, h_b add the stiffening back if it is on.
+  // difference. M_b keeps it alone; the stiffening acts as forces in the elastic row.
   const MatrixXd K0t = SideBySide(K0.K0t, n), K0r = SideBySide(K0.K0r, n), K0omega = SideBySide(K0.K0omega, n);
   Ct0_ = d.Ct.m0;
   Cr0_ = d.Cr.m0;
-  Ct1_kin_ = SideBySide(d.Ct, n) - K0t;
-  Cr1_kin_ = SideBySide(d.Cr, n) - K0r;
-  Ct1_ = geometric_stiffening_ ? SideBySide(d.Ct, n) : Ct1_kin_;
-  Cr1_ = geometric_stiffening_ ? SideBySide(d.Cr, n) : Cr1_kin_;
+  Ct1_ = SideBySide(d.Ct, n) - K0t;
+  Cr1_ = SideBySide(d.Cr, n) - K0r;
+  if (geometric_stiffening_ && !K0.empty()) {
+    K0t_ = K0t;
+    K0r_ = K0r;
+  }
   Oe0_ = d.Oe.m0;
   Oe1_ = geometric_stiffening_ ? SideBySide(d.Oe, n) : MatrixXd(SideBySide(d.Oe, n) - K0omega);
   Me_ = d.Me.m0;
@@ -215,13 +211,13 @@ FlexibleBody::FlexibleBody(std::string name, sid::ReducedBody data, bool geometr
   }
 }
 
-FlexibleBody::Blocks FlexibleBody::Evaluate(const VectorXd& q, bool with_stiffening) const {
+FlexibleBody::Blocks FlexibleBody::Evaluate(const VectorXd& q) const {
   Blocks b;
   b.mdCM = mdCM0_ + mdCM1_ * q;
   const VectorXd qq = (q * q.transpose()).reshaped();
   b.J = J0_ + (J1_ * q + J2_ * qq).reshaped(3, 3);
-  b.Ct = LinearBlock(Ct0_, with_stiffening ? Ct1_ : Ct1_kin_, q);
-  b.Cr = LinearBlock(Cr0_, with_stiffening ? Cr1_ : Cr1_kin_, q);
+  b.Ct = Ct0_ + OrderOneBlock(Ct1_, q);
+  b.Cr = Cr0_ + OrderOneBlock(Cr1_, q);
   return b;
 }
 
@@ -229,7 +225,7 @@ void FlexibleBody::MassMatrix(const ConstVectorRef& x, Eigen::Ref<MatrixXd> M) c
   const Index n = n_;
   const VectorXd q = x.tail(n);
   const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
-  const Blocks b = Evaluate(q, geometric_stiffening_);
+  const Blocks b = Evaluate(q);
   M.setZero();
   M.topLeftCorner<3, 3>() = mass_ * Matrix3d::Identity();
   const Matrix3d R_S = R * Skew(b.mdCM).transpose();
@@ -249,7 +245,7 @@ void FlexibleBody::Forces(double, const ConstVectorRef& x, const ConstVectorRef&
   const VectorXd q = x.tail(n), qdot = u.tail(n);
   const Vector3d w = u.segment<3>(3);
   const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
-  const Blocks b = Evaluate(q, geometric_stiffening_);
+  const Blocks b = Evaluate(q);
   const Matrix3d W = Skew(w);
   const Vector3d g_B = R.transpose() * g_W;
   const VectorXd qdot_w = Kronecker(qdot, w);  // block j: qdot_j w
@@ -258,6 +254,17 @@ void FlexibleBody::Forces(double, const ConstVectorRef& x, const ConstVectorRef&
   h.segment<3>(3) = b.mdCM.cross(g_B) - W * (b.J * w) - Gr * qdot_w;
   const Eigen::Matrix<double, 6, 1> w_q = AngularVelocityProducts(w);
   h.tail(n) = b.Ct * g_B - Oe0_ * w_q - Oe1_ * Kronecker(w_q, q) - Ge0_ * qdot_w - Ke_ * q - De_ * qdot - ksigma_;
+  // Gravity's stiffening: the inertia load of a frame accelerating by -g (sum_a -g_a K0t_a q).
+  if (K0t_.size() > 0) h.tail(n) += OrderOneBlock(K0t_, q) * g_B;
+}
+
+bool FlexibleBody::AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef&,
+                                                  const ConstVectorRef& u_dot, Eigen::Ref<VectorXd> h) const {
+  if (K0t_.size() == 0) return false;
+  const VectorXd q = x.tail(n_);
+  const Vector3d a_B = RotationFromEulerParameters(x.segment<4>(3)).transpose() * u_dot.head<3>();
+  h.tail(n_) -= OrderOneBlock(K0t_, q) * a_B + OrderOneBlock(K0r_, q) * u_dot.segment<3>(3);
+  return true;
 }
 
 VectorXd FlexibleBody::KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const {
@@ -265,7 +272,7 @@ VectorXd FlexibleBody::KinematicMomenta(const ConstVectorRef& x, const ConstVect
   const VectorXd q = x.tail(n), qdot = u.tail(n);
   const Vector3d v = u.head<3>(), w = u.segment<3>(3);
   const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
-  const Blocks b = Evaluate(q, false);
+  const Blocks b = Evaluate(q);
   const Vector3d v_B = R.transpose() * v;
   VectorXd out(6 + n);
   out.head<3>() = mass_ * v + R * (w.cross(b.mdCM) + b.Ct.transpose() * qdot);
@@ -340,6 +347,24 @@ MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const
   out.jacobian.block(3, 6, 3, n) = R * T * node.Psi;
   out.bias.head<3>() = R * (w.cross(w.cross(s)) + 2.0 * w.cross(elastic_velocity));
   out.bias.tail<3>() = R * (w.cross(angular_rate) + T_dot_theta_dot);
+  out.load_stiffening = LoadStiffening(node, x);
+  return out;
+}
+
+Eigen::Matrix<double, Eigen::Dynamic, 6> FlexibleBody::LoadStiffening(const NodeFrame& node,
+                                                                      const ConstVectorRef& x) const {
+  Eigen::Matrix<double, Eigen::Dynamic, 6> out;
+  if (node.phi1.empty() && node.psi1.empty()) return out;
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  out = Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(6 + n_, 6);
+  for (std::size_t j = 0; j < node.phi1.size(); ++j) {
+    out.bottomLeftCorner(n_, 3) += x(7 + static_cast<Index>(j)) * node.phi1[j].transpose();
+  }
+  for (std::size_t j = 0; j < node.psi1.size(); ++j) {
+    out.bottomRightCorner(n_, 3) += x(7 + static_cast<Index>(j)) * node.psi1[j].transpose();
+  }
+  out.bottomLeftCorner(n_, 3) *= R.transpose();
+  out.bottomRightCorner(n_, 3) *= R.transpose();
   return out;
 }
 
@@ -348,11 +373,8 @@ VectorXd FlexibleBody::NodeLoadStiffening(int marker, const ConstVectorRef& x, c
   FLEXMBS_CHECK(marker >= 0 && marker <= static_cast<int>(nodes_.size()), "marker index from FindMarker");
   VectorXd h = VectorXd::Zero(6 + n_);
   if (marker == static_cast<int>(nodes_.size())) return h;
-  const NodeFrame& node = nodes_[static_cast<std::size_t>(marker)];
-  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
-  const Vector3d f_B = R.transpose() * f_W, tau_B = R.transpose() * tau_W;
-  for (std::size_t j = 0; j < node.phi1.size(); ++j) h.tail(n_) += x(7 + static_cast<Index>(j)) * (node.phi1[j].transpose() * f_B);
-  for (std::size_t j = 0; j < node.psi1.size(); ++j) h.tail(n_) += x(7 + static_cast<Index>(j)) * (node.psi1[j].transpose() * tau_B);
+  const Eigen::Matrix<double, Eigen::Dynamic, 6> A = LoadStiffening(nodes_[static_cast<std::size_t>(marker)], x);
+  if (A.size() > 0) h = A * (Eigen::Matrix<double, 6, 1>() << f_W, tau_W).finished();
   return h;
 }
 

@@ -9,10 +9,16 @@
 //         [ mdCM~ R^T    J           Cr^T   ]          [ mdCM~ R^T g_W - w~ J w - sum_j Gr_j w qdot_j                ]
 //         [ Ct R^T       Cr          Me     ]          [ Ct R^T g_W - Oe w_q - sum_j Ge_j w qdot_j - Ke q - De qdot - ksigma ]
 //
-// Geometric stiffening (docs/sid.md): the SID order-1 blocks of Ct, Cr and Oe carry the
-// stiffening matrices K0t, K0r, K0omega. With it on they are used as they are; with it off the
-// stiffening matrices are subtracted (the kinematic blocks remain). Energies and momenta are
-// always those of the kinematic blocks, the exact integrals of the FE model's mass.
+// with mdCM, J, Ct, Cr the kinematic blocks (the exact integrals of the FE model's mass: the
+// file's order-1 Ct and Cr less the stiffening matrices), so M_b is symmetric positive definite
+// and the first two rows are the exact momentum balance. Geometric stiffening (docs/mbs.md,
+// docs/sid.md) acts in the elastic row only, as forces: with it on, h_e gains
+//
+//   - sum_a (a_B - g_B)_a K0t_a q - sum_a alpha_a K0r_a q - sum_l w_q,l K0omega_l q,
+//
+// a_B = R^T v' and alpha = w' from the accelerations (AddAccelerationDependentForces; the
+// system solves for them by a corrector), g_B = R^T g_W and the centrifugal term in Forces (Oe
+// with its order-1 stiffening). With it off Oe's order-1 block is its kinematic part.
 //
 // Markers: the SID nodes, in their order, then the body frame itself, named "origin". A node K
 // with p_BoK_B(q) = origin(q) = o0 + Phi_K q and small rotation theta = Psi_K q (Psi_K = psi.m0)
@@ -29,7 +35,7 @@
 // Jacobian of SO(3) (the angular velocity of exp(theta~) in its fixed frame). A moment at the
 // node thus does the work of T^T Psi_K^T R^T tau, SID's psi^T M to first order in theta. The
 // nodes' stiffening blocks (phi.m1, psi.m1: unit nodal loads) are not kinematics and are not in
-// the Jacobian; NodeLoadStiffening gives their force.
+// the Jacobian: with stiffening on they are the marker's load_stiffening (NodeLoadStiffening).
 
 #include <Eigen/Core>
 #include <string>
@@ -69,6 +75,11 @@ class FlexibleBody final : public Body {
   void MassMatrix(const ConstVectorRef& x, Eigen::Ref<Eigen::MatrixXd> M) const override;
   void Forces(double t, const ConstVectorRef& x, const ConstVectorRef& u, const Eigen::Vector3d& g_W,
               Eigen::Ref<Eigen::VectorXd> h) const override;
+  /// With stiffening on: h_e -= (sum_a a_a K0t_a + sum_a alpha_a K0r_a) q, a = R^T v' [m/s^2],
+  /// alpha = w' [rad/s^2] from u_dot (the inertia loads of the frame's acceleration stiffen the
+  /// body; docs/sid.md); returns true. Off, or without stiffening matrices: false.
+  bool AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
+                                      Eigen::Ref<Eigen::VectorXd> h) const override;
   /// 1/2 u^T M_kin u, M_kin the mass matrix of the kinematic blocks [J].
   double KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const override;
   /// 1/2 q^T Ke q + ksigma^T q - g_W . (m p_WBo_W + R mdCM(q)) [J].
@@ -76,6 +87,8 @@ class FlexibleBody final : public Body {
 
   /// Node markers by their SID names (indices 0 .. nodes - 1), the body frame by kOriginMarker.
   int FindMarker(std::string_view name) const override;
+  /// The marker's frame (file comment); load_stiffening: NodeLoadStiffening as a matrix, empty
+  /// for the "origin" marker and for nodes without stiffening blocks or with stiffening off.
   MarkerKinematics Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const override;
 
   /// P = m v + R (w~ mdCM + Ct^T qdot), L = p x P + R (mdCM~ R^T v + J w + Cr^T qdot): the
@@ -84,9 +97,9 @@ class FlexibleBody final : public Body {
 
   /// The stiffening part of the generalised force of a force f_W [N] and moment tau_W [N m] at
   /// node marker `marker`: [0; 0; (sum_j q_j phi1_j)^T f_B + (sum_j q_j psi1_j)^T tau_B] with
-  /// f_B = R^T f_W, tau_B = R^T tau_W (docs/sid.md, nodes: -K0F(f_B) q - K0M(tau_B) q), to add to
-  /// MarkerLoad. Zero with stiffening off, for the "origin" marker and for nodes without
-  /// stiffening blocks.
+  /// f_B = R^T f_W, tau_B = R^T tau_W (docs/sid.md, nodes: -K0F(f_B) q - K0M(tau_B) q), part of
+  /// MarkerLoad and MultibodySystem::AddMarkerLoad. Zero with stiffening off, for the "origin"
+  /// marker and for nodes without stiffening blocks.
   Eigen::VectorXd NodeLoadStiffening(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
                                      const Eigen::Vector3d& tau_W) const;
 
@@ -110,7 +123,10 @@ class FlexibleBody final : public Body {
     Eigen::Matrix3d J;
     Eigen::MatrixX3d Ct, Cr;  ///< n x 3
   };
-  Blocks Evaluate(const Eigen::VectorXd& q, bool with_stiffening) const;
+  /// The kinematic blocks at q.
+  Blocks Evaluate(const Eigen::VectorXd& q) const;
+  /// The marker's load_stiffening (n_u x 6) at x, or empty.
+  Eigen::Matrix<double, Eigen::Dynamic, 6> LoadStiffening(const NodeFrame& node, const ConstVectorRef& x) const;
   /// M_kin u split as [translation (W); rotation (B); elastic].
   Eigen::VectorXd KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const;
 
@@ -124,9 +140,10 @@ class FlexibleBody final : public Body {
   Eigen::Matrix3d J0_;
   Eigen::MatrixXd J1_, J2_;     ///< 9 x n, 9 x n^2 (column j n + k: vec(m2[j n + k]))
   Eigen::MatrixX3d Ct0_, Cr0_;  ///< n x 3
-  /// Order-1 parts as n x 3n [X_x X_y X_z], X_a(i, j) = m1[j](i, a): kinematic only, and as
-  /// M_b and h_b use them (with the stiffening matrices if geometric stiffening is on).
-  Eigen::MatrixXd Ct1_kin_, Cr1_kin_, Ct1_, Cr1_;
+  /// Order-1 parts as n x 3n [X_x X_y X_z], X_a(i, j) = m1[j](i, a), kinematic only.
+  Eigen::MatrixXd Ct1_, Cr1_;
+  /// [K0t_x K0t_y K0t_z], [K0r_x K0r_y K0r_z] (n x 3n) with stiffening on; empty otherwise.
+  Eigen::MatrixXd K0t_, K0r_;
   Eigen::MatrixXd Me_, Ke_, De_;
   Eigen::VectorXd ksigma_;
   Eigen::MatrixXd Gr0_;         ///< 3 x 3n

@@ -114,9 +114,7 @@ void MultibodySystem::AddMarkerLoad(const MarkerRef& marker, const MarkerKinemat
                                     const Eigen::Vector3d& f_W, const Eigen::Vector3d& tau_W,
                                     Eigen::Ref<Eigen::VectorXd> h) const {
   if (marker.is_ground()) return;
-  Eigen::Matrix<double, 6, 1> load;
-  load << f_W, tau_W;
-  h.segment(velocity_offset(marker.body), body(marker.body).num_velocities()) += kinematics.jacobian.transpose() * load;
+  h.segment(velocity_offset(marker.body), body(marker.body).num_velocities()) += GeneralizedForce(kinematics, f_W, tau_W);
 }
 
 Eigen::MatrixXd MultibodySystem::BodyMassMatrix(int b, const ConstVectorRef& y) const {
@@ -155,23 +153,45 @@ SystemConstraints MultibodySystem::Constraints(double t, const ConstVectorRef& y
   return c;
 }
 
+bool MultibodySystem::AccelerationDependentForces(const ConstVectorRef& y, const ConstVectorRef& u_dot,
+                                                  Eigen::Ref<Eigen::VectorXd> h) const {
+  h.setZero();
+  bool any = false;
+  for (int b = 0; b < num_bodies(); ++b) {
+    const Eigen::Index offset = velocity_offset(b), n = body(b).num_velocities();
+    any = body(b).AddAccelerationDependentForces(BodyPositions(y, b), BodyVelocities(y, b), u_dot.segment(offset, n),
+                                                 h.segment(offset, n)) ||
+          any;
+  }
+  return any;
+}
+
 void MultibodySystem::Accelerations(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> u_dot,
                                     Eigen::Ref<Eigen::VectorXd> lambda) const {
   const Eigen::VectorXd h = Forces(t, y);
   const SystemConstraints c = Constraints(t, y);
   const ConstraintSolver solver(*this, t, y, c.G);
-  if (num_constraints_ == 0) {
-    u_dot = solver.SolveMass(h);
-    return;
-  }
-  solver.RequireFullRank(t, settings_.singular_pivot);
+  if (num_constraints_ > 0) solver.RequireFullRank(t, settings_.singular_pivot);
+  // u' = M^-1 (r + G^T lambda) with G u' = target: lambda = S^-1 (target - G M^-1 r).
+  const auto solve = [&](const Eigen::VectorXd& r, const Eigen::VectorXd& target, Eigen::Ref<Eigen::VectorXd> out,
+                         Eigen::Ref<Eigen::VectorXd> multipliers) {
+    out = solver.SolveMass(r);
+    if (num_constraints_ == 0) return;
+    multipliers = solver.SolveSchur(target - c.G * out);
+    out += solver.mass_inverse_G_transpose() * multipliers;
+  };
   const double omega = settings_.baumgarte_frequency;
   const Eigen::VectorXd u = y.tail(num_velocities_);
-  const Eigen::VectorXd Minv_h = solver.SolveMass(h);
-  // G u' = gamma - 2 omega (G u + g_t) - omega^2 g with u' = M^-1 (h + G^T lambda).
+  // G u' = gamma - 2 omega (G u + g_t) - omega^2 g.
   const Eigen::VectorXd target = c.gamma - 2.0 * omega * (c.G * u + c.g_t) - omega * omega * c.g;
-  lambda = solver.SolveSchur(target - c.G * Minv_h);
-  u_dot = Minv_h + solver.mass_inverse_G_transpose() * lambda;
+  solve(h, target, u_dot, lambda);
+  // The corrector: the acceleration-dependent forces at the first u', solved with a zero target.
+  Eigen::VectorXd h_a(num_velocities_);
+  if (!AccelerationDependentForces(y, u_dot, h_a)) return;
+  Eigen::VectorXd du(num_velocities_), dlambda(num_constraints_);
+  solve(h_a, Eigen::VectorXd::Zero(num_constraints_), du, dlambda);
+  u_dot += du;
+  lambda += dlambda;
 }
 
 void MultibodySystem::Derivative(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> y_dot) const {

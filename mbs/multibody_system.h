@@ -94,7 +94,8 @@ class MultibodySystem {
   /// The kinematics of a marker (the ground: its fixed frame, at rest, a 6 x 0 jacobian).
   MarkerKinematics MarkerState(const MarkerRef& marker, const ConstVectorRef& y) const;
   /// Adds force f_W [N] at the origin of `marker` and torque tau_W [N m] to h (size
-  /// num_velocities()), with `kinematics` = MarkerState(marker, y); nothing for the ground.
+  /// num_velocities()), with `kinematics` = MarkerState(marker, y): GeneralizedForce, which
+  /// includes the stiffening of a flexible body by a load at its node; nothing for the ground.
   void AddMarkerLoad(const MarkerRef& marker, const MarkerKinematics& kinematics, const Eigen::Vector3d& f_W,
                      const Eigen::Vector3d& tau_W, Eigen::Ref<Eigen::VectorXd> h) const;
 
@@ -105,10 +106,20 @@ class MultibodySystem {
   /// The joints' equations at (t, y).
   SystemConstraints Constraints(double t, const ConstVectorRef& y) const;
   /// u' and lambda (size num_constraints()) at (t, y), with Baumgarte terms per
-  /// constraint_settings(). Throws SimulationError at t naming the joints when G M^-1 G^T is rank
-  /// deficient (redundant joints, or a closed loop in a singular configuration).
+  /// constraint_settings(). The bodies' acceleration-dependent forces h_a(u') (geometric
+  /// stiffening, Body::AddAccelerationDependentForces) enter by one corrector step: u'_0 solves
+  /// the system without them, u' the system with h_a(u'_0) (the same factorisations). With
+  /// h_a = -N u' and A the constrained solution operator, u' - u'_exact = -(A N)^2 u'_exact:
+  /// of second order in the deformation (|A N| grows with q, about as the elastic rotations;
+  /// docs/mbs.md, "Geometric stiffening"); exact when joints prescribe the frames' motion.
+  /// Throws SimulationError at t naming the joints when G M^-1 G^T is rank deficient (redundant
+  /// joints, or a closed loop in a singular configuration).
   void Accelerations(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> u_dot,
                      Eigen::Ref<Eigen::VectorXd> lambda) const;
+  /// The bodies' acceleration-dependent forces (size num_velocities()) at y for the
+  /// accelerations u_dot (size num_velocities()); returns false (and zeros) if no body has any.
+  bool AccelerationDependentForces(const ConstVectorRef& y, const ConstVectorRef& u_dot,
+                                   Eigen::Ref<Eigen::VectorXd> h) const;
   /// y' = [x'; u'] (x' from body.h's PositionDerivative).
   void Derivative(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> y_dot) const;
   /// The load of joint k on its body j at marker J from the multipliers lambda of Accelerations.
