@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -108,7 +109,7 @@ const FileState& Live(const std::shared_ptr<FileState>& file);
 FileState& Writable(const std::shared_ptr<FileState>& file);
 
 // ------------------------------------------------------------------------------------------
-// Names, units and attributes of objects in groups (defined in h5_group.cc)
+// Names and units of objects in groups (defined in h5_group.cc)
 
 /// The object path of the child `name` of `group_path` ("/refmod" + "M" -> "/refmod/M").
 std::string Join(const std::string& group_path, std::string_view name);
@@ -118,6 +119,24 @@ void CheckName(std::string_view name);
 
 /// InternalError if `units` is empty.
 void CheckUnits(std::string_view units, const std::string& object);
+
+// ------------------------------------------------------------------------------------------
+// Strings and attributes (defined in h5_attributes.cc)
+
+/// A variable-length UTF-8 string type.
+Handle Utf8StringType();
+
+/// Calls H5Dread or H5Aread with the memory type and buffer it is given.
+using StringReader = std::function<herr_t(hid_t memory_type, void* buffer)>;
+
+/// Reads `count` strings of `file_type` (variable- or fixed-length) through `read`.
+std::vector<std::string> ReadStringData(const FileState& file, const std::string& object,
+                                        hid_t file_type, std::size_t count, const StringReader& read);
+
+/// The scalar string attribute `name` of `object_id`; InputError naming `object` if it is
+/// missing or not one string.
+std::string ReadStringAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                                std::string_view name);
 
 /// Writes (or replaces) the scalar UTF-8 string attribute `name` of `object_id`.
 void WriteStringAttribute(const FileState& file, hid_t object_id, const std::string& object,
