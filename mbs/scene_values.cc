@@ -46,11 +46,13 @@ Eigen::Matrix3d ReadRotation(const YamlNode& node) {
 
 TimeFunctionPtr ReadTimeFunction(const YamlNode& node) {
   if (!node.Has("ramp") && !node.Has("polynomial") && !node.Has("harmonic") && !node.Has("smooth_step") &&
-      !node.Has("table")) {
+      !node.Has("spin_up") && !node.Has("table")) {
     return MakeConstant(node.AsDouble());  // a number, or an InputError naming the item
   }
-  node.RejectUnknownKeys({"ramp", "polynomial", "harmonic", "smooth_step", "table"});
-  if (node.AsMap().size() != 1) node.Fail("a time function is exactly one of ramp, polynomial, harmonic, smooth_step, table");
+  node.RejectUnknownKeys({"ramp", "polynomial", "harmonic", "smooth_step", "spin_up", "table"});
+  if (node.AsMap().size() != 1) {
+    node.Fail("a time function is exactly one of ramp, polynomial, harmonic, smooth_step, spin_up, table");
+  }
   if (node.Has("ramp")) {
     const YamlNode ramp = node.Required("ramp");
     ramp.RejectUnknownKeys({"offset", "slope"});
@@ -84,6 +86,14 @@ TimeFunctionPtr ReadTimeFunction(const YamlNode& node) {
     return Make(step, [&] {
       return MakeSmoothStep(step.Required("t0").AsDouble(), step.Required("f0").AsDouble(),
                             step.Required("t1").AsDouble(), step.Required("f1").AsDouble(), order);
+    });
+  }
+  if (node.Has("spin_up")) {
+    const YamlNode spin_up = node.Required("spin_up");
+    spin_up.RejectUnknownKeys({"rate", "ramp_time", "offset"});
+    return Make(spin_up, [&] {
+      return MakeSpinUp(spin_up.Required("rate").AsDouble(), spin_up.Required("ramp_time").AsDouble(),
+                        OptionalDouble(spin_up, "offset", 0.0));
     });
   }
   const YamlNode table = node.Required("table");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "core/error.h"
@@ -45,6 +46,23 @@ class Harmonic final : public TimeFunction {
 
  private:
   double amplitude_, omega_, phase_, offset_;
+};
+
+class SpinUp final : public TimeFunction {
+ public:
+  SpinUp(double rate, double ramp_time, double offset) : rate_(rate), ramp_time_(ramp_time), offset_(offset) {}
+
+  TimeFunctionValue Evaluate(double t) const override {
+    if (t <= 0.0) return {offset_, 0.0, 0.0};
+    if (t >= ramp_time_) return {offset_ + rate_ * (t - 0.5 * ramp_time_), rate_, 0.0};
+    const double omega = 2.0 * std::numbers::pi / ramp_time_;  // of the ramp's cosine [rad/s]
+    const double slope = rate_ / ramp_time_;                     // the mean angular acceleration
+    return {offset_ + slope * (0.5 * t * t + (std::cos(omega * t) - 1.0) / (omega * omega)),
+            slope * (t - std::sin(omega * t) / omega), slope * (1.0 - std::cos(omega * t))};
+  }
+
+ private:
+  double rate_, ramp_time_, offset_;
 };
 
 class SmoothStep final : public TimeFunction {
@@ -136,6 +154,11 @@ TimeFunctionPtr MakeHarmonic(double amplitude, double angular_frequency, double 
 TimeFunctionPtr MakeSmoothStep(double t0, double f0, double t1, double f1, SmoothStepOrder order) {
   if (!(t1 > t0)) throw InputError(fmt::format("smooth step: end time {} must be > start time {}", t1, t0));
   return std::make_shared<SmoothStep>(t0, f0, t1, f1, order);
+}
+
+TimeFunctionPtr MakeSpinUp(double rate, double ramp_time, double offset) {
+  if (!(ramp_time > 0.0)) throw InputError(fmt::format("spin up: ramp time {} must be > 0", ramp_time));
+  return std::make_shared<SpinUp>(rate, ramp_time, offset);
 }
 
 TimeFunctionPtr MakeCubicSpline(std::vector<double> times, std::vector<double> values) {

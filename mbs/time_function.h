@@ -45,6 +45,14 @@ enum class SmoothStepOrder { kCubic, kQuintic };
 /// Throws InputError unless t1 > t0.
 TimeFunctionPtr MakeSmoothStep(double t0, double f0, double t1, double f1, SmoothStepOrder order);
 
+/// A spin-up to a constant rate (Kane, Ryan & Banerjee 1987): the angle [rad]
+///   f = offset                                                        t <= 0
+///   f = offset + (rate / T) (t^2 / 2 + (T / 2 pi)^2 (cos(2 pi t / T) - 1))   0 < t < T
+///   f = offset + rate (t - T / 2)                                     t >= T
+/// with f' rising from 0 to `rate` [rad/s] over T = `ramp_time` [s] and f'' = 0 at both ends.
+/// Throws InputError unless ramp_time > 0.
+TimeFunctionPtr MakeSpinUp(double rate, double ramp_time, double offset = 0.0);
+
 /// The natural cubic spline through (times[k], values[k]) (f'' = 0 at both ends), continued
 /// linearly outside [times.front(), times.back()] (so f stays twice continuously
 /// differentiable). Throws InputError unless there are >= 2 points of equal count and the times

@@ -35,6 +35,7 @@ TEST(TimeFunction, DerivativesAreThoseOfTheValue) {
       MakeSmoothStep(0.2, 1.0, 1.4, -2.0, SmoothStepOrder::kCubic),
       MakeSmoothStep(0.2, 1.0, 1.4, -2.0, SmoothStepOrder::kQuintic),
       MakeCubicSpline({0.0, 0.5, 1.2, 2.0, 3.0}, {0.0, 1.0, -0.5, 2.0, 1.5}),
+      MakeSpinUp(3.0, 1.2, 0.4),
   };
   for (const auto& f : functions) {
     for (const double t : {-0.7, 0.05, 0.45, 0.93, 1.31, 2.5, 3.6}) ExpectConsistentDerivatives(*f, t);
@@ -66,6 +67,25 @@ TEST(TimeFunction, KnownValues) {
   EXPECT_NEAR(MakeSmoothStep(1.0, 2.0, 3.0, 6.0, SmoothStepOrder::kQuintic)->Evaluate(1.0 + 1e-9).second_derivative, 0.0, 1e-6);
 }
 
+TEST(TimeFunction, SpinUpReachesItsRateSmoothly) {
+  // Kane et al.'s profile: at the end of the ramp T the angle is rate T / 2 (the mean rate is
+  // half the final one), the rate is reached and the acceleration is back to 0; half way the
+  // acceleration peaks at 2 rate / T.
+  constexpr double kRate = 6.0, kRamp = 15.0, kOffset = 0.5;
+  const TimeFunctionPtr spin = MakeSpinUp(kRate, kRamp, kOffset);
+  for (const double t : {kRamp - 1e-9, kRamp, kRamp + 1e-9}) {
+    const TimeFunctionValue v = spin->Evaluate(t);
+    EXPECT_NEAR(v.value, kOffset + 0.5 * kRate * kRamp, 1e-8) << t;
+    EXPECT_NEAR(v.first_derivative, kRate, 1e-8) << t;
+    EXPECT_NEAR(v.second_derivative, 0.0, 1e-8) << t;
+  }
+  EXPECT_NEAR(spin->Evaluate(0.5 * kRamp).second_derivative, 2.0 * kRate / kRamp, kRoundOff);
+  EXPECT_NEAR(spin->Evaluate(0.5 * kRamp).first_derivative, 0.5 * kRate, kRoundOff);
+  EXPECT_EQ(spin->Evaluate(-1.0).value, kOffset);
+  EXPECT_NEAR(spin->Evaluate(1e-6).second_derivative, 0.0, 1e-9);
+  EXPECT_NEAR(spin->Evaluate(20.0).value, kOffset + kRate * (20.0 - 0.5 * kRamp), kRoundOff * 100);
+}
+
 TEST(TimeFunction, CubicSplineMatchesScipyNaturalSpline) {
   // scipy.interpolate.CubicSpline([0, 0.5, 1.2, 2, 3], [0, 1, -0.5, 2, 1.5], bc_type='natural')
   // (SciPy 1.10, Debian 12): value, first and second derivative.
@@ -93,6 +113,8 @@ TEST(TimeFunction, RejectsBadParameters) {
             std::string::npos);
   EXPECT_NE(flexmbs::testing::InputErrorMessage([] { MakeCubicSpline({0.0, 1.0, 1.0}, {0.0, 1.0, 2.0}); })
                 .find("times must increase strictly: times[2] = 1 after times[1] = 1"),
+            std::string::npos);
+  EXPECT_NE(flexmbs::testing::InputErrorMessage([] { MakeSpinUp(1.0, 0.0); }).find("spin up: ramp time 0 must be > 0"),
             std::string::npos);
   EXPECT_NE(flexmbs::testing::InputErrorMessage([] { MakeCubicSpline({0.0}, {0.0}); }).find("need >= 2"),
             std::string::npos);
