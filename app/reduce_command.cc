@@ -1,10 +1,12 @@
 // `flexmbs reduce`: mesh, assemble and reduce a body, and write its `.sid.h5` file.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sys/resource.h>
 
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -13,6 +15,7 @@
 #include "fem/body_spec.h"
 #include "reduction/correction_modes.h"
 #include "reduction/craig_bampton.h"
+#include "reduction/distributed_reduction.h"
 #include "reduction/modal_basis.h"
 #include "reduction/sid_body_builder.h"
 #include "reduction/sid_nodes.h"
@@ -71,8 +74,21 @@ struct StageSeconds {
   double sid = 0.0;
 };
 
+// The MPI path's accounting (`reduce --json`, key "mpi"; docs/reduction.md, "Under MPI").
+nlohmann::json MpiJson(const reduction::DistributedSolveStats& stats, double basis_seconds) {
+  nlohmann::json ranks = nlohmann::json::array();
+  for (const reduction::RankShare& r : stats.ranks) {
+    ranks.push_back({{"rank", r.rank}, {"elements", r.elements}, {"nodes", r.nodes}, {"rows", r.rows},
+                     {"nonzeros", r.nonzeros}, {"peak_rss_mb_after_solve", r.peak_rss_mb}});
+  }
+  return {{"ranks", ranks},
+          {"seconds", {{"partition_scatter", stats.partition_seconds}, {"assembly", stats.assembly_seconds},
+                       {"factorisation_solve", stats.solve_seconds}, {"gather", stats.gather_seconds},
+                       {"basis_rank0", basis_seconds}}}};
+}
+
 void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, const fem::Mesh& mesh,
-            const StageSeconds& seconds) {
+            const StageSeconds& seconds, const std::optional<nlohmann::json>& mpi) {
   const reduction::ModeCounts counts = basis.Counts();
   if (options.json) {
     nlohmann::json j;
@@ -87,6 +103,13 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, 
     j["eigensolver"] = basis.eigensolver;
     j["seconds"] = {{"mesh", seconds.mesh}, {"assembly", seconds.assembly}, {"reduction", seconds.reduction},
                     {"sid", seconds.sid}};
+    if (mpi) {
+      j["mpi"] = *mpi;
+      // Rank 0's peak over the whole run, the SID invariants and the file included.
+      rusage usage{};
+      getrusage(RUSAGE_SELF, &usage);
+      j["mpi"]["rank0_peak_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    }
     fmt::print("{}\n", j.dump(2));
     return;
   }
@@ -106,6 +129,108 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, 
              seconds.assembly, seconds.reduction, seconds.sid);
 }
 
+// A body reduced: its mesh and matrices, the basis before correction modes, and the timings.
+// Filled on the rank that writes (rank 0 under mpirun).
+struct Reduction {
+  fem::Mesh mesh;
+  fem::SystemMatrices system;
+  reduction::BoundaryConditions conditions;
+  reduction::ReducedBasis basis;
+  StageSeconds seconds;
+  std::optional<nlohmann::json> mpi;  ///< the distributed path's accounting
+};
+
+// Whether the reduction runs distributed end to end (SolveModesDistributed): the slepc backend
+// and a free-free or fixed-interface basis held by whole clamped nodes (supports, node-set and
+// rigid interfaces). Craig-Bampton and averaging interfaces take the path on which every rank
+// assembles the whole K and M and SLEPc distributes the eigen-solve only.
+bool RunsDistributed(const reduction::ReductionSpec& spec) {
+  if (spec.eigensolver != "slepc") return false;
+  if (spec.method == reduction::ReductionMethod::kFreeFree) return true;
+  return spec.method == reduction::ReductionMethod::kFixedInterface &&
+         std::none_of(spec.interfaces.begin(), spec.interfaces.end(), [](const reduction::InterfaceSetting& i) {
+           return i.coupling == reduction::Coupling::kAveraging;
+         });
+}
+
+// Every rank meshes and assembles the whole body; the eigensolver (serial, or SLEPc over the
+// ranks) builds the basis on each. Returns false on the ranks that do not write.
+bool ReduceOnEveryRank(const fem::BodySpec& body, const reduction::ReductionSpec& spec, bool writer,
+                       std::chrono::steady_clock::time_point start, Progress& progress, Reduction* out) {
+  progress.Show(fmt::format("meshing {} ...", body.geometry_file.string()));
+  out->mesh = fem::BuildBodyMesh(body);
+  out->seconds.mesh = SecondsSince(start);
+  progress.Show(fmt::format("assembling {} DOF ...", out->mesh.num_dofs()));
+  const auto assembly_start = std::chrono::steady_clock::now();
+  out->system = fem::AssembleBodySystem(body, out->mesh);
+  out->seconds.assembly = SecondsSince(assembly_start);
+  progress.Show(fmt::format("reducing ({}) ...", reduction::MethodName(spec.method)));
+  const auto reduction_start = std::chrono::steady_clock::now();
+  const reduction::FeModel model{out->system.stiffness, out->system.mass, out->mesh.nodes};
+  out->conditions = reduction::ResolveConditions(spec, out->mesh.node_sets);
+  const std::unique_ptr<reduction::Eigensolver> solver = reduction::MakeEigensolver(spec.eigensolver);
+  out->basis = BuildBasis(spec, model, out->conditions, *solver);
+  out->seconds.reduction = SecondsSince(reduction_start);
+  return writer;
+}
+
+// Rank 0 meshes; the ranks assemble their element shares and solve together
+// (SolveModesDistributed); rank 0 gets the modes and builds the basis. K and M are whole on
+// rank 0 only after the distributed matrices and factors are gone: the basis builders
+// (rigid modes, Rayleigh-Ritz, residuals, reduced matrices) and the SID invariants take the
+// serial matrices. Returns false on the other ranks.
+bool ReduceDistributed(const fem::BodySpec& body, const reduction::ReductionSpec& spec,
+                       std::chrono::steady_clock::time_point start, Progress& progress, Reduction* out) {
+  const bool root = reduction::SlepcSession::Rank() == 0;
+  const bool free_free = spec.method == reduction::ReductionMethod::kFreeFree;
+  std::vector<int> clamped;
+  std::string error;
+  if (root) {
+    try {
+      progress.Show(fmt::format("meshing {} ...", body.geometry_file.string()));
+      out->mesh = fem::BuildBodyMesh(body);
+      out->conditions = reduction::ResolveConditions(spec, out->mesh.node_sets);
+      if (!free_free) {
+        const std::optional<std::vector<int>> dofs = reduction::ClampedDofs(out->mesh.nodes, out->conditions);
+        FLEXMBS_CHECK(dofs.has_value(), "RunsDistributed admits only conditions that clamp whole node DOF");
+        clamped = *dofs;
+      }
+    } catch (const std::exception& e) {  // every rank must hear of it, or they wait forever
+      error = e.what();
+    }
+  }
+  reduction::ShareRootError(error);
+  out->seconds.mesh = SecondsSince(start);
+
+  // The options the basis builder passes to its eigensolver: FreeFreeModalBasis asks for the
+  // six rigid-body modes on top of the elastic ones.
+  reduction::EigenOptions eigen;
+  eigen.num_modes = spec.num_modes + (free_free && spec.num_modes > 0 ? 6 : 0);
+  eigen.max_frequency_hz = spec.max_frequency_hz;
+  progress.Show(fmt::format("assembling and solving on {} ranks ...", reduction::SlepcSession::Size()));
+  reduction::DistributedSolveStats stats;
+  reduction::EigenSolution solution;
+  try {
+    solution = reduction::SolveModesDistributed(out->mesh, body.mass_matrix, clamped, eigen, &stats);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", body.file.string(), e.what()));
+  }
+  out->seconds.assembly = stats.partition_seconds + stats.assembly_seconds;
+  if (!root) return false;
+
+  progress.Show(fmt::format("building the basis ({}) ...", reduction::MethodName(spec.method)));
+  const auto basis_start = std::chrono::steady_clock::now();
+  out->system = fem::AssembleBodySystem(body, out->mesh);
+  const reduction::FeModel model{out->system.stiffness, out->system.mass, out->mesh.nodes};
+  const std::unique_ptr<reduction::Eigensolver> solver =
+      reduction::MakePrecomputedEigensolver(std::move(solution), clamped, eigen);
+  out->basis = BuildBasis(spec, model, out->conditions, *solver);
+  const double basis_seconds = SecondsSince(basis_start);
+  out->seconds.reduction = stats.solve_seconds + stats.gather_seconds + basis_seconds;
+  out->mpi = MpiJson(stats, basis_seconds);
+  return true;
+}
+
 void RunReduce(const ReduceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const sid::BodyFormat& format = sid::FindBodyFormat(options.format);
@@ -120,40 +245,31 @@ void RunReduce(const ReduceOptions& options) {
   if (spec.eigensolver == "slepc") mpi.emplace();
   const bool writer = !mpi || reduction::SlepcSession::Rank() == 0;
 
-  progress.Show(fmt::format("meshing {} ...", body.geometry_file.string()));
-  const fem::Mesh mesh = fem::BuildBodyMesh(body);
-  const double mesh_seconds = SecondsSince(start);
-  progress.Show(fmt::format("assembling {} DOF ...", mesh.num_dofs()));
-  const auto assembly_start = std::chrono::steady_clock::now();
-  const fem::SystemMatrices system = fem::AssembleBodySystem(body, mesh);
-  const double assembly_seconds = SecondsSince(assembly_start);
-
-  progress.Show(fmt::format("reducing ({}) ...", reduction::MethodName(spec.method)));
-  const auto reduction_start = std::chrono::steady_clock::now();
-  const reduction::FeModel model{system.stiffness, system.mass, mesh.nodes};
-  const reduction::BoundaryConditions conditions = reduction::ResolveConditions(spec, mesh.node_sets);
-  const std::unique_ptr<reduction::Eigensolver> solver = reduction::MakeEigensolver(spec.eigensolver);
-  reduction::ReducedBasis basis = BuildBasis(spec, model, conditions, *solver);
-  if (!spec.corrections.empty()) {
-    const std::vector<reduction::LoadSet> loads = reduction::ResolveLoadSets(spec, mesh.node_sets);
-    basis = reduction::AddStaticCorrectionModes(model, basis, loads).basis;
-  }
-  if (spec.orthonormalize) basis = reduction::OrthonormalizeBasis(model, basis);
-  const double reduction_seconds = SecondsSince(reduction_start);
-  if (!writer) {
+  Reduction r;
+  const bool writes = RunsDistributed(spec) ? ReduceDistributed(body, spec, start, progress, &r)
+                                            : ReduceOnEveryRank(body, spec, writer, start, progress, &r);
+  if (!writes) {
     progress.Clear();
     return;
   }
+  const auto corrections_start = std::chrono::steady_clock::now();
+  const reduction::FeModel model{r.system.stiffness, r.system.mass, r.mesh.nodes};
+  if (!spec.corrections.empty()) {
+    const std::vector<reduction::LoadSet> loads = reduction::ResolveLoadSets(spec, r.mesh.node_sets);
+    r.basis = reduction::AddStaticCorrectionModes(model, r.basis, loads).basis;
+  }
+  if (spec.orthonormalize) r.basis = reduction::OrthonormalizeBasis(model, r.basis);
+  r.seconds.reduction += SecondsSince(corrections_start);
 
   progress.Show("computing the SID invariants ...");
   const auto sid_start = std::chrono::steady_clock::now();
-  sid::ReducedBody reduced = reduction::BuildReducedBody({mesh, system, body.mass_matrix, sid_spec}, basis);
+  sid::ReducedBody reduced = reduction::BuildReducedBody({r.mesh, r.system, body.mass_matrix, sid_spec}, r.basis);
   reduced.name = body.name;
-  reduced.provenance = reduction::ReductionProvenance(body, spec, sid_spec, mesh, basis);
-  const double sid_seconds = SecondsSince(sid_start);
+  reduced.provenance = reduction::ReductionProvenance(body, spec, sid_spec, r.mesh, r.basis);
+  r.seconds.sid = SecondsSince(sid_start);
   progress.Clear();
   format.write(options.output, reduced);
-  Report(options, basis, mesh, {mesh_seconds, assembly_seconds, reduction_seconds, sid_seconds});
+  Report(options, r.basis, r.mesh, r.seconds, r.mpi);
 }
 
 }  // namespace

@@ -160,7 +160,8 @@ def run_flexmbs(a, body, solver, out_dir, tag):
     return {"program": solver, "seconds": j["seconds"]["reduction"], "wall_s": r["wall_s"],
             "mesh_s": j["seconds"]["mesh"], "assembly_s": j["seconds"]["assembly"],
             "peak_rss_mb": sum(rank_rss) if rank_rss else r["peak_rss_mb"], "rank_rss_mb": rank_rss,
-            "frequencies_hz": normal, "modes": j["modes"], "dofs": j["dofs"], "petsc": petsc_log(log)}
+            "frequencies_hz": normal, "modes": j["modes"], "dofs": j["dofs"], "petsc": petsc_log(log),
+            "mpi": j.get("mpi")}
 
 
 def run_scipy(a, prefix, fixed_file):
@@ -416,6 +417,13 @@ def print_details(case):
                   f"{r['seconds'] - eps:.2f} s (the purifications, done lazily by EPSGetEigenvector, "
                   f"~{(solves - krylov) * solve_s / max(solves, 1):.2f} s of it); mesh+assembly "
                   f"{r['mesh_s'] + r['assembly_s']:.2f} s")
+        if r and r.get("mpi"):
+            m, ranks = r["mpi"]["seconds"], r["mpi"]["ranks"]
+            each = lambda key, fmt: "/".join(format(k[key], fmt) for k in ranks)
+            print(f"   {LABEL[s]} distributed path (reduce --json 'mpi'): partition+scatter {m['partition_scatter']:.2f} s, "
+                  f"assembly {m['assembly']:.2f} s, factorisation+solve {m['factorisation_solve']:.2f} s, gather "
+                  f"{m['gather']:.2f} s, basis on rank 0 {m['basis_rank0']:.2f} s; per rank: rows {each('rows', 'd')}, "
+                  f"K nonzeros {each('nonzeros', 'd')}, peak RSS after the solve {each('peak_rss_mb_after_solve', '.0f')} MB")
     sp = case.get("spectra_split")
     if sp:
         print(f"   flexmbs spectra (same solve, bench_eigensolver_split): {sp['seconds']:.2f} s = factorisation "

@@ -16,11 +16,12 @@ void Check(PetscErrorCode code, const char* call) {
 }
 #define FLEXMBS_PETSC(call) Check((call), #call)
 
-// The element's DOF indices, 3 a + i.
-void ElementDofs(std::span<const int> nodes, std::vector<PetscInt>* dofs) {
+// The element's global DOF indices, 3 global_node[a] + i.
+void ElementDofs(std::span<const int> nodes, const std::vector<int>& global_node, std::vector<PetscInt>* dofs) {
   dofs->resize(3 * nodes.size());
   for (std::size_t a = 0; a < nodes.size(); ++a) {
-    for (int i = 0; i < 3; ++i) (*dofs)[3 * a + static_cast<std::size_t>(i)] = 3 * nodes[a] + i;
+    const int node = global_node[static_cast<std::size_t>(nodes[a])];
+    for (int i = 0; i < 3; ++i) (*dofs)[3 * a + static_cast<std::size_t>(i)] = 3 * node + i;
   }
 }
 
@@ -28,11 +29,11 @@ void ElementDofs(std::span<const int> nodes, std::vector<PetscInt>* dofs) {
 // matter).
 class PetscScatter final : public ElementMatrixVisitor {
  public:
-  PetscScatter(Mat K, Mat M) : K_(K), M_(M) {}
+  PetscScatter(Mat K, Mat M, const std::vector<int>& global_node) : K_(K), M_(M), global_node_(global_node) {}
 
   void Visit(std::span<const int> nodes, const Eigen::MatrixXd& K_e,
              const Eigen::MatrixXd& m_e) override {
-    ElementDofs(nodes, &dofs_);
+    ElementDofs(nodes, global_node_, &dofs_);
     const auto n = static_cast<PetscInt>(dofs_.size());
     M_e_.setZero(n, n);
     for (Eigen::Index a = 0; a < m_e.rows(); ++a) {
@@ -46,6 +47,7 @@ class PetscScatter final : public ElementMatrixVisitor {
 
  private:
   Mat K_, M_;
+  const std::vector<int>& global_node_;
   std::vector<PetscInt> dofs_;
   Eigen::MatrixXd M_e_;
 };
@@ -62,11 +64,11 @@ Mat CreateMatrix(Eigen::Index num_nodes, IndexRange nodes) {
   return A;
 }
 
-// Exact preallocation of `target` from the element patterns of `elements`.
-void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes, Mat target) {
+// Exact preallocation of `target` from the element patterns of the part.
+void Preallocate(const MeshPart& part, Mat target) {
   Mat pattern;
-  const auto local = static_cast<PetscInt>(3 * (nodes.end - nodes.begin));
-  const auto global = static_cast<PetscInt>(3 * mesh.num_nodes());
+  const auto local = static_cast<PetscInt>(3 * (part.owned_nodes.end - part.owned_nodes.begin));
+  const auto global = static_cast<PetscInt>(3 * part.num_global_nodes);
   FLEXMBS_PETSC(MatCreate(PETSC_COMM_WORLD, &pattern));
   FLEXMBS_PETSC(MatSetSizes(pattern, local, local, global, global));
   FLEXMBS_PETSC(MatSetType(pattern, MATPREALLOCATOR));
@@ -74,14 +76,10 @@ void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes, Mat ta
   FLEXMBS_PETSC(MatSetUp(pattern));
   std::vector<PetscInt> dofs;
   std::vector<PetscScalar> zeros;
-  Eigen::Index offset = 0;
-  for (const ElementBlock& block : mesh.blocks) {
-    const Eigen::Index first = std::max<Eigen::Index>(elements.begin - offset, 0);
-    const Eigen::Index last = std::min<Eigen::Index>(elements.end - offset, block.num_elements());
-    offset += block.num_elements();
-    for (Eigen::Index e = first; e < last; ++e) {
+  for (const ElementBlock& block : part.mesh.blocks) {
+    for (Eigen::Index e = 0; e < block.num_elements(); ++e) {
       const auto col = block.connectivity.col(e);
-      ElementDofs(std::span<const int>(col.data(), static_cast<std::size_t>(col.size())), &dofs);
+      ElementDofs(std::span<const int>(col.data(), static_cast<std::size_t>(col.size())), part.global_node, &dofs);
       zeros.assign(dofs.size() * dofs.size(), 0.0);
       const auto n = static_cast<PetscInt>(dofs.size());
       FLEXMBS_PETSC(MatSetValues(pattern, n, dofs.data(), n, dofs.data(), zeros.data(), INSERT_VALUES));
@@ -95,32 +93,27 @@ void Preallocate(const Mesh& mesh, IndexRange elements, IndexRange nodes, Mat ta
 
 }  // namespace
 
-IndexRange EvenPartition(Eigen::Index count, int parts, int part) {
-  FLEXMBS_CHECK(parts > 0 && part >= 0 && part < parts, "part must be in [0, parts)");
-  const Eigen::Index base = count / parts;
-  const Eigen::Index extra = count % parts;
-  const Eigen::Index begin = part * base + std::min<Eigen::Index>(part, extra);
-  return {begin, begin + base + (part < extra ? 1 : 0)};
-}
-
 DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_kind) {
   PetscMPIInt size = 0, rank = 0;
   FLEXMBS_PETSC(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   FLEXMBS_PETSC(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  const IndexRange elements = EvenPartition(mesh.num_elements(), size, rank);
-  const IndexRange nodes = EvenPartition(mesh.num_nodes(), size, rank);
+  return AssembleDistributed(ExtractMeshPart(mesh, PartitionInMeshOrder(mesh, size), rank), mass_kind);
+}
 
+DistributedMatrices AssembleDistributed(const MeshPart& part, MassMatrixKind mass_kind) {
+  PetscMPIInt rank = 0;
+  FLEXMBS_PETSC(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   // K and M share one pattern: preallocate K (a preallocator serves once), then copy its
   // structure for M.
-  DistributedMatrices out{CreateMatrix(mesh.num_nodes(), nodes), nullptr};
-  Preallocate(mesh, elements, nodes, out.stiffness);
+  DistributedMatrices out{CreateMatrix(part.num_global_nodes, part.owned_nodes), nullptr};
+  Preallocate(part, out.stiffness);
   FLEXMBS_PETSC(MatDuplicate(out.stiffness, MAT_DO_NOT_COPY_VALUES, &out.mass));
-  PetscScatter scatter(out.stiffness, out.mass);
+  PetscScatter scatter(out.stiffness, out.mass, part.global_node);
   // An element error on one rank must stop every rank, or the others would wait forever in
   // the collective assembly below.
   std::string error;
   try {
-    VisitElementMatrices(mesh, mass_kind, elements.begin, elements.end, scatter);
+    VisitElementMatrices(part.mesh, mass_kind, 0, part.mesh.num_elements(), scatter);
   } catch (const InputError& e) {
     error = e.what();
   }

@@ -4,22 +4,13 @@
 
 #include "fem/element_integrator.h"
 #include "fem/mesh.h"
+#include "fem/mesh_partition.h"
 
 // PETSc's matrix type (`Mat` is a pointer to it), declared here so that no PETSc header
 // appears in this public header.
 struct _p_Mat;
 
 namespace flexmbs::fem {
-
-/// A contiguous index range [begin, end).
-struct IndexRange {
-  Eigen::Index begin = 0;
-  Eigen::Index end = 0;
-};
-
-/// Part `part` of an even split of `count` items into `parts` contiguous ranges (the first
-/// count % parts ranges are one longer).
-IndexRange EvenPartition(Eigen::Index count, int parts, int part);
 
 /// K and M as row-distributed PETSc AIJ matrices on PETSC_COMM_WORLD (block size 3). The
 /// caller owns them: DestroyDistributed (collective) before PETSc is finalised.
@@ -28,13 +19,19 @@ struct DistributedMatrices {
   _p_Mat* mass = nullptr;       ///< M [kg]
 };
 
-/// Collective on PETSC_COMM_WORLD (PETSc must be initialised). Each rank computes only the
-/// element matrices of its part of an even partition of the elements (blocks in order) and
-/// adds them; rank r owns the DOF rows of the nodes in EvenPartition(num_nodes, size, r), and
-/// contributions to rows of other ranks are sent by PETSc's assembly. Preallocation is exact
-/// (a first pass inserts the element patterns into a MATPREALLOCATOR). The result equals
-/// AssembleSystem's to round-off, on any number of ranks. Throws InputError for an element
-/// with a non-positive Jacobian, InternalError for a PETSc failure.
+/// Collective on PETSC_COMM_WORLD (PETSc must be initialised): each rank computes the element
+/// matrices of its own `part` only and adds them at the global DOF 3 global_node + i; rank r
+/// owns the DOF rows of part.owned_nodes (the parts' owned ranges must follow each other in
+/// rank order and cover all part.num_global_nodes nodes), and contributions to rows of other
+/// ranks are sent by PETSc's assembly. No rank holds more than its elements, the nodes they use
+/// and its rows. Preallocation is exact (a first pass inserts the element patterns into a
+/// MATPREALLOCATOR). The result equals AssembleSystem's in the partition's node numbering to
+/// round-off, on any number of ranks. Throws InputError (on every rank) for an element with a
+/// non-positive Jacobian on any rank, InternalError for a PETSc failure.
+DistributedMatrices AssembleDistributed(const MeshPart& part, MassMatrixKind mass_kind);
+
+/// The same with every rank holding the whole `mesh`: rank r assembles its part of
+/// PartitionInMeshOrder(mesh, size), which keeps the mesh's node numbering.
 DistributedMatrices AssembleDistributed(const Mesh& mesh, MassMatrixKind mass_kind);
 
 /// Collective: destroys both matrices and sets the pointers to null.

@@ -19,15 +19,20 @@ void Check(PetscErrorCode code, const char* call) {
 }
 #define FLEXMBS_PETSC(call) Check((call), #call)
 
-// Copies a distributed vector into a full-length Eigen vector on every rank.
-Eigen::VectorXd GatherToAll(Vec x) {
+// Copies a distributed vector into a full-length Eigen vector on every rank, or on rank 0 only
+// (the other ranks get an empty vector).
+Eigen::VectorXd Gather(Vec x, ModesOn modes_on) {
   VecScatter scatter;
   Vec all;
-  FLEXMBS_PETSC(VecScatterCreateToAll(x, &scatter, &all));
+  if (modes_on == ModesOn::kEveryRank) {
+    FLEXMBS_PETSC(VecScatterCreateToAll(x, &scatter, &all));
+  } else {
+    FLEXMBS_PETSC(VecScatterCreateToZero(x, &scatter, &all));
+  }
   FLEXMBS_PETSC(VecScatterBegin(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
   FLEXMBS_PETSC(VecScatterEnd(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscInt n = 0;
-  FLEXMBS_PETSC(VecGetSize(all, &n));
+  FLEXMBS_PETSC(VecGetLocalSize(all, &n));
   const PetscScalar* values = nullptr;
   FLEXMBS_PETSC(VecGetArrayRead(all, &values));
   Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(values, n);
@@ -37,50 +42,70 @@ Eigen::VectorXd GatherToAll(Vec x) {
   return out;
 }
 
-// For this rank's rows r: (A X)_r and (|A| |X|)_r, X full-length on every rank.
-void LocalProducts(Mat A, const Eigen::MatrixXd& X, Eigen::MatrixXd* AX, Eigen::MatrixXd* abs_AX) {
-  PetscInt begin = 0, end = 0;
-  FLEXMBS_PETSC(MatGetOwnershipRange(A, &begin, &end));
-  AX->setZero(end - begin, X.cols());
-  abs_AX->setZero(end - begin, X.cols());
-  for (PetscInt r = begin; r < end; ++r) {
-    PetscInt count = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* values = nullptr;
-    FLEXMBS_PETSC(MatGetRow(A, r, &count, &cols, &values));
-    for (PetscInt k = 0; k < count; ++k) {
-      AX->row(r - begin) += values[k] * X.row(cols[k]);
-      abs_AX->row(r - begin) += std::abs(values[k]) * X.row(cols[k]).cwiseAbs();
-    }
-    FLEXMBS_PETSC(MatRestoreRow(A, r, &count, &cols, &values));
+// Replaces every stored value of a sequential AIJ matrix by its absolute value.
+void AbsoluteValuesSeq(Mat A) {
+  MatInfo info;
+  FLEXMBS_PETSC(MatGetInfo(A, MAT_LOCAL, &info));
+  PetscScalar* values = nullptr;
+  FLEXMBS_PETSC(MatSeqAIJGetArray(A, &values));
+  const auto count = static_cast<PetscInt>(info.nz_used);
+  for (PetscInt k = 0; k < count; ++k) values[k] = std::abs(values[k]);
+  FLEXMBS_PETSC(MatSeqAIJRestoreArray(A, &values));
+}
+
+// |A|: a copy of the AIJ matrix A with the absolute values of its entries.
+Mat AbsoluteCopy(Mat A) {
+  Mat out;
+  FLEXMBS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &out));
+  PetscBool distributed = PETSC_FALSE;
+  FLEXMBS_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(out), MATMPIAIJ, &distributed));
+  if (distributed) {
+    Mat diagonal_block, off_block;
+    FLEXMBS_PETSC(MatMPIAIJGetSeqAIJ(out, &diagonal_block, &off_block, nullptr));
+    AbsoluteValuesSeq(diagonal_block);
+    AbsoluteValuesSeq(off_block);
+  } else {
+    AbsoluteValuesSeq(out);
   }
+  return out;
 }
 
-// Sums a matrix over all ranks, in place.
-void AllreduceSum(Eigen::MatrixXd* A) {
-  FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, A->data(), static_cast<int>(A->size()), MPI_DOUBLE,
-                              MPI_SUM, PETSC_COMM_WORLD));
+// The norm of the distributed vector x, squared.
+double SquaredNorm(Vec x) {
+  PetscReal norm = 0.0;
+  FLEXMBS_PETSC(VecNorm(x, NORM_2, &norm));
+  return norm * norm;
 }
 
-// Fills residuals, round-off floors and the M-orthonormality error of `solution`.
-void MeasurePairs(Mat K, Mat M, EigenSolution* solution) {
-  const Eigen::MatrixXd& X = solution->modes;
+// Fills residuals, round-off floors and the M-orthonormality error of the pairs (lambda, x),
+// x distributed: the products with K, M, |K| and |M| run where the rows are.
+void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* solution) {
   const Eigen::VectorXd& lambda = solution->eigenvalues;
-  Eigen::MatrixXd KX, MX, abs_KX, abs_MX;
-  LocalProducts(K, X, &KX, &abs_KX);
-  LocalProducts(M, X, &MX, &abs_MX);
-  PetscInt begin = 0, end = 0;
-  FLEXMBS_PETSC(MatGetOwnershipRange(K, &begin, &end));
-  Eigen::MatrixXd sums(4, X.cols());
-  for (Eigen::Index j = 0; j < X.cols(); ++j) {
-    sums(0, j) = KX.col(j).squaredNorm();
-    sums(1, j) = MX.col(j).squaredNorm();
-    sums(2, j) = (KX.col(j) - lambda(j) * MX.col(j)).squaredNorm();
-    sums(3, j) = (abs_KX.col(j) + std::abs(lambda(j)) * abs_MX.col(j)).squaredNorm();
+  const auto n = static_cast<Eigen::Index>(x.size());
+  Mat abs_K = AbsoluteCopy(K), abs_M = AbsoluteCopy(M);
+  Vec kx, mx, abs_x, abs_kx, abs_mx;
+  FLEXMBS_PETSC(MatCreateVecs(K, &abs_x, &kx));
+  for (Vec* v : {&mx, &abs_kx, &abs_mx}) FLEXMBS_PETSC(VecDuplicate(kx, v));
+  Eigen::MatrixXd sums(4, n), gram(n, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Vec xj = x[static_cast<std::size_t>(j)];
+    FLEXMBS_PETSC(MatMult(K, xj, kx));
+    FLEXMBS_PETSC(MatMult(M, xj, mx));
+    FLEXMBS_PETSC(VecMDot(mx, static_cast<PetscInt>(n), x.data(), gram.col(j).data()));
+    FLEXMBS_PETSC(VecCopy(xj, abs_x));
+    FLEXMBS_PETSC(VecAbs(abs_x));
+    FLEXMBS_PETSC(MatMult(abs_K, abs_x, abs_kx));
+    FLEXMBS_PETSC(MatMult(abs_M, abs_x, abs_mx));
+    sums(0, j) = SquaredNorm(kx);
+    sums(1, j) = SquaredNorm(mx);
+    FLEXMBS_PETSC(VecAXPY(kx, -lambda(j), mx));
+    sums(2, j) = SquaredNorm(kx);
+    FLEXMBS_PETSC(VecAXPY(abs_kx, std::abs(lambda(j)), abs_mx));
+    sums(3, j) = SquaredNorm(abs_kx);
   }
-  Eigen::MatrixXd gram = X.middleRows(begin, end - begin).transpose() * MX;
-  AllreduceSum(&sums);
-  AllreduceSum(&gram);
+  for (Vec* v : {&kx, &mx, &abs_x, &abs_kx, &abs_mx}) FLEXMBS_PETSC(VecDestroy(v));
+  FLEXMBS_PETSC(MatDestroy(&abs_K));
+  FLEXMBS_PETSC(MatDestroy(&abs_M));
   PetscScalar trace_k = 0.0, trace_m = 0.0;
   FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
   FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
@@ -88,8 +113,7 @@ void MeasurePairs(Mat K, Mat M, EigenSolution* solution) {
       ResidualsFromSums(sums, lambda, solution->shift, kZeroEigenvalue * trace_k / trace_m);
   solution->relative_residuals = residuals.relative;
   solution->residual_floors = residuals.floor;
-  solution->orthonormality_error =
-      (gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols())).cwiseAbs().maxCoeff();
+  solution->orthonormality_error = (gram - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff();
 }
 
 // Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, `nev`
@@ -139,13 +163,13 @@ void RemoveFixedDofs(Mat K, Mat M, const std::vector<int>& fixed_dofs) {
   for (Mat A : {K, M}) FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
 }
 
-// The converged pairs of `eps`, lowest first, at most `limit` (0 = all), M-normalised.
-void ExtractPairs(EPS eps, Mat K, Mat M, int limit, EigenSolution* solution) {
+// The converged pairs of `eps`, lowest first, at most `limit` (0 = all), M-normalised: the
+// eigenvalues into `solution`, the eigenvectors as distributed vectors into `x` (the caller
+// owns them).
+void ExtractPairs(EPS eps, Mat K, Mat M, int limit, EigenSolution* solution, std::vector<Vec>* x) {
   PetscInt converged = 0;
   FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
   std::vector<double> lambdas(static_cast<std::size_t>(converged));
-  Vec x, mx;
-  FLEXMBS_PETSC(MatCreateVecs(K, &x, &mx));
   for (PetscInt i = 0; i < converged; ++i) {
     FLEXMBS_PETSC(EPSGetEigenvalue(eps, i, &lambdas[static_cast<std::size_t>(i)], nullptr));
   }
@@ -155,24 +179,42 @@ void ExtractPairs(EPS eps, Mat K, Mat M, int limit, EigenSolution* solution) {
     return lambdas[static_cast<std::size_t>(a)] < lambdas[static_cast<std::size_t>(b)];
   });
   if (limit > 0 && static_cast<int>(order.size()) > limit) order.resize(static_cast<std::size_t>(limit));
-  PetscInt n = 0;
-  FLEXMBS_PETSC(MatGetSize(K, &n, nullptr));
   const auto count = static_cast<Eigen::Index>(order.size());
   solution->eigenvalues.resize(count);
-  solution->modes.resize(n, count);
+  Vec mx;
+  FLEXMBS_PETSC(MatCreateVecs(K, nullptr, &mx));
   for (Eigen::Index j = 0; j < count; ++j) {
     const PetscInt i = order[static_cast<std::size_t>(j)];
-    FLEXMBS_PETSC(EPSGetEigenvector(eps, i, x, nullptr));
+    Vec xj;
+    FLEXMBS_PETSC(VecDuplicate(mx, &xj));
+    x->push_back(xj);
+    FLEXMBS_PETSC(EPSGetEigenvector(eps, i, xj, nullptr));
     PetscScalar xmx = 0.0;
-    FLEXMBS_PETSC(MatMult(M, x, mx));
-    FLEXMBS_PETSC(VecDot(x, mx, &xmx));
-    FLEXMBS_PETSC(VecScale(x, 1.0 / std::sqrt(xmx)));
+    FLEXMBS_PETSC(MatMult(M, xj, mx));
+    FLEXMBS_PETSC(VecDot(xj, mx, &xmx));
+    FLEXMBS_PETSC(VecScale(xj, 1.0 / std::sqrt(xmx)));
     solution->eigenvalues(j) = lambdas[static_cast<std::size_t>(i)];
-    solution->modes.col(j) = GatherToAll(x);
   }
-  FLEXMBS_PETSC(VecDestroy(&x));
   FLEXMBS_PETSC(VecDestroy(&mx));
 }
+
+// Distributed vectors destroyed with their owner (also when an exception passes).
+struct OwnedVectors {
+  std::vector<Vec> v;
+  OwnedVectors() = default;
+  OwnedVectors(const OwnedVectors&) = delete;
+  OwnedVectors& operator=(const OwnedVectors&) = delete;
+  ~OwnedVectors() { Clear(); }
+  void Clear() {
+    for (Vec& x : v) VecDestroy(&x);
+    v.clear();
+  }
+  // Keeps the first `count` vectors.
+  void Truncate(std::size_t count) {
+    for (std::size_t j = count; j < v.size(); ++j) VecDestroy(&v[j]);
+    v.resize(std::min(count, v.size()));
+  }
+};
 
 // The number of eigenvalues of K phi = lambda M phi below `cut`: the negative inertia of
 // K - cut M (Sylvester; M positive semi-definite, fixed DOF have K = 1, M = 0 and count as
@@ -287,7 +329,8 @@ int SlepcSession::Size() {
 }
 
 EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>& fixed_dofs,
-                                           const EigenOptions& options) {
+                                           const EigenOptions& options, ModesOn modes_on,
+                                           double* gather_seconds) {
   const auto start = std::chrono::steady_clock::now();
   RemoveFixedDofs(K, M, fixed_dofs);
   EigenSolution solution;
@@ -303,7 +346,9 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
   const bool band = options.max_frequency_hz > 0.0;
   // Lowest modes: a few guard pairs beyond the wanted ones show the gap where the Sturm cut goes.
   PetscInt nev = band ? 0 : options.num_modes + static_cast<PetscInt>(GuardPairs(options.num_modes));
+  OwnedVectors x;
   for (int attempt = 0;; ++attempt) {
+    x.Clear();
     EPS eps;
     FLEXMBS_PETSC(EPSCreate(PETSC_COMM_WORLD, &eps));
     try {
@@ -321,7 +366,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
         throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations",
                                      converged, options.num_modes, iterations));
       }
-      ExtractPairs(eps, K, M, band ? options.num_modes : 0, &solution);
+      ExtractPairs(eps, K, M, band ? options.num_modes : 0, &solution, &x.v);
       FLEXMBS_PETSC(EPSDestroy(&eps));
     } catch (...) {
       EPSDestroy(&eps);
@@ -342,7 +387,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     solution.checked_cut = cut;
     if (count == found) {
       solution.eigenvalues.conservativeResize(options.num_modes);
-      solution.modes.conservativeResize(Eigen::NoChange, options.num_modes);
+      x.Truncate(static_cast<std::size_t>(options.num_modes));
       break;
     }
     if (count < found || attempt > 0) {
@@ -351,7 +396,17 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     }
     nev = count + static_cast<PetscInt>(GuardPairs(count));  // SLEPc missed modes: once more, wider
   }
-  MeasurePairs(K, M, &solution);
+  MeasurePairs(K, M, x.v, &solution);
+  const auto gather_start = std::chrono::steady_clock::now();
+  for (std::size_t j = 0; j < x.v.size(); ++j) {
+    Eigen::VectorXd mode = Gather(x.v[j], modes_on);
+    if (j == 0) solution.modes.resize(mode.size(), static_cast<Eigen::Index>(x.v.size()));
+    solution.modes.col(static_cast<Eigen::Index>(j)) = mode;
+  }
+  x.Clear();
+  if (gather_seconds) {
+    *gather_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
+  }
   const PairResiduals residuals{solution.relative_residuals, solution.residual_floors};
   Eigen::Index worst = 0;
   if (!residuals.Accepted(options.residual_tolerance, &worst)) {

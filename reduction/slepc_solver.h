@@ -29,18 +29,26 @@ class SlepcSession {
   bool owns_ = false;
 };
 
+/// Where SolveDistributedEigenproblem gathers the mode shapes.
+enum class ModesOn {
+  kEveryRank,  ///< full length on every rank
+  kRankZero,   ///< full length on rank 0; the other ranks get 0 rows (eigenvalues and residuals everywhere)
+};
+
 /// Collective on PETSC_COMM_WORLD: eigenpairs of the distributed K phi = lambda M phi, as
 /// `options` asks (the lowest num_modes, or all below max_frequency_hz by spectrum slicing),
 /// by SLEPc Krylov-Schur with shift-and-invert, K - sigma M factorised by MUMPS Cholesky.
 /// sigma = ShiftFromHz(*options.shift_hz), or -1e-6 trace(K)/trace(M) when unset (below every
 /// eigenvalue, also of free bodies). `fixed_dofs` (global DOF numbers, the same list on every
 /// rank) are removed by zeroing their rows and columns (K diagonal 1, M diagonal 0), which
-/// moves their eigenvalues to infinity; K and M are modified in place. The modes are gathered,
-/// full length, on every rank; residuals and round-off floors are those of EigenSolution,
-/// summed over the ranks' rows. Throws InputError if fewer pairs converge than asked or a pair
+/// moves their eigenvalues to infinity; K and M are modified in place. The modes are gathered
+/// as `modes_on` says, in the matrices' row order; residuals and round-off floors are those of
+/// EigenSolution, computed with distributed products (K x, M x, |K| |x|, |M| |x|);
+/// `gather_seconds` (if given) receives the time of the gather [s]. Throws InputError if fewer pairs converge than asked or a pair
 /// misses its residual bound, InternalError for a PETSc/SLEPc failure.
 EigenSolution SolveDistributedEigenproblem(_p_Mat* K, _p_Mat* M, const std::vector<int>& fixed_dofs,
-                                           const EigenOptions& options);
+                                           const EigenOptions& options, ModesOn modes_on = ModesOn::kEveryRank,
+                                           double* gather_seconds = nullptr);
 
 /// The backend "slepc" behind the serial interface: every rank passes the same K and M, each
 /// copies its block of rows into PETSc matrices and SolveDistributedEigenproblem runs on them.
