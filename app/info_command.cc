@@ -64,7 +64,7 @@ void PrintBodyJson(const fs::path& file, const sid::ReducedBody& body, const red
   nlohmann::json j;
   j["file"] = file.string();
   j["format"] = sid::kSidFormat;
-  j["schema_version"] = sid::kSidSchemaVersion;
+  j["schema_version"] = sid::ReadSidSchemaVersion(file);
   j["name"] = body.name;
   j["mass_kg"] = body.mass;
   j["center_of_mass_m"] = ToJson(body.center_of_mass);
@@ -88,6 +88,7 @@ void PrintBodyJson(const fs::path& file, const sid::ReducedBody& body, const red
                         {"faces", surface.face_sizes.size()}, {"area_m2", SurfaceArea(surface)}});
   }
   j["surfaces"] = surfaces;
+  j["visual_surface_faces"] = body.visual_surface.face_sizes.size();
   j["stiffening"] = !body.stiffening.empty();
   j["provenance"] = body.provenance;
   fmt::print("{}\n", j.dump(2));
@@ -95,7 +96,7 @@ void PrintBodyJson(const fs::path& file, const sid::ReducedBody& body, const red
 
 void PrintBodyText(const fs::path& file, const sid::ReducedBody& body, const reduction::ModeCounts& counts) {
   const Eigen::Matrix3d& I = body.inertia_about_center_of_mass;
-  fmt::print("file            {} ({} schema {})\n", file.string(), sid::kSidFormat, sid::kSidSchemaVersion);
+  fmt::print("file            {} ({} schema {})\n", file.string(), sid::kSidFormat, sid::ReadSidSchemaVersion(file));
   fmt::print("body            {}\n", body.name);
   fmt::print("mass            {:.6g} kg\n", body.mass);
   fmt::print("centre of mass  {} m\n", Vector3Text(body.center_of_mass));
@@ -115,6 +116,7 @@ void PrintBodyText(const fs::path& file, const sid::ReducedBody& body, const red
     fmt::print("  {:<20} {} coupling, {} FE nodes, at {} m\n", node.name, node.coupling, node.fe_nodes.size(),
                Vector3Text(node.origin.m0));
   }
+  fmt::print("visual surface  {} faces\n", body.visual_surface.face_sizes.size());
   fmt::print("surfaces        {}\n", body.surfaces.size());
   for (const sid::ContactSurface& surface : body.surfaces) {
     fmt::print("  {:<20} {} vertices, {} faces, {:.6g} m^2\n", surface.name, surface.vertices.rows(),

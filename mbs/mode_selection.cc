@@ -232,6 +232,7 @@ sid::ReducedBody RestrictModes(const sid::ReducedBody& body, const std::vector<I
     restricted.phi = RestrictMatrix(surface.phi, keep, cols);
     out.surfaces.push_back(std::move(restricted));
   }
+  out.visual_surface = body.visual_surface;
   out.provenance = body.provenance;
   return out;
 }

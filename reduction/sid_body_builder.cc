@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <numeric>
 #include <optional>
 
 #include "core/error.h"
 #include "core/sha256.h"
+#include "fem/boundary_surface.h"
 #include "fem/mass_properties.h"
 #include "reduction/contact_surface.h"
 #include "reduction/damping.h"
@@ -65,6 +67,19 @@ std::vector<Eigen::MatrixXd> NodeStiffeningBlocks(const std::array<Eigen::Matrix
     }
   }
   return m1;
+}
+
+/// Every boundary face of `mesh` as linear polygons through its FE nodes (fem::BoundarySurface
+/// of all nodes, its vertices mapped back to FE nodes): the SID body's visual surface.
+sid::VisualSurface VisualSurfaceOf(const fem::Mesh& mesh) {
+  std::vector<int> all_nodes(static_cast<std::size_t>(mesh.num_nodes()));
+  std::iota(all_nodes.begin(), all_nodes.end(), 0);
+  const fem::PolygonSurface polygons = fem::BoundarySurface(mesh, all_nodes);
+  sid::VisualSurface surface;
+  surface.face_sizes = polygons.face_sizes;
+  surface.face_nodes.reserve(polygons.face_vertices.size());
+  for (int v : polygons.face_vertices) surface.face_nodes.push_back(polygons.fe_nodes[static_cast<std::size_t>(v)]);
+  return surface;
 }
 
 }  // namespace
@@ -142,6 +157,7 @@ sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& b
   out.phi = Phi;
   out.nodes = MarkerNodes(mesh, Phi, basis.held_by, source.sid.markers);
   out.surfaces = ContactSurfaces(mesh, source.sid.contact_surfaces, Phi);
+  out.visual_surface = VisualSurfaceOf(mesh);
 
   if (source.sid.geometric_stiffening) {
     std::vector<InterfaceSpec> loaded;

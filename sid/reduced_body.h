@@ -65,6 +65,16 @@ struct ContactSurface {
   Eigen::MatrixXd phi;                ///< 3 V x n: row 3 v + a is vertex v along axis a [m/q]
 };
 
+/// The outer surface of the mesh for visualisation: every boundary face of the mesh as linear
+/// polygons through FE nodes (quadratic faces split through their mid-side nodes, as
+/// fem::BoundarySurface does), counter-clockwise seen from outside. A vertex N moves with the
+/// body's basis: p_BoN_B + phi_N q (ReducedBody::node_positions, ReducedBody::phi).
+struct VisualSurface {
+  std::vector<int> face_sizes;  ///< per polygon: its number of nodes (3 or 4)
+  std::vector<int> face_nodes;  ///< the polygons' FE nodes (0-based into node_positions), concatenated
+  bool empty() const { return face_sizes.empty(); }
+};
+
 /// A reduced flexible body: the SID data and what it was made from (docs/sid.md).
 struct ReducedBody {
   std::string name;
@@ -103,6 +113,8 @@ struct ReducedBody {
 
   std::vector<Node> nodes;
   std::vector<ContactSurface> surfaces;
+  /// The mesh's boundary for viewing the deformed body; empty for files of schema 2.
+  VisualSurface visual_surface;
 
   /// Free-form provenance: source files and their hashes, mesh counts, material, reduction
   /// settings, eigensolver, residuals, tool version.

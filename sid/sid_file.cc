@@ -72,6 +72,21 @@ std::string CheckSurface(const ContactSurface& surface, Eigen::Index n, Eigen::I
   return {};
 }
 
+std::string CheckVisualSurface(const VisualSurface& surface, Eigen::Index num_fe_nodes) {
+  for (int size : surface.face_sizes) {
+    if (size < 3) return fmt::format("visual surface: a polygon of {} nodes", size);
+  }
+  const int corners = std::accumulate(surface.face_sizes.begin(), surface.face_sizes.end(), 0);
+  if (corners != static_cast<int>(surface.face_nodes.size())) {
+    return fmt::format("visual surface: face sizes add up to {}, but {} face nodes", corners,
+                       surface.face_nodes.size());
+  }
+  for (int k : surface.face_nodes) {
+    if (k < 0 || k >= num_fe_nodes) return fmt::format("visual surface: FE node {} out of range", k);
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string FindInconsistency(const ReducedBody& body) {
@@ -109,7 +124,7 @@ std::string FindInconsistency(const ReducedBody& body) {
     std::string problem = CheckSurface(surface, n, body.node_positions.cols());
     if (!problem.empty()) return problem;
   }
-  return {};
+  return CheckVisualSurface(body.visual_surface, body.node_positions.cols());
 }
 
 void CheckConsistent(const ReducedBody& body) {

@@ -109,20 +109,31 @@ std::vector<ContactSurface> ReadSurfaces(const h5::Group& root) {
   return surfaces;
 }
 
-}  // namespace
-
-ReducedBody ReadReducedBody(const std::filesystem::path& path) {
-  const h5::File file = h5::File::Open(path);
-  const h5::Group root = file.root();
+// The schema version of the open file's root, checked to be flexmbs-sid and readable.
+int CheckedSchemaVersion(const std::filesystem::path& path, const h5::Group& root) {
   if (!root.HasAttribute("format") || root.GetStringAttribute("format") != kSidFormat) {
     throw InputError(fmt::format("{}: not a flexmbs reduced body (no format '{}')", path.string(), kSidFormat));
   }
   const std::int64_t version = root.GetIntegerAttribute("schema_version");
-  if (version != kSidSchemaVersion) {
-    throw InputError(fmt::format("{}: schema_version {} is not supported (this flexmbs reads {}; "
+  if (version < kSidOldestReadableSchemaVersion || version > kSidSchemaVersion) {
+    throw InputError(fmt::format("{}: schema_version {} is not supported (this flexmbs reads {} to {}; "
                                  "run `flexmbs reduce` again)",
-                                 path.string(), version, kSidSchemaVersion));
+                                 path.string(), version, kSidOldestReadableSchemaVersion, kSidSchemaVersion));
   }
+  return static_cast<int>(version);
+}
+
+}  // namespace
+
+int ReadSidSchemaVersion(const std::filesystem::path& path) {
+  const h5::File file = h5::File::Open(path);
+  return CheckedSchemaVersion(path, file.root());
+}
+
+ReducedBody ReadReducedBody(const std::filesystem::path& path) {
+  const h5::File file = h5::File::Open(path);
+  const h5::Group root = file.root();
+  const int version = CheckedSchemaVersion(path, root);
   ReducedBody body;
   body.name = root.GetStringAttribute("name");
   const h5::Group refmod = root.OpenGroup("refmod");
@@ -158,6 +169,11 @@ ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   for (const std::string& name : sets.ChildNames()) body.node_sets[name] = ReadIndices(sets, name);
   body.nodes = ReadNodes(path, root);
   body.surfaces = ReadSurfaces(root);
+  if (version >= layout::kVisualSurfaceSchemaVersion && root.HasGroup("visual_surface")) {
+    const h5::Group visual = root.OpenGroup("visual_surface");
+    body.visual_surface.face_sizes = ReadIndices(visual, "face_sizes");
+    body.visual_surface.face_nodes = ReadIndices(visual, "face_nodes");
+  }
 
   const h5::Group provenance = root.OpenGroup("provenance");
   const std::vector<std::string> keys = provenance.ReadStrings("keys");

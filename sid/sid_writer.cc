@@ -68,6 +68,12 @@ void WriteSurfaces(h5::Group& root, const std::vector<ContactSurface>& surfaces)
   }
 }
 
+void WriteVisualSurface(h5::Group& root, const VisualSurface& surface) {
+  h5::Group group = root.CreateGroup("visual_surface");
+  group.WriteIntegers("face_sizes", surface.face_sizes, "1");
+  group.WriteIntegers("face_nodes", surface.face_nodes, "1");
+}
+
 }  // namespace
 
 void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body) {
@@ -101,6 +107,7 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   for (const auto& [name, nodes] : body.node_sets) sets.WriteIntegers(name, nodes, "1");
   WriteNodes(root, body.nodes);
   WriteSurfaces(root, body.surfaces);
+  if (!body.visual_surface.empty()) WriteVisualSurface(root, body.visual_surface);
 
   // Provenance as two parallel string lists, so that any key round-trips.
   std::map<std::string, std::string> provenance_entries = body.provenance;

@@ -109,7 +109,8 @@ TEST_F(InfoTest, JsonHasTheDocumentedKeysAndTheFilesNumbers) {
   const std::set<std::string> documented = {
       "file",       "format",     "schema_version", "name",       "mass_kg",    "center_of_mass_m",
       "inertia_about_com_kg_m2",  "fe_nodes",       "modes",      "mode_names", "mode_kinds",
-      "frequency_hz", "damping",  "nodes",          "surfaces",   "stiffening", "provenance"};
+      "frequency_hz", "damping",  "nodes",          "surfaces",   "visual_surface_faces",
+      "stiffening", "provenance"};
   std::set<std::string> keys;
   for (const auto& [key, value] : j.items()) keys.insert(key);
   EXPECT_EQ(keys, documented);
@@ -149,6 +150,9 @@ TEST_F(InfoTest, JsonHasTheDocumentedKeysAndTheFilesNumbers) {
   EXPECT_EQ(bottom["vertices"].get<long>(), body.surfaces[0].vertices.rows());
   EXPECT_EQ(bottom["faces"].get<std::size_t>(), body.surfaces[0].face_sizes.size());
   EXPECT_NEAR(bottom["area_m2"].get<double>(), kCubeEdge * kCubeEdge, kRoundOff * kCubeEdge * kCubeEdge);
+
+  EXPECT_EQ(j["visual_surface_faces"].get<std::size_t>(), body.visual_surface.face_sizes.size());
+  EXPECT_GT(body.visual_surface.face_sizes.size(), 0u) << "reduce always writes the visual surface";
 
   EXPECT_EQ(j["stiffening"].get<bool>(), !body.stiffening.empty());
   EXPECT_TRUE(j["stiffening"].get<bool>()) << "geometric stiffening is on by default";

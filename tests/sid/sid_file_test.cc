@@ -88,6 +88,8 @@ ReducedBody SampleBody() {
   pad.face_normals = Eigen::MatrixX3d::Random(2, 3);
   pad.phi = Eigen::MatrixXd::Random(12, n);
   body.surfaces = {pad};
+  body.visual_surface.face_sizes = {3, 4};
+  body.visual_surface.face_nodes = {0, 1, 2, 1, 2, 3, 4};
   body.provenance = {{"mesh", "bracket.msh"}, {"eigensolver", "spectra"}};
   return body;
 }
@@ -141,6 +143,8 @@ TEST(SidFile, RoundTripIsExact) {
   ExpectSame(surface.vertices, written.surfaces[0].vertices);
   ExpectSame(surface.face_normals, written.surfaces[0].face_normals);
   ExpectSame(surface.phi, written.surfaces[0].phi);
+  EXPECT_EQ(read.visual_surface.face_sizes, written.visual_surface.face_sizes);
+  EXPECT_EQ(read.visual_surface.face_nodes, written.visual_surface.face_nodes);
   EXPECT_EQ(read.provenance.at("mesh"), "bracket.msh");
   EXPECT_TRUE(read.provenance.contains("tool_version"));
 }
@@ -151,11 +155,14 @@ TEST(SidFile, BodyWithoutStiffeningNodesOrSurfacesRoundTrips) {
   written.stiffening = {};
   written.nodes.clear();
   written.surfaces.clear();
+  written.visual_surface = {};
   WriteReducedBody(path, written);
+  EXPECT_FALSE(h5::File::Open(path).root().HasGroup("visual_surface"));
   const ReducedBody read = ReadReducedBody(path);
   EXPECT_TRUE(read.stiffening.empty());
   EXPECT_TRUE(read.nodes.empty());
   EXPECT_TRUE(read.surfaces.empty());
+  EXPECT_TRUE(read.visual_surface.empty());
   EXPECT_TRUE(read.J == written.J);
 }
 
@@ -214,9 +221,57 @@ TEST(SidFile, WrongSchemaVersionIsRefusedByName) {
   file.root().SetStringAttribute("format", "flexmbs-sid");
   file.root().SetIntegerAttribute("schema_version", 1);
   file.Commit();
-  EXPECT_EQ(ReadError(path), fmt::format("{}: schema_version 1 is not supported (this flexmbs reads {}; "
+  EXPECT_EQ(ReadError(path), fmt::format("{}: schema_version 1 is not supported (this flexmbs reads 2 to {}; "
                                          "run `flexmbs reduce` again)",
                                          path.string(), kSidSchemaVersion));
+}
+
+TEST(SidFile, NewerSchemaVersionIsRefusedByName) {
+  const fs::path path = TempPath("newer.sid.h5");
+  h5::File file = h5::File::Create(path);
+  file.root().SetStringAttribute("format", "flexmbs-sid");
+  file.root().SetIntegerAttribute("schema_version", kSidSchemaVersion + 1);
+  file.Commit();
+  EXPECT_NE(ReadError(path).find(fmt::format("schema_version {} is not supported", kSidSchemaVersion + 1)),
+            std::string::npos);
+}
+
+// Runs `script` with Debian's python3 and its h5py, an HDF5 writer independent of ours.
+void RunPython(const std::string& script) {
+  FLEXMBS_CHECK(std::system(fmt::format("/usr/bin/python3 -c \"{}\"", script).c_str()) == 0,
+                "h5py could not alter the test file");
+}
+
+// A schema-2 file as `flexmbs reduce` of schema 2 wrote it (the sample body without the group
+// /visual_surface, which schema 2 did not have) reads as a body without a visual surface.
+TEST(SidFile, SchemaTwoFileReadsWithoutVisualSurface) {
+  const fs::path path = TempPath("schema2.sid.h5");
+  const ReducedBody written = SampleBody();
+  WriteReducedBody(path, written);
+  RunPython(fmt::format("import h5py; f = h5py.File('{}', 'r+'); del f['visual_surface']; "
+                        "f.attrs['schema_version'] = 2; f.close()",
+                        path.string()));
+  const ReducedBody read = ReadReducedBody(path);
+  EXPECT_TRUE(read.visual_surface.empty());
+  EXPECT_TRUE(read.J == written.J);
+  ExpectSame(read.phi, written.phi);
+  ASSERT_EQ(read.surfaces.size(), 1u);
+}
+
+TEST(SidFile, VisualSurfaceNodeOutOfRangeIsRefusedByName) {
+  const fs::path path = TempPath("visual_range.sid.h5");
+  WriteReducedBody(path, SampleBody());
+  RunPython(fmt::format("import h5py, numpy; g = h5py.File('{}', 'r+')['visual_surface']; del g['face_nodes']; "
+                        "g.create_dataset('face_nodes', data=numpy.array([0, 1, 2, 1, 2, 3, {}])).attrs['units'] = '1'",
+                        path.string(), kNodes));
+  EXPECT_EQ(ReadError(path), fmt::format("{}: inconsistent body: visual surface: FE node {} out of range",
+                                         path.string(), kNodes));
+}
+
+TEST(SidFile, VisualSurfaceOfWrongSizeIsAnInternalError) {
+  ReducedBody body = SampleBody();
+  body.visual_surface.face_nodes.pop_back();
+  EXPECT_THROW(WriteReducedBody(TempPath("visual_size.sid.h5"), body), InternalError);
 }
 
 TEST(SidFile, TruncatedFileIsOneLineError) {
@@ -229,17 +284,15 @@ TEST(SidFile, TruncatedFileIsOneLineError) {
 }
 
 // The sample file with the dataset /invariants/Ct/<dataset> replaced by zeros of rows x 3 with
-// `units`, altered by h5py (Debian's python3-h5py), an HDF5 writer independent of ours.
+// `units`, altered by h5py.
 fs::path WithAlteredCt(const std::string& file_name, const std::string& dataset, Eigen::Index rows,
                        const std::string& units) {
   const fs::path path = TempPath(file_name);
   WriteReducedBody(path, SampleBody());
-  const std::string script = fmt::format(
+  RunPython(fmt::format(
       "import h5py, numpy; f = h5py.File('{0}', 'r+'); g = f['/invariants/Ct']; del g['{1}']; "
       "g.create_dataset('{1}', data=numpy.zeros(({2}, 3))).attrs['units'] = '{3}'; f.close()",
-      path.string(), dataset, rows, units);
-  FLEXMBS_CHECK(std::system(fmt::format("/usr/bin/python3 -c \"{}\"", script).c_str()) == 0,
-                "h5py could not alter the test file");
+      path.string(), dataset, rows, units));
   return path;
 }
 
