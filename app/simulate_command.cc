@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -11,6 +12,7 @@
 #include "core/sha256.h"
 #include "mbs/constraint_projection.h"
 #include "mbs/flexible_body.h"
+#include "mbs/paraview_writer.h"
 #include "mbs/results_file.h"
 #include "mbs/scene.h"
 #include "mbs/simulation_error.h"
@@ -24,7 +26,7 @@ struct SimulateOptions {
   bool json = false;
 };
 
-mbs::ResultsLayout Layout(const mbs::Scene& scene) {
+mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport& initial) {
   const mbs::MultibodySystem& system = *scene.system;
   mbs::ResultsLayout layout;
   for (int b = 0; b < system.num_bodies(); ++b) {
@@ -44,7 +46,8 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene) {
   layout.provenance = {{"scene_file", scene.file.string()},
                        {"scene_sha256", Sha256OfFile(scene.file)},
                        {"integrator", fmt::format("{}, rtol {:g}, atol {:g}", mbs::OdeMethodName(ode.method),
-                                                  ode.relative_tolerance, ode.absolute_tolerance)}};
+                                                  ode.relative_tolerance, ode.absolute_tolerance)},
+                       {"redundant_constraints", initial.redundancy.Describe(system)}};
   for (std::size_t b = 0; b < scene.body_files.size(); ++b) {
     if (scene.body_files[b].empty()) continue;
     layout.provenance["body_file " + system.body(static_cast<int>(b)).name()] =
@@ -92,6 +95,11 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
     j["rhs_evaluations"] = stats.integrator.rhs_evaluations;
     j["error_test_failures"] = stats.integrator.error_test_failures;
     j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
+    nlohmann::json dropped = nlohmann::json::array();
+    for (const Eigen::Index row : stats.initial_conditions.redundancy.dropped_rows) {
+      dropped.push_back(scene.system->DescribeConstraintRow(row));
+    }
+    j["redundant_constraints"] = dropped;
     j["energy_j"] = {{"start", energy_start}, {"end", energy_end}};
     j["wall_seconds"] = stats.wall_seconds;
     j["real_time_factor"] = real_time_factor;
@@ -102,6 +110,7 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
   fmt::print("scene           {} bodies, {} joints, {} force elements\n", scene.system->num_bodies(),
              scene.system->num_joints(), scene.system->num_force_elements());
   fmt::print("initial state   {}\n", stats.initial_conditions.Describe(*scene.system));
+  fmt::print("redundant       {}\n", stats.initial_conditions.redundancy.Describe(*scene.system));
   fmt::print("integration     {} steps, {} function evaluations, {} error-test failures\n", stats.integrator.steps,
              stats.integrator.rhs_evaluations, stats.integrator.error_test_failures);
   fmt::print("energy          {:.9g} J -> {:.9g} J\n", energy_start, energy_end);
@@ -121,7 +130,11 @@ void RunSimulate(const SimulateOptions& options) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", options.scene_file, e.what()));
   }
-  mbs::ResultsWriter writer(options.output, Layout(scene));
+  mbs::ResultsWriter writer(options.output, Layout(scene, initial));
+  std::optional<mbs::ParaviewWriter> paraview;
+  if (scene.paraview.enabled) {
+    paraview.emplace(*scene.system, mbs::ParaviewCollectionFor(options.output), scene.paraview.every);
+  }
   Progress progress;
   double energy_start = std::nan(""), energy_end = std::nan("");
   const double end_time = scene.options.end_time;
@@ -130,6 +143,7 @@ void RunSimulate(const SimulateOptions& options) {
     if (std::isnan(energy_start)) energy_start = sample.kinetic_energy + sample.potential_energy;
     energy_end = sample.kinetic_energy + sample.potential_energy;
     writer.Append(sample);
+    if (paraview) paraview->Record(t, y);
     progress.Show(fmt::format("t = {:.6g} s of {:g} s", t, end_time));
   };
   mbs::SimulationStatistics stats;

@@ -15,6 +15,10 @@ bool Body::AddAccelerationDependentForces(const ConstVectorRef& /*x*/, const Con
   return false;
 }
 
+void Body::AddForceJacobian(const ConstVectorRef& /*x*/, const ConstVectorRef& /*u*/, const ConstVectorRef& /*u_dot*/,
+                            const Eigen::Vector3d& /*g_W*/, Eigen::Ref<Eigen::MatrixXd> /*dh_dx*/,
+                            Eigen::Ref<Eigen::MatrixXd> /*dh_du*/) const {}
+
 Eigen::VectorXd GeneralizedForce(const MarkerKinematics& kinematics, const Eigen::Vector3d& f_W,
                                  const Eigen::Vector3d& tau_W) {
   Eigen::Matrix<double, 6, 1> load;

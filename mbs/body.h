@@ -57,6 +57,16 @@ class Body {
   /// body has such forces (false: h is unchanged); the default has none.
   virtual bool AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef& u,
                                               const ConstVectorRef& u_dot, Eigen::Ref<Eigen::VectorXd> h) const;
+  /// Adds the stiff part of h_b's derivatives for the implicit integrator's Newton matrix
+  /// (mbs/system_jacobian.h): dh_dx (n_u x n_u) with respect to the positions moved by a
+  /// velocity-space increment (MultibodySystem::DisplacePositions: columns p, rotation in B, q)
+  /// and dh_du (n_u x n_u) with respect to u, at (x, u) with gravity g_W [m/s^2] and the
+  /// accelerations u_dot (size n_u) in the acceleration-dependent forces, held fixed. What a
+  /// body includes is its own choice (an approximate Jacobian slows Newton, never the result);
+  /// the default adds nothing.
+  virtual void AddForceJacobian(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
+                                const Eigen::Vector3d& g_W, Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                                Eigen::Ref<Eigen::MatrixXd> dh_du) const;
   /// Kinetic energy [J] and potential energy (elastic and gravity, g_W) [J].
   virtual double KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const = 0;
   virtual double PotentialEnergy(const ConstVectorRef& x, const Eigen::Vector3d& g_W) const = 0;

@@ -1,17 +1,20 @@
 #pragma once
 // Projection of a state onto the constraint manifold (docs/mbs.md): positions onto g = 0 and
-// |e| = 1 by Gauss-Newton in the mass metric, velocities onto G u = -g_t; and the check of
-// initial conditions (report, then project or refuse).
+// |e| = 1 by Gauss-Newton in the mass metric, velocities onto G u = -g_t, both on the kept rows
+// (MultibodySystem::dropped_constraints are watched, not projected); and the check of initial
+// conditions (find the redundant rows, report, then project or refuse).
 
 #include <string>
 
+#include "mbs/constraint_redundancy.h"
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
 
 /// Settings of the position projection.
 struct ProjectionOptions {
-  /// Converged when max |g_k| <= this [m for translations, 1 (about rad) for rotations].
+  /// Converged when max |g_k| <= this over the kept rows [m for translations, 1 (about rad) for
+  /// rotations]; the dropped rows must then hold to 100 times it (CheckDroppedConstraints).
   double position_tolerance = 1e-11;
   int max_iterations = 10;
 };
@@ -34,15 +37,17 @@ struct ProjectionResult {
 };
 
 /// Normalises the Euler parameters, then moves the positions by Gauss-Newton steps
-/// du = -M^-1 G^T (G M^-1 G^T)^-1 g (the smallest change in the kinetic metric,
-/// MultibodySystem::DisplacePositions) until max |g| <= tolerance. Throws SimulationError at t
-/// naming the joints if G M^-1 G^T is rank deficient or if it does not converge (naming the
-/// joint of the largest residual).
+/// du = -M^-1 G^T (G M^-1 G^T)^-1 g on the kept rows (the smallest change in the kinetic
+/// metric, MultibodySystem::DisplacePositions) until max |g| <= tolerance there. Throws
+/// SimulationError at t naming the joints if G M^-1 G^T is rank deficient or if it does not
+/// converge (naming the joint of the largest residual), and CheckDroppedConstraints' error if a
+/// dropped row is then violated by more than 100 times the tolerance (the redundancy changed;
+/// the dropped rows follow the kept rows' residual with a gain of order 1).
 ProjectionResult ProjectPositions(const MultibodySystem& system, double t, Eigen::Ref<Eigen::VectorXd> y,
                                   const ProjectionOptions& options);
 
-/// u -= M^-1 G^T (G M^-1 G^T)^-1 (G u + g_t): the nearest velocities (kinetic metric) with
-/// G u = -g_t. Throws SimulationError like ProjectPositions.
+/// u -= M^-1 G^T (G M^-1 G^T)^-1 (G u + g_t) on the kept rows: the nearest velocities (kinetic
+/// metric) with G u = -g_t. Throws SimulationError for a rank-deficient G M^-1 G^T.
 void ProjectVelocities(const MultibodySystem& system, double t, Eigen::Ref<Eigen::VectorXd> y);
 
 /// How far initial conditions may violate the constraints and still be projected.
@@ -54,6 +59,7 @@ struct ConsistencyOptions {
 
 /// What the consistency check found and did.
 struct ConsistencyReport {
+  ConstraintRedundancy redundancy;     ///< the rows dropped for the run
   ConstraintResidual before;
   double euler_parameter_error = 0.0;  ///< largest | |e| - 1 | before
   ConstraintResidual after;
@@ -65,8 +71,11 @@ struct ConsistencyReport {
 /// Checks initial conditions y at t: within ProjectionOptions::position_tolerance (and round-off
 /// for velocities) they are kept; within the limits they are projected (positions, then
 /// velocities); beyond, InputError names the worst joint and the residual ("inconsistent
-/// initial conditions"). Throws SimulationError for a rank-deficient constraint Jacobian.
-ConsistencyReport MakeConsistent(const MultibodySystem& system, double t, Eigen::Ref<Eigen::VectorXd> y,
+/// initial conditions"). Finds the redundant rows (FindRedundantConstraints with the system's
+/// singular_pivot) at y, and again at the projected y, and sets them as the system's
+/// dropped_constraints for the run. Throws SimulationError if the kept rows are rank deficient
+/// at the end (they are not right after the search) or a dropped row does not hold.
+ConsistencyReport MakeConsistent(MultibodySystem& system, double t, Eigen::Ref<Eigen::VectorXd> y,
                                  const ConsistencyOptions& options);
 
 }  // namespace flexmbs::mbs

@@ -19,7 +19,7 @@ constexpr double kInvolvedShare = 0.05;
 }  // namespace
 
 ConstraintSolver::ConstraintSolver(const MultibodySystem& system, double t, const ConstVectorRef& y,
-                                   const Eigen::MatrixXd& G)
+                                   const Eigen::MatrixXd& G, SolverRows rows)
     : system_(system) {
   mass_factors_.reserve(static_cast<std::size_t>(system.num_bodies()));
   for (int b = 0; b < system.num_bodies(); ++b) {
@@ -32,8 +32,13 @@ ConstraintSolver::ConstraintSolver(const MultibodySystem& system, double t, cons
   const Eigen::Index m = G.rows();
   Minv_GT_.resize(system.num_velocities(), m);
   for (Eigen::Index k = 0; k < m; ++k) Minv_GT_.col(k) = SolveMass(G.row(k).transpose());
-  if (m == 0) return;
-  const Eigen::MatrixXd S = G * Minv_GT_;
+  if (rows == SolverRows::kKept) {
+    rows_ = system.KeptConstraints();
+  } else {
+    for (Eigen::Index k = 0; k < m; ++k) rows_.push_back(k);
+  }
+  if (rows_.empty()) return;
+  const Eigen::MatrixXd S = G(rows_, Eigen::all) * Minv_GT_(Eigen::all, rows_);
   scale_ = S.diagonal().cwiseMax(0.0).cwiseSqrt();
   if (scale_.minCoeff() == 0.0) smallest_pivot_ = 0.0;  // a row of G that moves nothing
   scale_ = (scale_.array() > 0.0).select(scale_, 1.0);
@@ -53,8 +58,11 @@ Eigen::VectorXd ConstraintSolver::SolveMass(const ConstVectorRef& r) const {
 }
 
 Eigen::VectorXd ConstraintSolver::SolveSchur(const ConstVectorRef& r) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(r.size());
+  if (rows_.empty()) return out;
   const Eigen::VectorXd inverse_scale = scale_.cwiseInverse();
-  return inverse_scale.cwiseProduct(schur_factor_.solve(inverse_scale.cwiseProduct(r)));
+  out(rows_) = inverse_scale.cwiseProduct(schur_factor_.solve(inverse_scale.cwiseProduct(r(rows_))));
+  return out;
 }
 
 std::vector<int> ConstraintSolver::DependentJoints(double pivot) const {
@@ -64,7 +72,9 @@ std::vector<int> ConstraintSolver::DependentJoints(double pivot) const {
   for (Eigen::Index i = 0; i < S_scaled_.rows() && (i == 0 || eigen.eigenvalues()(i) < pivot); ++i) {
     const Eigen::VectorXd v = eigen.eigenvectors().col(i).cwiseAbs();
     for (Eigen::Index row = 0; row < v.size(); ++row) {
-      if (v(row) >= kInvolvedShare * v.maxCoeff()) joints.push_back(system_.JointOfConstraint(row));
+      if (v(row) >= kInvolvedShare * v.maxCoeff()) {
+        joints.push_back(system_.JointOfConstraint(rows_[static_cast<std::size_t>(row)]));
+      }
     }
   }
   std::sort(joints.begin(), joints.end());

@@ -267,6 +267,27 @@ bool FlexibleBody::AddAccelerationDependentForces(const ConstVectorRef& x, const
   return true;
 }
 
+void FlexibleBody::AddForceJacobian(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
+                                    const Vector3d& g_W, Eigen::Ref<MatrixXd> dh_dx, Eigen::Ref<MatrixXd> dh_du) const {
+  const Index n = n_;
+  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  const Vector3d w = u.segment<3>(3), g_B = R.transpose() * g_W;
+  const Eigen::Matrix<double, 6, 1> w_q = AngularVelocityProducts(w);
+  auto stiffness = dh_dx.bottomRightCorner(n, n);
+  stiffness -= Ke_;
+  for (Index a = 0; a < 3; ++a) stiffness += g_B(a) * Ct1_.middleCols(a * n, n);
+  for (Index l = 0; l < 6; ++l) stiffness -= w_q(l) * Oe1_.middleCols(l * n, n);
+  if (K0t_.size() > 0) {
+    const Vector3d a_B = R.transpose() * u_dot.head<3>(), alpha = u_dot.segment<3>(3);
+    for (Index a = 0; a < 3; ++a) {
+      stiffness += (g_B(a) - a_B(a)) * K0t_.middleCols(a * n, n) - alpha(a) * K0r_.middleCols(a * n, n);
+    }
+  }
+  auto damping = dh_du.bottomRightCorner(n, n);
+  damping -= De_;
+  for (Index j = 0; j < n; ++j) damping.col(j) -= Ge0_.middleCols(3 * j, 3) * w;
+}
+
 VectorXd FlexibleBody::KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const {
   const Index n = n_;
   const VectorXd q = x.tail(n), qdot = u.tail(n);

@@ -80,6 +80,14 @@ class FlexibleBody final : public Body {
   /// body; docs/sid.md); returns true. Off, or without stiffening matrices: false.
   bool AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
                                       Eigen::Ref<Eigen::VectorXd> h) const override;
+  /// The elastic row's derivatives, exact: dh_e/dq = -Ke + sum_a g_B,a (Ct1_a + K0t_a)
+  /// - sum_l w_q,l Oe1_l - sum_a (a_B,a K0t_a + alpha_a K0r_a) (Ct1 kinematic; K0 with stiffening
+  /// on, the accelerations a_B = R^T v', alpha = w' from u_dot held fixed) and dh_e/dqdot = -De
+  /// - [Ge_j w]_j. Not the rigid rows nor the elastic row's rotation and w columns (gyroscopic,
+  /// centrifugal and gravity terms, of the motion's own frequencies).
+  void AddForceJacobian(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
+                        const Eigen::Vector3d& g_W, Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                        Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
   /// 1/2 u^T M_kin u, M_kin the mass matrix of the kinematic blocks [J].
   double KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const override;
   /// 1/2 q^T Ke q + ksigma^T q - g_W . (m p_WBo_W + R mdCM(q)) [J].

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/skew.h"
 #include "mbs/multibody_system.h"
 #include "mbs/simulation_error.h"
 
@@ -41,7 +42,44 @@ RelativeMotion Relative(const MarkerKinematics& I, const MarkerKinematics& J) {
           R_IW * (J.w_WM_W - I.w_WM_W)};
 }
 
+/// One end of a two-point element: its marker, the marker's jacobian (6 x n_u of its body) and the
+/// load map (jacobian^T + load_stiffening, n_u x 6), premultiplied by the end's share of the
+/// relative motion and of the load.
+struct CouplingEnd {
+  const MarkerRef* marker;
+  Eigen::MatrixXd motion;  ///< 6 x n_u
+  Eigen::MatrixXd load;    ///< n_u x 6
+};
+
+CouplingEnd End(const MarkerRef& marker, const MarkerKinematics& kinematics, const Eigen::Matrix<double, 6, 6>& share) {
+  Eigen::MatrixXd load = kinematics.jacobian.transpose();
+  if (kinematics.load_stiffening.size() > 0) load += kinematics.load_stiffening;
+  return {&marker, share * kinematics.jacobian, load * share.transpose()};
+}
+
+/// Adds -(P_j - P_i Gamma^T) K (E_j - Gamma E_i) to `out` (num_velocities() square), the
+/// derivative of the generalised forces of a load L_j on marker j and -Gamma^T L_j on marker i
+/// (both at their origins) when dL_j = -K (E_j - Gamma E_i) du (E the markers' jacobians, P
+/// their load maps). Bodies' blocks only; nothing for the ground.
+void AddCoupling(const MultibodySystem& system, const MarkerRef& i, const MarkerKinematics& I, const MarkerRef& j,
+                 const MarkerKinematics& J, const Eigen::Matrix<double, 6, 6>& Gamma,
+                 const Eigen::Matrix<double, 6, 6>& K, Eigen::Ref<Eigen::MatrixXd> out) {
+  const std::array<CouplingEnd, 2> ends{End(i, I, -Gamma), End(j, J, Eigen::Matrix<double, 6, 6>::Identity())};
+  for (const CouplingEnd& row : ends) {
+    if (row.marker->is_ground()) continue;
+    for (const CouplingEnd& column : ends) {
+      if (column.marker->is_ground()) continue;
+      out.block(system.velocity_offset(row.marker->body), system.velocity_offset(column.marker->body),
+                row.load.rows(), column.motion.cols()) -= row.load * K * column.motion;
+    }
+  }
+}
+
 }  // namespace
+
+void ForceElement::AddForceJacobian(double /*t*/, const MultibodySystem& /*system*/, const ConstVectorRef& /*y*/,
+                                    Eigen::Ref<Eigen::MatrixXd> /*dh_dx*/,
+                                    Eigen::Ref<Eigen::MatrixXd> /*dh_du*/) const {}
 
 double ForceElement::PotentialEnergy(double /*t*/, const MultibodySystem& /*system*/,
                                      const ConstVectorRef& /*y*/) const {
@@ -88,6 +126,26 @@ double SpringDamper::PotentialEnergy(double /*t*/, const MultibodySystem& system
   return 0.5 * stiffness_ * stretch * stretch;
 }
 
+void SpringDamper::AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                    Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  const MarkerKinematics A = system.MarkerState(a_, y), B = system.MarkerState(b_, y);
+  const Eigen::Vector3d d = B.p_WM_W - A.p_WM_W, dv = B.v_WM_W - A.v_WM_W;
+  const double length = d.norm();
+  if (!(length > 0.0)) {
+    throw SimulationError(t, fmt::format("t = {:.9g} s: spring-damper '{}': its end points meet (no direction)", t, name_));
+  }
+  const Eigen::Vector3d e = d / length;
+  const double tension = stiffness_ * (length - free_length_) + damping_ * e.dot(dv);
+  const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - e * e.transpose();
+  Eigen::Matrix<double, 6, 6> K = Eigen::Matrix<double, 6, 6>::Zero(), C = K;
+  K.topLeftCorner<3, 3>() = stiffness_ * e * e.transpose() + (tension / length) * across +
+                            (damping_ / length) * e * (across * dv).transpose();
+  C.topLeftCorner<3, 3>() = damping_ * e * e.transpose();
+  const Eigen::Matrix<double, 6, 6> identity = Eigen::Matrix<double, 6, 6>::Identity();
+  AddCoupling(system, a_, A, b_, B, identity, K, dh_dx);
+  AddCoupling(system, a_, A, b_, B, identity, C, dh_du);
+}
+
 Bushing::Bushing(std::string name, MarkerRef marker_i, MarkerRef marker_j, const Eigen::Matrix<double, 6, 1>& stiffness,
                  const Eigen::Matrix<double, 6, 1>& damping)
     : name_(std::move(name)), marker_i_(std::move(marker_i)), marker_j_(std::move(marker_j)), stiffness_(stiffness),
@@ -109,6 +167,23 @@ void Bushing::AddForces(double /*t*/, const MultibodySystem& system, const Const
   system.AddMarkerLoad(marker_j_, J, f_W, tau_W, h);
   // The reaction acts at J's origin: moved to I's origin it gains the moment of -f_W.
   system.AddMarkerLoad(marker_i_, I, -f_W, -tau_W - (J.p_WM_W - I.p_WM_W).cross(f_W), h);
+}
+
+void Bushing::AddForceJacobian(double /*t*/, const MultibodySystem& system, const ConstVectorRef& y,
+                               Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  const MarkerKinematics I = system.MarkerState(marker_i_, y), J = system.MarkerState(marker_j_, y);
+  // d_W = p_J - p_I moves by dp_J - dp_I + r~ dphi_I (r = p_J - p_I, dphi_I I's rotation in W):
+  // the relative motion is E_J - Gamma E_I, and the reaction on I at its origin -Gamma^T L_J.
+  Eigen::Matrix<double, 6, 6> Gamma = Eigen::Matrix<double, 6, 6>::Identity();
+  Gamma.topRightCorner<3, 3>() = -Skew(J.p_WM_W - I.p_WM_W);
+  const auto in_world = [&](const Eigen::Matrix<double, 6, 1>& diagonal) {
+    Eigen::Matrix<double, 6, 6> out = Eigen::Matrix<double, 6, 6>::Zero();
+    out.topLeftCorner<3, 3>() = I.R_WM * diagonal.head<3>().asDiagonal() * I.R_WM.transpose();
+    out.bottomRightCorner<3, 3>() = I.R_WM * diagonal.tail<3>().asDiagonal() * I.R_WM.transpose();
+    return out;
+  };
+  AddCoupling(system, marker_i_, I, marker_j_, J, Gamma, in_world(stiffness_), dh_dx);
+  AddCoupling(system, marker_i_, I, marker_j_, J, Gamma, in_world(damping_), dh_du);
 }
 
 double Bushing::PotentialEnergy(double /*t*/, const MultibodySystem& system, const ConstVectorRef& y) const {

@@ -1,7 +1,7 @@
 #pragma once
 // Force elements (docs/mbs.md, "Seams for contact"): applied loads that add generalised forces
-// to h in M u' = h + G^T lambda. Compliant contact laws plug in here; their Jacobians dh/dx,
-// dh/du for implicit integration are a later addition to this interface.
+// to h in M u' = h + G^T lambda, and the stiff part of their Jacobians dh/dx, dh/du for the
+// implicit integrator (AddForceJacobian). Compliant contact laws plug in here.
 
 #include <Eigen/Core>
 #include <array>
@@ -27,6 +27,11 @@ class ForceElement {
                          Eigen::Ref<Eigen::VectorXd> h) const = 0;
   /// The energy stored in the element [J]; 0 for loads without a potential.
   virtual double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// Adds the stiff part of the element's dh/dx and dh/du (num_velocities() square each; x by
+  /// velocity-space increments, MultibodySystem::DisplacePositions) for the implicit integrator's
+  /// Newton matrix (mbs/system_jacobian.h); the default adds nothing.
+  virtual void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const;
 };
 
 /// The frame of a point load's components.
@@ -64,6 +69,12 @@ class SpringDamper final : public ForceElement {
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
   double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  /// The load's derivative by the relative motion of the two points through the markers'
+  /// jacobians: d(F e)/dd = k e e^T + F / l (I - e e^T) + c e dl/dt' (I - e e^T) / l,
+  /// d(F e)/d(v_B - v_A) = c e e^T (e the unit vector A -> B, l the length). Exact in u; in x
+  /// without the change of the marker jacobians (the load times the lever's rotation).
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
  private:
   std::string name_;
@@ -88,6 +99,11 @@ class Bushing final : public ForceElement {
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
   double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  /// The load's derivative by the relative motion (d, theta in W components) through the markers'
+  /// jacobians: blkdiag(R_WI K_t R_WI^T, R_WI K_r R_WI^T), and the same with C for the rates.
+  /// Exact in u; in x at theta = 0 and up to the load times the rotation of I and of the levers.
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
  private:
   std::string name_;

@@ -77,6 +77,33 @@ int MultibodySystem::JointOfConstraint(Eigen::Index row) const {
   return static_cast<int>(after - constraint_offsets_.begin()) - 1;
 }
 
+std::string MultibodySystem::DescribeConstraintRow(Eigen::Index row) const {
+  const int k = JointOfConstraint(row);
+  return fmt::format("'{}' row {} of {}", joint(k).name(), row - constraint_offset(k) + 1, joint(k).num_equations());
+}
+
+void MultibodySystem::set_dropped_constraints(std::vector<Eigen::Index> rows) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    FLEXMBS_CHECK(rows[i] >= 0 && rows[i] < num_constraints_ && (i == 0 || rows[i] > rows[i - 1]),
+                  "MultibodySystem::set_dropped_constraints: rows ascending, distinct and in range");
+  }
+  dropped_constraints_ = std::move(rows);
+}
+
+std::vector<Eigen::Index> MultibodySystem::KeptConstraints() const {
+  std::vector<Eigen::Index> kept;
+  kept.reserve(static_cast<std::size_t>(num_constraints_));
+  auto dropped = dropped_constraints_.begin();
+  for (Eigen::Index row = 0; row < num_constraints_; ++row) {
+    if (dropped != dropped_constraints_.end() && *dropped == row) {
+      ++dropped;
+    } else {
+      kept.push_back(row);
+    }
+  }
+  return kept;
+}
+
 Eigen::VectorXd MultibodySystem::NeutralState() const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(state_size());
   for (int b = 0; b < num_bodies(); ++b) y(position_offset(b) + 3) = 1.0;

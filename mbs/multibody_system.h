@@ -82,6 +82,17 @@ class MultibodySystem {
   Eigen::Index constraint_offset(int k) const { return constraint_offsets_.at(static_cast<std::size_t>(k)); }
   /// The joint whose equations contain stacked constraint row `row`.
   int JointOfConstraint(Eigen::Index row) const;
+  /// "'<joint>' row <i> of <m>" (i 1-based within the joint) for stacked row `row`.
+  std::string DescribeConstraintRow(Eigen::Index row) const;
+
+  /// The stacked constraint rows left out of the equations of motion and the projections,
+  /// ascending: the rows found redundant at the start of a run (constraint_redundancy.h). Their
+  /// multipliers are 0, so the joint loads are one particular solution of the redundant system.
+  const std::vector<Eigen::Index>& dropped_constraints() const { return dropped_constraints_; }
+  /// Sets dropped_constraints(); `rows` ascending, distinct and < num_constraints() (checked).
+  void set_dropped_constraints(std::vector<Eigen::Index> rows);
+  /// The stacked constraint rows not dropped, ascending.
+  std::vector<Eigen::Index> KeptConstraints() const;
 
   /// Every body at the origin of W, unrotated (e = (1, 0, 0, 0)), undeformed and at rest.
   Eigen::VectorXd NeutralState() const;
@@ -105,15 +116,15 @@ class MultibodySystem {
   Eigen::VectorXd Forces(double t, const ConstVectorRef& y) const;
   /// The joints' equations at (t, y).
   SystemConstraints Constraints(double t, const ConstVectorRef& y) const;
-  /// u' and lambda (size num_constraints()) at (t, y), with Baumgarte terms per
+  /// u' and lambda (size num_constraints(), 0 on the dropped rows) at (t, y), with Baumgarte terms per
   /// constraint_settings(). The bodies' acceleration-dependent forces h_a(u') (geometric
   /// stiffening, Body::AddAccelerationDependentForces) enter by one corrector step: u'_0 solves
   /// the system without them, u' the system with h_a(u'_0) (the same factorisations). With
   /// h_a = -N u' and A the constrained solution operator, u' - u'_exact = -(A N)^2 u'_exact:
   /// of second order in the deformation (|A N| grows with q, about as the elastic rotations;
   /// docs/mbs.md, "Geometric stiffening"); exact when joints prescribe the frames' motion.
-  /// Throws SimulationError at t naming the joints when G M^-1 G^T is rank deficient (redundant
-  /// joints, or a closed loop in a singular configuration).
+  /// Throws SimulationError at t naming the joints when G M^-1 G^T over the kept rows is rank
+  /// deficient (a closed loop in a singular configuration, or redundant rows not dropped).
   void Accelerations(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> u_dot,
                      Eigen::Ref<Eigen::VectorXd> lambda) const;
   /// The bodies' acceleration-dependent forces (size num_velocities()) at y for the
@@ -143,6 +154,7 @@ class MultibodySystem {
   std::vector<Joint> joints_;
   std::vector<std::unique_ptr<ForceElement>> force_elements_;
   std::vector<Eigen::Index> position_offsets_, velocity_offsets_, constraint_offsets_;
+  std::vector<Eigen::Index> dropped_constraints_;
   Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_constraints_ = 0;
 };
 

@@ -258,15 +258,17 @@ OdeIntegrator::OdeIntegrator(OdeProblem problem, const OdeOptions& options, doub
     m.Check(ARKStepSetTableNum(m.arkode, ARKODE_ARK436L2SA_DIRK_6_3_4, ARKODE_ERK_NONE),
             "ARKStepSetTableNum");
     // Newton on the stage equations with dense LU of I - gamma h df/dy. Without
-    // problem.jacobian ARKODE forms df/dy by difference quotients (arkLsDQJac: one rhs call per
-    // column); an analytic Jacobian goes through ARKStepSetJacFn (any ARKLsJacFn filling the
-    // dense SUNMatrix column-major).
+    // problem.jacobian (or with OdeJacobian::kDifferenceQuotients) ARKODE forms df/dy by
+    // difference quotients (arkLsDQJac: one rhs call per column); an analytic Jacobian goes
+    // through ARKStepSetJacFn (any ARKLsJacFn filling the dense SUNMatrix column-major).
     m.matrix = SUNDenseMatrix(m.problem.size, m.problem.size, m.context);
     m.linear_solver = SUNLinSol_Dense(m.y, m.matrix, m.context);
     FLEXMBS_CHECK(m.matrix != nullptr && m.linear_solver != nullptr,
                   "dense linear solver not created");
     m.Check(ARKStepSetLinearSolver(m.arkode, m.linear_solver, m.matrix), "ARKStepSetLinearSolver");
-    if (m.problem.jacobian) m.Check(ARKStepSetJacFn(m.arkode, &Impl::Jacobian), "ARKStepSetJacFn");
+    if (m.problem.jacobian && options.jacobian == OdeJacobian::kModel) {
+      m.Check(ARKStepSetJacFn(m.arkode, &Impl::Jacobian), "ARKStepSetJacFn");
+    }
     // Refactor I - gamma h df/dy whenever gamma changes. ARKODE's default (only beyond a 20 %
     // change) keeps a stale matrix while its Newton test judges the first iterate with the
     // convergence rate of an earlier solve (reset only by a refactorisation): after exact

@@ -44,9 +44,16 @@ struct OdeProblem {
       jacobian;
 };
 
+/// Where the implicit method's df/dy comes from.
+enum class OdeJacobian {
+  kModel,                ///< OdeProblem::jacobian (difference quotients if the problem has none)
+  kDifferenceQuotients,  ///< ARKODE's difference quotients: one rhs call per column
+};
+
 /// Settings.
 struct OdeOptions {
   OdeMethod method = OdeMethod::kExplicit;
+  OdeJacobian jacobian = OdeJacobian::kModel;  ///< implicit only
   double relative_tolerance = 1e-6;
   double absolute_tolerance = 1e-9;
   double initial_step = 0.0;  ///< [s], 0: chosen by ARKODE (also after Reset)

@@ -110,7 +110,7 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
 
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
-                          "max_step", "fixed_step", "baumgarte_frequency"});
+                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian"});
   SimulationOptions options;
   options.end_time = node.Required("end_time").AsDouble();
   if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
@@ -128,6 +128,15 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
       method.Fail(fmt::format("'{}' must be one of: explicit, implicit", name));
     }
   }
+  if (node.Has("jacobian")) {
+    const YamlNode jacobian = node.Required("jacobian");
+    const std::string name = jacobian.AsString();
+    if (name == "difference_quotients") {
+      options.integrator.jacobian = OdeJacobian::kDifferenceQuotients;
+    } else if (name != "model") {
+      jacobian.Fail(fmt::format("'{}' must be one of: model, difference_quotients", name));
+    }
+  }
   auto positive = [&](std::string_view key, double* value) {
     if (!node.Has(key)) return;
     const YamlNode item = node.Required(key);
@@ -142,9 +151,28 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
   return options;
 }
 
-/// `output: {markers: [body.marker, ...]}`.
+/// `paraview: true | false | {every: <n>}`.
+ParaviewOutput ReadParaview(const YamlNode& node) {
+  ParaviewOutput paraview;
+  if (node.Has("every")) {
+    node.RejectUnknownKeys({"every"});
+    const YamlNode every = node.Required("every");
+    paraview.enabled = true;
+    paraview.every = every.AsInt();
+    if (paraview.every < 1) every.Fail(fmt::format("{} must be >= 1", paraview.every));
+    return paraview;
+  }
+  try {
+    paraview.enabled = node.AsBool();
+  } catch (const InputError&) {
+    node.Fail("expected true, false or {every: <number of output samples>}");
+  }
+  return paraview;
+}
+
+/// `output: {markers: [body.marker, ...], paraview: ...}`.
 std::vector<RecordedMarker> ReadOutput(const YamlNode& node, const MultibodySystem& system) {
-  node.RejectUnknownKeys({"markers"});
+  node.RejectUnknownKeys({"markers", "paraview"});
   std::vector<RecordedMarker> markers;
   if (!node.Has("markers")) return markers;
   for (const YamlNode& item : node.Required("markers").AsList()) {
@@ -187,7 +215,11 @@ Scene LoadScene(const std::filesystem::path& file) {
     scene.system->SetBodyState(static_cast<int>(b), bodies[b].x0, bodies[b].u0, scene.initial_state);
   }
   scene.options = ReadSimulation(root.Required("simulation"));
-  if (root.Has("output")) scene.recorded_markers = ReadOutput(root.Required("output"), *scene.system);
+  if (root.Has("output")) {
+    const YamlNode output = root.Required("output");
+    scene.recorded_markers = ReadOutput(output, *scene.system);
+    if (output.Has("paraview")) scene.paraview = ReadParaview(output.Required("paraview"));
+  }
   return scene;
 }
 

@@ -22,6 +22,13 @@ struct RecordedMarker {
   std::string name;  ///< the marker's name on its body
 };
 
+/// `output.paraview` (docs/scene.md): whether ParaView files are written beside the results
+/// file (ParaviewWriter), and of every how many output samples.
+struct ParaviewOutput {
+  bool enabled = false;
+  int every = 1;  ///< >= 1
+};
+
 /// A loaded scene.
 struct Scene {
   std::filesystem::path file;
@@ -29,6 +36,7 @@ struct Scene {
   Eigen::VectorXd initial_state;  ///< y0 = [x; u] as the file gives it (Simulate checks consistency)
   SimulationOptions options;
   std::vector<RecordedMarker> recorded_markers;
+  ParaviewOutput paraview;
   /// Per body: "rigid" or "flexible", and the `.sid.h5` file of flexible bodies.
   std::vector<std::string> body_kinds;
   std::vector<std::filesystem::path> body_files;
@@ -38,7 +46,7 @@ struct Scene {
 /// folder). Throws InputError "<file>:<line>:<col>: <item>: <problem>" for malformed YAML, an
 /// unknown or missing key, a non-finite number, an unknown body, marker, mode or joint type, a
 /// joint or element from a body to itself, a body file that cannot be read or has the wrong
-/// schema, a wrong number of initial modal coordinates, and bad simulation settings.
+/// schema, a wrong number of initial modal coordinates, and bad simulation or output settings.
 Scene LoadScene(const std::filesystem::path& file);
 
 }  // namespace flexmbs::mbs

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "mbs/constraint_solver.h"
 #include "mbs/simulation_error.h"
+#include "mbs/system_jacobian.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -73,6 +74,14 @@ SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& 
   problem.rhs = [&](double t, Eigen::Ref<const Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> y_dot) {
     try {
       system.Derivative(t, y, y_dot);
+    } catch (const SimulationError&) {
+      model_failed = true;
+      throw;
+    }
+  };
+  problem.jacobian = [&](double t, Eigen::Ref<const Eigen::VectorXd> y, Eigen::Ref<Eigen::MatrixXd> dfdy) {
+    try {
+      SystemJacobian(system, t, y, dfdy);
     } catch (const SimulationError&) {
       model_failed = true;
       throw;

@@ -30,6 +30,7 @@ struct SimulationOptions {
 
 /// What a run did.
 struct SimulationStatistics {
+  /// The initial-state check, with the constraint rows dropped as redundant for the run.
   ConsistencyReport initial_conditions;
   OdeStatistics integrator;
   long outputs = 0;
@@ -45,9 +46,11 @@ struct SimulationStatistics {
 using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda)>;
 
 /// Integrates `system` from y0 at options.start_time to options.end_time. Sets the system's
-/// constraint settings from the options. Throws InputError for bad options or inconsistent
-/// initial conditions (MakeConsistent), SimulationError (with the time) when the integration
-/// fails; a failure near a singular configuration is reported with the joints of the loop.
+/// constraint settings from the options and its dropped (redundant) constraint rows from the
+/// initial state (MakeConsistent). Throws InputError for bad options or inconsistent initial
+/// conditions, SimulationError (with the time) when the integration fails; a failure near a
+/// singular configuration is reported with the joints of the loop, a dropped row that stops
+/// holding as a change of the redundancy (CheckDroppedConstraints).
 SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
                               const OutputCallback& output);
 

@@ -22,6 +22,8 @@ packages=(
   # independent peers for validation and benchmarks
   calculix-ccx python3-dolfinx python3-gmsh python3-numpy python3-scipy
   python3-matplotlib python3-h5py python3-meshio
+  # independent reader of the ParaView output in tests
+  python3-vtk9
   # peak-memory measurement in bench/
   time
 )

@@ -2,18 +2,22 @@
 // free-flying reduced flexible cube through the command line into results files, checked
 // against analytic values and conservation laws; bad scenes give one line and exit 2 and leave
 // no results file; a mechanism driven into a singular configuration stops with the time and
-// keeps its results up to there.
+// keeps its results up to there; ParaView files are read back by VTK.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/h5_file.h"
 #include "tests/app/flexmbs_process.h"
+#include "tests/paraview_read_back.h"
 
 namespace {
 
@@ -138,6 +142,83 @@ output: {markers: [cube.lid]}
   EXPECT_NEAR(cube.ReadMatrix("position")(10, 0), 0.01, 1e-3);
 }
 
+// ParaView output of the pendulum at every 10th of its 101 output samples: the collection lists
+// them with the results file's times, and VTK reads each rod as the stick figure from its
+// frame origin (at the hinge) to its markers, the tip where the results file has it.
+TEST_F(SimulateTest, PendulumParaviewFilesHoldTheStickFigureAtTheResultsTimes) {
+  std::string text = kPendulum;
+  text.replace(text.find("output: {markers: [rod.tip]}"), 28, "output: {markers: [rod.tip], paraview: {every: 10}}");
+  const Outcome run = Simulate(text);
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const nlohmann::json samples = flexmbs::testing::ReadParaviewCollection(dir_ / "results.pvd", dir_);
+  ASSERT_EQ(samples.size(), 11u);
+  const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+  const Eigen::VectorXd time = file.root().ReadVector("time");
+  const Eigen::MatrixXd tip = file.root().OpenGroup("bodies").OpenGroup("rod").OpenGroup("markers").ReadMatrix("tip");
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const nlohmann::json& sample = samples[k];
+    const Eigen::Index row = 10 * static_cast<Eigen::Index>(k);
+    EXPECT_EQ(sample["time"].get<double>(), time(row));
+    EXPECT_EQ(sample["file"], fmt::format("results_vtk/results_{:06d}.vtm", k));
+    ASSERT_EQ(sample["blocks"].size(), 1u);
+    const nlohmann::json& rod = sample["blocks"][0];
+    EXPECT_EQ(rod["name"], "rod");
+    ASSERT_EQ(rod["points"].size(), 3u);  // origin, pivot, tip
+    ASSERT_EQ(rod["cells"].size(), 2u);
+    const nlohmann::json& line = rod["cells"][1];
+    const nlohmann::json& end = rod["points"][line[2].get<std::size_t>()];
+    const nlohmann::json& origin = rod["points"][line[1].get<std::size_t>()];
+    for (Eigen::Index a = 0; a < 3; ++a) {
+      const auto axis = static_cast<std::size_t>(a);
+      EXPECT_NEAR(end[axis].get<double>(), tip(row, a), 1e-12);
+      EXPECT_NEAR(origin[axis].get<double>(), 0.0, 1e-9);  // the hinge, to the projection's tolerance
+    }
+  }
+}
+
+// A reduced quadratic-tetrahedron cube in ParaView: every point lies on the cube's boundary
+// (no interior node), and the triangles of the split six-node faces cover its area 6 a^2.
+TEST_F(SimulateTest, FlexibleCubeParaviewSurfaceIsItsBoundary) {
+  const fs::path body = Write("cube.yaml", "name: cube\ngeometry: {file: " + (kData / "cube.geo").string() +
+                                               ", mesh_size: 0.05, element_order: 2}\n"
+                                               "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, "
+                                               "density: 7850}}\nmaterial: steel\n"
+                                               "reduction: {method: free_free, modes: 2}\n");
+  const Outcome reduce = Run({"reduce", body.string(), "-o", (dir_ / "cube.sid.h5").string()});
+  ASSERT_EQ(reduce.exit_code, kExitOk) << reduce.err;
+  const Outcome run = Simulate(R"(
+gravity: [0, 0, 0]
+bodies:
+  cube:
+    flexible: {file: cube.sid.h5, modes: {kinds: [normal]}}
+    initial: {position: [1, 2, 3], modal_velocities: [0.01, -0.02]}
+simulation: {end_time: 0.002, output_interval: 0.001}
+output: {paraview: true}
+)");
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const nlohmann::json samples = flexmbs::testing::ReadParaviewCollection(dir_ / "results.pvd", dir_);
+  ASSERT_EQ(samples.size(), 3u);
+  ASSERT_EQ(samples[0]["blocks"].size(), 1u);
+  const nlohmann::json& first = samples[0]["blocks"][0];
+  constexpr double kSide = 0.1;        // tests/data/cube.geo
+  constexpr double kRoundOff = 1e-12;  // coordinates of O(1) m
+  std::vector<Eigen::Vector3d> points;
+  for (const nlohmann::json& p : first["points"]) {
+    points.emplace_back(p[0].get<double>() - 1.0, p[1].get<double>() - 2.0, p[2].get<double>() - 3.0);
+    const Eigen::Vector3d& r = points.back();
+    const double to_boundary = std::min(r.minCoeff(), kSide - r.maxCoeff());
+    EXPECT_NEAR(to_boundary, 0.0, kRoundOff) << r.transpose();
+  }
+  double area = 0.0;
+  for (const nlohmann::json& cell : first["cells"]) {
+    ASSERT_EQ(cell.size(), 4u) << "a triangle";
+    const Eigen::Vector3d& a = points[cell[1].get<std::size_t>()];
+    area += 0.5 * (points[cell[2].get<std::size_t>()] - a).cross(points[cell[3].get<std::size_t>()] - a).norm();
+  }
+  EXPECT_NEAR(area, 6.0 * kSide * kSide, kRoundOff);
+  for (const nlohmann::json& m : first["magnitude"]) EXPECT_EQ(m.get<double>(), 0.0);
+}
+
 TEST_F(SimulateTest, FailedIntegrationStopsWithTheTimeAndKeepsItsResults) {
   // A spring of 1e9 N/m on the pendulum's tip integrated explicitly with fixed steps of 1 ms:
   // far outside the stability region (omega h ~ 30), so the state blows up within a few steps.
@@ -205,6 +286,18 @@ TEST_F(BadSceneTest, UnknownKeyAndMissingEndTimeAreNamed) {
   std::string text = kPendulum;
   text.replace(text.find("end_time: 1.0, "), 15, "");
   ExpectRefused(text, "simulation: missing key 'end_time'");
+}
+
+TEST_F(BadSceneTest, BadParaviewOutputIsNamed) {
+  std::string text = kPendulum;
+  const std::size_t at = text.find("output: {markers: [rod.tip]}");
+  ExpectRefused(std::string(text).replace(at, 28, "output: {paraview: {every: 0}}"),
+                "scene.yaml:18:28: output.paraview.every: 0 must be >= 1");
+  ExpectRefused(std::string(text).replace(at, 28, "output: {paraview: often}"),
+                "output.paraview: expected true, false or {every: <number of output samples>}");
+  ExpectRefused(std::string(text).replace(at, 28, "output: {paraview: {evry: 2}}"),
+                "output.paraview: expected true, false or {every: <number of output samples>}");
+  EXPECT_FALSE(fs::exists(dir_ / "results.pvd"));
 }
 
 TEST_F(BadSceneTest, InconsistentInitialStateIsRefusedNamingTheJoint) {

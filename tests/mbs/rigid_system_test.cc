@@ -326,45 +326,8 @@ TEST(ForceElements, FollowerForceTurnsWithASpinningBody) {
 // ---------------------------------------------------------------------------------------------
 // Singular configurations.
 
-TEST(SingularConfiguration, RedundantPlanarLoopInThreeDimensionsNamesItsJoints) {
-  // A planar four-bar of revolute joints with parallel axes in 3-D: 4 x 5 equations on 3 x 6
-  // coordinates with one degree of freedom, so 3 equations are redundant.
-  MultibodySystem system;
-  const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
-  const auto link = [&](const std::string& name, double length) {
-    return system.AddBody(std::make_unique<RigidBody>(
-        name, 1.0, 0.5 * length * x, Eigen::Vector3d(0.01, 0.1, 0.1).asDiagonal(),
-        std::vector<RigidBodyMarker>{{"a", Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()},
-                                     {"b", length * x, Eigen::Matrix3d::Identity()}}));
-  };
-  // A parallelogram at 60 degrees: crank and rocker of length 1, coupler and ground of length 2.
-  link("crank", 1.0);
-  link("coupler", 2.0);
-  link("rocker", 1.0);
-  const Eigen::Vector3d a(0.5, std::sqrt(0.75), 0.0);
-  system.AddJoint(Joint("ground_crank", JointType::kRevolute, MarkerRef::Ground(Eigen::Vector3d::Zero()), system.Marker("crank", "a")));
-  system.AddJoint(Joint("crank_coupler", JointType::kRevolute, system.Marker("crank", "b"), system.Marker("coupler", "a")));
-  system.AddJoint(Joint("coupler_rocker", JointType::kRevolute, system.Marker("coupler", "b"), system.Marker("rocker", "b")));
-  system.AddJoint(Joint("rocker_ground", JointType::kRevolute, MarkerRef::Ground(2.0 * x), system.Marker("rocker", "a")));
-  Eigen::VectorXd y = system.NeutralState();
-  const Eigen::Matrix3d R60 = Rotation(Eigen::Vector3d::UnitZ(), kPi / 3);
-  system.SetBodyState(0, RigidPositions(Eigen::Vector3d::Zero(), R60), Eigen::VectorXd::Zero(6), y);
-  system.SetBodyState(1, RigidPositions(a, Eigen::Matrix3d::Identity()), Eigen::VectorXd::Zero(6), y);
-  system.SetBodyState(2, RigidPositions(2.0 * x, R60), Eigen::VectorXd::Zero(6), y);
-  ASSERT_LE(MeasureConstraints(system, 0.0, y).position, 1e-15);
-  try {
-    MakeConsistent(system, 0.0, y, ConsistencyOptions{});
-    ADD_FAILURE() << "no error";
-  } catch (const SimulationError& error) {
-    const std::string message = error.what();
-    std::printf("%s\n", message.c_str());
-    EXPECT_EQ(error.time(), 0.0);
-    EXPECT_NE(message.find("t = 0 s: the constraint Jacobian is rank deficient"), std::string::npos);
-    for (const char* joint : {"'ground_crank'", "'crank_coupler'", "'coupler_rocker'", "'rocker_ground'"}) {
-      EXPECT_NE(message.find(joint), std::string::npos) << joint;
-    }
-  }
-}
+// A planar loop of revolute joints in 3-D is redundant, not singular: its repeated rows are
+// dropped at t0 (tests/mbs/redundant_constraints_test.cc).
 
 // A slider-crank: crank r = 0.1 m on a revolute joint, rod L = 0.3 m between spherical joints (a
 // spherical-spherical link: no redundant equations in 3-D; its spin about its axis is idle),
