@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Sets up a fresh machine and runs the main job: installs the Debian packages, builds
-# flexmbs, and preprocesses the real case in cases/01_cantilever (see its README).
+# flexmbs, preprocesses the steel cantilever of cases/01_cantilever and preprocesses and simulates
+# the flexible slider-crank of cases/02_slider_crank (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)" --target flexmbs
-exec ./cases/01_cantilever/run.sh build/bin/flexmbs
+./cases/01_cantilever/run.sh build/bin/flexmbs
+exec ./cases/02_slider_crank/run.sh build/bin/flexmbs

@@ -1,0 +1,55 @@
+"""The connecting rod's midpoint deflection of a `flexmbs simulate` run of this case against the
+planar floating-frame Euler-Bernoulli reference of tests/validation/slider_crank_reference.py
+(SciPy, 4 in-plane clamped modes, geometric stiffening from the rod's own inertia; stored in
+tests/validation/slider_crank_reference.json).
+
+The deflection is the distance of marker `mid` from the chord through the rod's frame origin
+(end_a) and marker `end_b`, positive along z_W x chord, as in tests/validation/slider_crank_model.h.
+
+Usage: /usr/bin/python3 compare.py results.h5 [--limit 0.05]
+Prints both peaks and the largest difference; exits 1 if that difference exceeds `limit` times the
+reference's peak.
+"""
+import argparse
+import json
+import pathlib
+import sys
+
+import h5py
+import numpy as np
+
+REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "slider_crank_reference.json"
+
+
+def midpoint_deflection(results):
+    with h5py.File(results, "r") as f:
+        t = f["time"][:]
+        p_a = f["bodies/rod/position"][:, :2]
+        p_b = f["bodies/rod/markers/end_b"][:, :2]
+        p_mid = f["bodies/rod/markers/mid"][:, :2]
+    chord = p_b - p_a
+    normal = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / np.linalg.norm(chord, axis=1)[:, None]
+    return t, np.sum((p_mid - p_a) * normal, axis=1)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("results")
+    parser.add_argument("--limit", type=float, default=0.05)
+    args = parser.parse_args()
+    t, w = midpoint_deflection(args.results)
+    reference = json.loads(REFERENCE.read_text())
+    t_ref = np.array(reference["times"])
+    w_ref = np.array(reference["stiffening_on"])
+    window = t_ref <= t[-1]
+    t_ref, w_ref = t_ref[window], w_ref[window]
+    difference = np.max(np.abs(np.interp(t_ref, t, w) - w_ref))
+    peak_ref = np.max(np.abs(w_ref))
+    print(f"midpoint deflection: flexmbs peak {1e3 * np.max(np.abs(w)):.4g} mm at {t[np.argmax(np.abs(w))]:.4g} s, "
+          f"reference peak {1e3 * peak_ref:.4g} mm at {t_ref[np.argmax(np.abs(w_ref))]:.4g} s; largest difference "
+          f"{1e3 * difference:.3g} mm = {difference / peak_ref:.3g} of the reference's peak (limit {args.limit:g})")
+    return 0 if difference <= args.limit * peak_ref else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
