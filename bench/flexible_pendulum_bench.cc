@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tests/validation/flexible_pendulum_model.h"
+#include "bench/command_line.h"
 
 namespace {
 
@@ -40,26 +41,18 @@ struct Settings {
   std::vector<int> modes{1, 2, 4, 8, 16, 24, 32};
 };
 
-std::vector<int> ParseList(std::string_view text) {
-  std::vector<int> values;
-  std::stringstream stream{std::string(text)};
-  std::string item;
-  while (std::getline(stream, item, ',')) values.push_back(std::stoi(item));
-  return values;
-}
-
 Settings ParseArguments(int argc, char** argv) {
   Settings settings;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string_view key = argv[i], value = argv[i + 1];
     if (key == "--cells") {
-      settings.cells = ParseList(value);
+      settings.cells = flexmbs::bench::ParseIntList(value);
     } else if (key == "--end-time") {
       settings.end_time = std::stod(std::string(value));
     } else if (key == "--repeat") {
       settings.repeat = std::stoi(std::string(value));
     } else if (key == "--modes") {
-      settings.modes = ParseList(value);
+      settings.modes = flexmbs::bench::ParseIntList(value);
     } else {
       std::fprintf(stderr, "unknown option %s\n", argv[i]);
       std::exit(2);

@@ -34,6 +34,7 @@
 #include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
 #include "tests/validation/flexible_pendulum_model.h"
+#include "bench/command_line.h"
 
 namespace {
 
@@ -52,23 +53,15 @@ struct Settings {
 };
 
 /// "5,10,20" -> {5, 10, 20}.
-std::vector<int> ParseList(std::string_view text) {
-  std::vector<int> values;
-  std::stringstream stream{std::string(text)};
-  std::string item;
-  while (std::getline(stream, item, ',')) values.push_back(std::stoi(item));
-  return values;
-}
-
 /// The command line's settings (file comment); exits with 2 on an unknown option.
 Settings ParseArguments(int argc, char** argv) {
   Settings settings;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string_view key = argv[i], value = argv[i + 1];
     if (key == "--modes") {
-      settings.modes = ParseList(value);
+      settings.modes = flexmbs::bench::ParseIntList(value);
     } else if (key == "--bodies") {
-      settings.bodies = ParseList(value);
+      settings.bodies = flexmbs::bench::ParseIntList(value);
     } else if (key == "--budget") {
       settings.budget = std::stod(std::string(value));
     } else if (key == "--end-time") {

@@ -75,6 +75,16 @@ void AddCoupling(const MultibodySystem& system, const MarkerRef& i, const Marker
   }
 }
 
+/// The unit vector along d = p_B - p_A of spring-damper `name`; SimulationError at t if its end
+/// points meet.
+Eigen::Vector3d SpringDirection(double t, const std::string& name, const Eigen::Vector3d& d) {
+  const double length = d.norm();
+  if (!(length > 0.0)) {
+    throw SimulationError(t, fmt::format("t = {:.9g} s: spring-damper '{}': its end points meet (no direction)", t, name));
+  }
+  return d / length;
+}
+
 }  // namespace
 
 void ForceElement::AddForceJacobian(double /*t*/, const MultibodySystem& /*system*/, const ConstVectorRef& /*y*/,
@@ -111,10 +121,7 @@ void SpringDamper::AddForces(double t, const MultibodySystem& system, const Cons
   const MarkerKinematics A = system.MarkerState(a_, y), B = system.MarkerState(b_, y);
   const Eigen::Vector3d d = B.p_WM_W - A.p_WM_W;
   const double length = d.norm();
-  if (!(length > 0.0)) {
-    throw SimulationError(t, fmt::format("t = {:.9g} s: spring-damper '{}': its end points meet (no direction)", t, name_));
-  }
-  const Eigen::Vector3d e = d / length;
+  const Eigen::Vector3d e = SpringDirection(t, name_, d);
   const double tension = stiffness_ * (length - free_length_) + damping_ * e.dot(B.v_WM_W - A.v_WM_W);
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   system.AddMarkerLoad(a_, A, tension * e, zero, h);
@@ -131,10 +138,7 @@ void SpringDamper::AddForceJacobian(double t, const MultibodySystem& system, con
   const MarkerKinematics A = system.MarkerState(a_, y), B = system.MarkerState(b_, y);
   const Eigen::Vector3d d = B.p_WM_W - A.p_WM_W, dv = B.v_WM_W - A.v_WM_W;
   const double length = d.norm();
-  if (!(length > 0.0)) {
-    throw SimulationError(t, fmt::format("t = {:.9g} s: spring-damper '{}': its end points meet (no direction)", t, name_));
-  }
-  const Eigen::Vector3d e = d / length;
+  const Eigen::Vector3d e = SpringDirection(t, name_, d);
   const double tension = stiffness_ * (length - free_length_) + damping_ * e.dot(dv);
   const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - e * e.transpose();
   Eigen::Matrix<double, 6, 6> K = Eigen::Matrix<double, 6, 6>::Zero(), C = K;

@@ -44,12 +44,6 @@ Eigen::Quaterniond StartRotation() {
   return Eigen::Quaterniond(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vector3d::UnitX()));
 }
 
-double CpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
 const sid::Node& TipNode(const sid::ReducedBody& body) {
   const auto tip = std::find_if(body.nodes.begin(), body.nodes.end(), [](const sid::Node& n) { return n.name == "tip"; });
   FLEXMBS_CHECK(tip != body.nodes.end(), "the link has a tip marker");
@@ -66,6 +60,12 @@ std::unique_ptr<mbs::RigidBody> MakeHub(const Hub& hub) {
 }
 
 }  // namespace
+
+double ProcessCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
 
 FeLink BuildLink(const LinkGeometry& geometry) {
   FeLink link;
@@ -181,9 +181,9 @@ Swing RunSwing(const sid::ReducedBody& body, const SwingOptions& options) {
   simulation.integrator = options.integrator;
   simulation.end_time = options.end_time;
   simulation.output_interval = options.output_interval;
-  const double start = CpuSeconds();
+  const double start = ProcessCpuSeconds();
   const mbs::SimulationStatistics statistics = mbs::Simulate(system, simulation, y0, record);
-  swing.cpu_seconds = CpuSeconds() - start;
+  swing.cpu_seconds = ProcessCpuSeconds() - start;
   swing.steps = statistics.integrator.steps;
   swing.rhs_evaluations = statistics.integrator.rhs_evaluations;
   return swing;

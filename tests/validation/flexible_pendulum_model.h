@@ -94,6 +94,9 @@ struct Swing {
   double cpu_seconds = 0.0;            ///< process CPU time of the integration
 };
 
+/// The CPU time of this process [s] (CLOCK_PROCESS_CPUTIME_ID), for timing runs.
+double ProcessCpuSeconds();
+
 /// The static deflection of the held link (hub at rest, link horizontal): the modal
 /// coordinates with Ke q = Ct R0^T g_W, the elastic row at rest.
 Eigen::VectorXd HeldDeflection(const sid::ReducedBody& body);

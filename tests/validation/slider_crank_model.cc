@@ -1,7 +1,6 @@
 #include "tests/validation/slider_crank_model.h"
 
 #include <fmt/format.h>
-#include <time.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -18,6 +17,7 @@
 #include "mbs/multibody_system.h"
 #include "mbs/rigid_body.h"
 #include "mbs/simulation.h"
+#include "mbs/time_function.h"
 #include "reduction/sid_body_builder.h"
 #include "reduction/sid_spec.h"
 #include "tests/fem/test_meshes.h"
@@ -37,26 +37,6 @@ constexpr double kMirrorSymmetry = 1e-6;
 // Nodes are paired with their mirror images to this distance [m] (the mesh's round-off).
 constexpr double kSameNode = 1e-12;
 
-class CrankAngle final : public mbs::TimeFunction {
- public:
-  CrankAngle(double spin, double ramp_time) : spin_(spin), ramp_time_(ramp_time) {}
-  mbs::TimeFunctionValue Evaluate(double t) const override {
-    if (t >= ramp_time_) return {spin_ * (t - 0.5 * ramp_time_), spin_, 0.0};
-    const double c = ramp_time_ / (2.0 * std::numbers::pi), phase = t / c, rate = spin_ / ramp_time_;
-    return {rate * (0.5 * t * t + c * c * (std::cos(phase) - 1.0)), rate * (t - c * std::sin(phase)),
-            rate * (1.0 - std::cos(phase))};
-  }
-
- private:
-  double spin_, ramp_time_;
-};
-
-double CpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
 // mirror[n]: the node at (x, y, -z) of node n.
 std::vector<Index> MirrorNodes(const fem::Mesh& mesh) {
   std::map<std::tuple<long, long, long>, Index> by_position;
@@ -75,10 +55,6 @@ std::vector<Index> MirrorNodes(const fem::Mesh& mesh) {
 }
 
 }  // namespace
-
-mbs::TimeFunctionPtr MakeCrankAngle(double spin, double ramp_time) {
-  return std::make_shared<CrankAngle>(spin, ramp_time);
-}
 
 SliderCrankRod BuildRod(const SliderCrankData& data, const Eigen::Vector3i& cells) {
   FLEXMBS_CHECK(cells.x() % 2 == 0, "an even number of cells along the rod (the mid section is a node plane)");
@@ -158,7 +134,7 @@ CrankRun RunSliderCrank(const SliderCrankData& data, const sid::ReducedBody& rod
       std::vector<mbs::RigidBodyMarker>{{"pin", Vector3d::Zero(), I3}, {"guide", Vector3d::Zero(), R_guide}}));
   const std::string origin(mbs::FlexibleBody::kOriginMarker);
   system.AddJoint(mbs::Joint("crank_drive", mbs::JointType::kRevolute, mbs::MarkerRef::Ground(Vector3d::Zero()),
-                             system.Marker("crank", "pivot"), MakeCrankAngle(data.spin, data.ramp_time)));
+                             system.Marker("crank", "pivot"), mbs::MakeSpinUp(data.spin, data.ramp_time)));
   system.AddJoint(mbs::Joint("crank_rod", mbs::JointType::kRevolute, system.Marker("crank", "pin"), system.Marker("rod", origin)));
   system.AddJoint(mbs::Joint("rod_slider", mbs::JointType::kRevolute, system.Marker("rod", "tip"), system.Marker("slider", "pin")));
   system.AddJoint(mbs::Joint("slider_guide", mbs::JointType::kPrismatic, mbs::MarkerRef::Ground(Vector3d::Zero(), R_guide),
@@ -188,9 +164,9 @@ CrankRun RunSliderCrank(const SliderCrankData& data, const sid::ReducedBody& rod
   simulation.integrator = options.integrator;
   simulation.end_time = options.end_time;
   simulation.output_interval = options.output_interval;
-  const double start = CpuSeconds();
+  const double start = ProcessCpuSeconds();
   const mbs::SimulationStatistics statistics = mbs::Simulate(system, simulation, y0, record);
-  run.cpu_seconds = CpuSeconds() - start;
+  run.cpu_seconds = ProcessCpuSeconds() - start;
   run.dropped_rows = static_cast<long>(statistics.initial_conditions.redundancy.dropped_rows.size());
   run.steps = statistics.integrator.steps;
   run.rhs_evaluations = statistics.integrator.rhs_evaluations;

@@ -4,7 +4,7 @@
 // tests/validation/slider_crank_test.cc and bench/slider_crank_bench.cc.
 //
 // A rigid crank of r = 0.15 m turns about W z by a prescribed angle that spins it up smoothly
-// to 150 rad/s in T = 0.15 s (the profile of Kane et al.'s spin-up, spin_up_test.cc); a steel
+// to 150 rad/s in T = 0.15 s (mbs::MakeSpinUp, Kane et al.'s spin-up profile); a steel
 // connecting rod of L = 0.3 m and 6 mm diameter is pinned (revolute joints) to the crank's tip
 // and to a slider on a prismatic joint along W x; no gravity. All three joints have parallel
 // axes, so the loop is planar in 3-D and 3 of its rows are dropped as redundant
@@ -45,10 +45,6 @@ struct SliderCrankData {
   double spin = 150.0;           ///< the crank's final angular velocity [rad/s]
   double ramp_time = 0.15;       ///< T [s]
 };
-
-/// The crank angle theta(t) [rad] = (spin / T) (t^2 / 2 + (T / (2 pi))^2 (cos(2 pi t / T) - 1))
-/// for t < T, spin (t - T / 2) after: theta' rises from 0 to spin with theta'' = 0 at both ends.
-mbs::TimeFunctionPtr MakeCrankAngle(double spin, double ramp_time);
 
 /// The meshed rod (cells along x, y, z; an even number along x for the "mid" section) and the
 /// columns of its complete clamped basis that are in-plane modes, ascending in frequency.

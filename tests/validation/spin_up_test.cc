@@ -80,22 +80,6 @@ constexpr double kBoundedUntil = 8.0, kDivergedBy = 11.0, kDiverged = 1.0;
 
 constexpr const char* kPython = "/usr/bin/python3";
 
-/// The hub angle of Kane et al. [rad] and its derivatives.
-class SpinUp final : public mbs::TimeFunction {
- public:
-  explicit SpinUp(double spin) : spin_(spin) {}
-  mbs::TimeFunctionValue Evaluate(double t) const override {
-    if (t >= kRampTime) return {spin_ * (t - 0.5 * kRampTime), spin_, 0.0};
-    const double phase = 2.0 * std::numbers::pi * t / kRampTime, period = kRampTime / (2.0 * std::numbers::pi);
-    const double rate = spin_ / kRampTime;
-    return {rate * (0.5 * t * t + period * period * (std::cos(phase) - 1.0)), rate * (t - period * std::sin(phase)),
-            rate * (1.0 - std::cos(phase))};
-  }
-
- private:
-  double spin_;
-};
-
 /// The reduced beam: its SID data restricted to the in-plane modes and the row that gives the
 /// tip deflection along y (the mean over the end face's nodes) from those modes.
 struct ReducedBeam {
@@ -159,7 +143,7 @@ History SpinUpRun(double spin, bool stiffening, double end_time) {
   mbs::MultibodySystem system(Eigen::Vector3d::Zero());
   system.AddBody(std::make_unique<mbs::FlexibleBody>("beam", Beam().body, stiffening));
   system.AddJoint(mbs::Joint("hub", mbs::JointType::kRevolute, mbs::MarkerRef::Ground(Eigen::Vector3d::Zero()),
-                             system.Marker("beam", mbs::FlexibleBody::kOriginMarker), std::make_shared<SpinUp>(spin)));
+                             system.Marker("beam", mbs::FlexibleBody::kOriginMarker), mbs::MakeSpinUp(spin, kRampTime)));
   mbs::SimulationOptions options;
   options.integrator.method = mbs::OdeMethod::kExplicit;
   options.integrator.relative_tolerance = kRelativeTolerance;

@@ -154,11 +154,10 @@ constexpr double kImplicitStep = 6e-4;
 /// The length of the fixed-step runs [s]: 500 steps, 1.3 periods of the first mode.
 constexpr double kRunTime = 0.3;
 /// Tolerances of the fixed-step runs: Newton solves the stage equations to 0.1 of them. With
-/// atol / rtol <= 1e-4 (1e-16 / 1e-12, 1e-14 / 1e-10, 1e-12 / 1e-8) the fixed-step ESDIRK stops
-/// with ARK_CONV_FAILURE at t = 0.0363 s, even with the low modes alone (at 0.0044 s), also with
-/// a central-difference Jacobian or without the projection; 1e-2 runs, and a linear oscillator
-/// runs at 1e-16 / 1e-12. Likely Newton's test below the round-off of the constrained components
-/// near 0 (a fixed step cannot be cut when Newton stalls).
+/// ARKODE's difference-quotient Jacobian, atol / rtol <= 1e-4 stopped the fixed-step ESDIRK with
+/// ARK_CONV_FAILURE (its increments scale with atol); the model Jacobian (mbs/system_jacobian.h,
+/// the default) runs down to atol 1e-15 (tests/mbs/system_jacobian_test.cc); atol 1e-16 still
+/// fails, below the round-off of the stage residual (eps |v| = 4.4e-16 m/s at 2 m/s).
 constexpr double kFixedStepRtol = 1e-10, kFixedStepAtol = 1e-12;
 
 /// The link with kLowModes and kStiffModes, and each mode's oscillator w^2 = Ke_kk / Me_kk
