@@ -16,8 +16,8 @@
 #include <string_view>
 #include <vector>
 
-#include "tests/validation/flexible_pendulum_model.h"
 #include "bench/command_line.h"
+#include "tests/validation/flexible_pendulum_model.h"
 
 namespace {
 

@@ -7,8 +7,8 @@
 // small random deformations and velocities, projected), measured from outside over repeated
 // calls: the bodies' mass matrices, the forces h, the constraints, the accelerations (the whole
 // constrained solve), the derivative (one rhs), the projection after a step, a difference-quotient
-// Jacobian (state size x rhs, formed here as ARKODE does) and the dense LU of I - gamma h J. Then
-// both integrators, adaptive (rtol 1e-6, atol 1e-9), run for up to --budget seconds of wall time
+// Jacobian (state size x rhs, formed here as ARKODE does), the model Jacobian (mbs/system_jacobian.h,
+// what the implicit runs use) and the dense LU of I - gamma h J. Then both integrators, adaptive (rtol 1e-6, atol 1e-9), run for up to --budget seconds of wall time
 // or --end-time of simulated time: steps per second, real-time factor, and the integrator's own
 // overhead = wall - rhs evaluations x rhs - steps x projection. Ratios are against the first case
 // (the peer in the same run, B = 1 and the smallest n by default).
@@ -28,13 +28,14 @@
 #include <string_view>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "mbs/constraint_projection.h"
 #include "mbs/flexible_body.h"
 #include "mbs/joint.h"
 #include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
+#include "mbs/system_jacobian.h"
 #include "tests/validation/flexible_pendulum_model.h"
-#include "bench/command_line.h"
 
 namespace {
 
@@ -129,7 +130,7 @@ std::unique_ptr<MultibodySystem> Chain(const flexmbs::sid::ReducedBody& body, in
 /// The time split of one scene's calls [s per call].
 struct Parts {
   double mass_matrices = 0, forces = 0, constraints = 0, accelerations = 0, rhs = 0, projection = 0;
-  double jacobian = -1, lu = -1;  // -1: not measured (state too large)
+  double jacobian = -1, model_jacobian = -1, lu = -1;  // -1: not measured (state too large)
 };
 
 /// The time per call of each MultibodySystem part at state y; the Jacobian and its LU only for
@@ -163,6 +164,8 @@ Parts MeasureParts(const MultibodySystem& system, const VectorXd& y, Index impli
     }
   };
   p.jacobian = SecondsPerCall(form_jacobian);
+  Eigen::MatrixXd model(y.size(), y.size());
+  p.model_jacobian = SecondsPerCall([&] { flexmbs::mbs::SystemJacobian(system, 0.0, y, model); });
   const Eigen::MatrixXd newton = Eigen::MatrixXd::Identity(y.size(), y.size()) - 0.25e-4 * J;
   p.lu = SecondsPerCall([&] { Eigen::PartialPivLU<Eigen::MatrixXd> lu(newton); });
   return p;
@@ -194,6 +197,10 @@ Run Integrate(MultibodySystem& system, const VectorXd& y0, flexmbs::mbs::OdeMeth
     flexmbs::mbs::ProjectPositions(system, t, y, {});
     flexmbs::mbs::ProjectVelocities(system, t, y);
     last_step_time = t;
+  };
+  // The implicit method's Newton matrix from the model (Simulate's default).
+  problem.jacobian = [&](double t, Eigen::Ref<const VectorXd> y, Eigen::Ref<Eigen::MatrixXd> dfdy) {
+    flexmbs::mbs::SystemJacobian(system, t, y, dfdy);
   };
   flexmbs::mbs::OdeOptions options;
   options.method = method;
@@ -278,8 +285,9 @@ int main(int argc, char** argv) {
           1e6 * parts.accelerations, parts.accelerations / peer.accelerations, 1e6 * parts.rhs,
           parts.rhs / peer.rhs, 1e6 * parts.projection, parts.projection / peer.projection);
       if (parts.jacobian > 0) {
-        std::printf(", DQ Jacobian %.3g (%.3g), LU %.3g (%.3g)", 1e6 * parts.jacobian,
-                    parts.jacobian / peer.jacobian, 1e6 * parts.lu, parts.lu / peer.lu);
+        std::printf(", DQ Jacobian %.3g (%.3g), model Jacobian %.3g (%.3g), LU %.3g (%.3g)", 1e6 * parts.jacobian,
+                    parts.jacobian / peer.jacobian, 1e6 * parts.model_jacobian,
+                    parts.model_jacobian / peer.model_jacobian, 1e6 * parts.lu, parts.lu / peer.lu);
       }
       std::printf("\n");
       const Run explicit_run = Integrate(*system, y0, flexmbs::mbs::OdeMethod::kExplicit, settings);
