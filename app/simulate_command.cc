@@ -43,10 +43,12 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
     layout.joints.push_back({system.joint(k).name(), std::string(mbs::JointTypeName(system.joint(k).type()))});
   }
   const mbs::OdeOptions& ode = scene.options.integrator;
+  const std::string jacobian =
+      ode.method == mbs::OdeMethod::kImplicit ? fmt::format(", jacobian {}", mbs::OdeJacobianName(ode.jacobian)) : "";
   layout.provenance = {{"scene_file", scene.file.string()},
                        {"scene_sha256", Sha256OfFile(scene.file)},
-                       {"integrator", fmt::format("{}, rtol {:g}, atol {:g}", mbs::OdeMethodName(ode.method),
-                                                  ode.relative_tolerance, ode.absolute_tolerance)},
+                       {"integrator", fmt::format("{}, rtol {:g}, atol {:g}{}", mbs::OdeMethodName(ode.method),
+                                                  ode.relative_tolerance, ode.absolute_tolerance, jacobian)},
                        {"redundant_constraints", initial.redundancy.Describe(system)}};
   for (std::size_t b = 0; b < scene.body_files.size(); ++b) {
     if (scene.body_files[b].empty()) continue;

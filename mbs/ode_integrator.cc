@@ -118,6 +118,16 @@ void ValidateOptions(const OdeOptions& options) {
 
 }  // namespace
 
+std::string_view OdeJacobianName(OdeJacobian jacobian) {
+  switch (jacobian) {
+    case OdeJacobian::kModel:
+      return "model";
+    case OdeJacobian::kDifferenceQuotients:
+      return "difference_quotients";
+  }
+  return "unknown";
+}
+
 std::string_view OdeMethodName(OdeMethod method) {
   switch (method) {
     case OdeMethod::kExplicit:

@@ -50,6 +50,9 @@ enum class OdeJacobian {
   kDifferenceQuotients,  ///< ARKODE's difference quotients: one rhs call per column
 };
 
+/// "model" or "difference_quotients" (the scene's `simulation.jacobian` values).
+std::string_view OdeJacobianName(OdeJacobian jacobian);
+
 /// Settings.
 struct OdeOptions {
   OdeMethod method = OdeMethod::kExplicit;
