@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "sid/sid_file.h"
+#include "tests/app/block_body.h"
 #include "tests/app/flexmbs_process.h"
 
 namespace {
@@ -270,24 +271,12 @@ TEST_F(CliTest, FailedReductionLeavesNoFile) {
   EXPECT_EQ(OutputFiles(), std::vector<std::string>{});
 }
 
-// A tet10 steel block of unequal sides (distinct frequencies), clamped on its x = 0 face.
-std::string BlockBody(const fs::path& dir, const std::string& eigensolver) {
-  std::ofstream(dir / "block.geo")
-      << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.1, 0.07, 0.04};\n"
-      << "Physical Volume(\"block\") = {1};\n"
-      << "Physical Surface(\"root\") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};\n";
-  return "geometry: {file: block.geo, mesh_size: 0.02, element_order: 2}\n"
-         "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}\n"
-         "node_sets: [root]\n"
-         "reduction: {method: fixed_interface, supports: [root], modes: 6, eigensolver: " +
-         eigensolver + "}\n";
-}
-
 TEST_F(CliTest, ReduceUnderMpirunWithTwoRanksGivesTheSerialResult) {
   // Backend agreement bound of the issue; both solvers reach about 1e-11 alone here.
   constexpr double kAgreement = 1e-8;
-  std::ofstream(dir_ / "serial.yaml") << BlockBody(dir_, "spectra");
-  std::ofstream(dir_ / "mpi.yaml") << BlockBody(dir_, "slepc");
+  const std::string clamped = "{method: fixed_interface, supports: [root], modes: 6, eigensolver: ";
+  std::ofstream(dir_ / "serial.yaml") << flexmbs::testing::BlockBody(dir_, clamped + "spectra}");
+  std::ofstream(dir_ / "mpi.yaml") << flexmbs::testing::BlockBody(dir_, clamped + "slepc}");
   const fs::path serial = dir_ / "out" / "serial.sid.h5", mpi = dir_ / "out" / "mpi.sid.h5";
   ASSERT_EQ(Flexmbs({"reduce", (dir_ / "serial.yaml").string(), "-o", serial.string()}).exit_code, kExitOk);
   const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +

@@ -13,11 +13,13 @@
 #include <string>
 
 #include "sid/sid_file.h"
+#include "tests/app/block_body.h"
 #include "tests/app/flexmbs_process.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using flexmbs::testing::BlockBody;
 using flexmbs::testing::kFlexmbsBinary;
 using flexmbs::testing::ReadFile;
 using flexmbs::testing::RunFlexmbs;
@@ -27,18 +29,6 @@ using flexmbs::testing::ShellQuote;
 constexpr double kAgreement = 1e-8;
 // The bound on one rank's share of the rows and nonzeros on 2 ranks.
 constexpr double kMaxShare = 0.6;
-
-// A tet10 steel block of unequal sides (distinct frequencies) with a node set on its x = 0 face.
-std::string BlockBody(const fs::path& dir, const std::string& reduction) {
-  std::ofstream(dir / "block.geo")
-      << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.1, 0.07, 0.04};\n"
-      << "Physical Volume(\"block\") = {1};\n"
-      << "Physical Surface(\"root\") = Surface In BoundingBox{-1e-6, -1, -1, 1e-6, 1, 1};\n";
-  return "geometry: {file: block.geo, mesh_size: 0.02, element_order: 2}\n"
-         "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}\n"
-         "node_sets: [root]\n"
-         "reduction: " + reduction + "\n";
-}
 
 class ReduceMpiTest : public ::testing::Test {
  protected:

@@ -149,11 +149,3 @@ TEST(SolveModesDistributed, HeldBarEqualsSpectraOnTheSerialMatrices) {
 
 }  // namespace
 }  // namespace flexmbs::reduction
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  const flexmbs::reduction::SlepcSession session;
-  int failed = RUN_ALL_TESTS() != 0 ? 1 : 0;
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return failed;
-}

@@ -1,7 +1,6 @@
 // The SLEPc backend agrees with the Spectra backend, through the serial interface and through
 // the distributed assembly, on one rank and under `mpiexec -n 2` (both registered with CTest).
 #include <gtest/gtest.h>
-#include <mpi.h>
 
 #include "fem/assembly.h"
 #include "fem/distributed_assembly.h"
@@ -122,11 +121,3 @@ TEST(SlepcBackend, DistributedAssemblyPathEqualsTheSerialSolve) {
 
 }  // namespace
 }  // namespace flexmbs::reduction
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  const flexmbs::reduction::SlepcSession session;
-  int failed = RUN_ALL_TESTS() != 0 ? 1 : 0;
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return failed;
-}
