@@ -31,8 +31,11 @@ SpherePlaneContact::SpherePlaneContact(std::string name, MarkerRef sphere, Marke
 }
 
 SpherePlaneContact::State SpherePlaneContact::Evaluate(const MultibodySystem& system, const ConstVectorRef& y) const {
-  const MarkerKinematics S = system.MarkerState(sphere_, y), P = system.MarkerState(plane_, y);
   State state;
+  state.sphere = system.MarkerState(sphere_, y);
+  state.plane = system.MarkerState(plane_, y);
+  const MarkerKinematics& S = state.sphere;
+  const MarkerKinematics& P = state.plane;
   state.n_W = P.R_WM.col(2);
   const Eigen::Vector3d p_PS_W = S.p_WM_W - P.p_WM_W;
   state.penetration = radius_ - state.n_W.dot(p_PS_W);
@@ -50,11 +53,10 @@ void SpherePlaneContact::AddForces(double /*t*/, const MultibodySystem& system, 
                                    Eigen::Ref<Eigen::VectorXd> h) const {
   const State state = Evaluate(system, y);
   if (state.force == 0.0) return;
-  const MarkerKinematics S = system.MarkerState(sphere_, y), P = system.MarkerState(plane_, y);
   const Eigen::Vector3d f_W = state.force * state.n_W;
-  const Eigen::Vector3d p_Pc_W = S.p_WM_W - radius_ * state.n_W - P.p_WM_W;
-  system.AddMarkerLoad(sphere_, S, f_W, Eigen::Vector3d::Zero(), h);
-  system.AddMarkerLoad(plane_, P, -f_W, p_Pc_W.cross(-f_W), h);
+  const Eigen::Vector3d p_Pc_W = state.sphere.p_WM_W - radius_ * state.n_W - state.plane.p_WM_W;
+  system.AddMarkerLoad(sphere_, state.sphere, f_W, Eigen::Vector3d::Zero(), h);
+  system.AddMarkerLoad(plane_, state.plane, -f_W, p_Pc_W.cross(-f_W), h);
 }
 
 double SpherePlaneContact::PotentialEnergy(double /*t*/, const MultibodySystem& system, const ConstVectorRef& y) const {
@@ -68,7 +70,7 @@ void SpherePlaneContact::AddForceJacobian(double /*t*/, const MultibodySystem& s
   if (sphere_.is_ground()) return;
   const State state = Evaluate(system, y);
   if (state.force == 0.0) return;
-  const MarkerKinematics S = system.MarkerState(sphere_, y);
+  const MarkerKinematics& S = state.sphere;
   // h_S = J_v^T lambda n with d delta = -n^T J_v du (and likewise in x): d h_S = -J_v^T n
   // (dlambda/ddelta) n^T J_v.
   const Eigen::MatrixXd n_J = state.n_W.transpose() * S.jacobian.topRows<3>();

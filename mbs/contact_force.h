@@ -33,8 +33,9 @@ class SpherePlaneContact final : public ForceElement {
                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
  private:
-  /// The contact's geometry and normal force at y (force 0 when apart).
+  /// The contact's markers, geometry and normal force at y (force 0 when apart).
   struct State {
+    MarkerKinematics sphere, plane;      ///< the markers S and P
     Eigen::Vector3d n_W;                 ///< the plane's normal
     double penetration = 0.0;            ///< delta [m]
     double penetration_rate = 0.0;       ///< delta' [m/s]
