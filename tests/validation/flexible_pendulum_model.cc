@@ -67,6 +67,19 @@ double ProcessCpuSeconds() {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
+mbs::SimulationStatistics SimulateTimed(mbs::MultibodySystem& system, const mbs::OdeOptions& integrator,
+                                        double end_time, double output_interval, const Eigen::VectorXd& y0,
+                                        const mbs::OutputCallback& record, double* cpu_seconds) {
+  mbs::SimulationOptions simulation;
+  simulation.integrator = integrator;
+  simulation.end_time = end_time;
+  simulation.output_interval = output_interval;
+  const double start = ProcessCpuSeconds();
+  const mbs::SimulationStatistics statistics = mbs::Simulate(system, simulation, y0, record);
+  *cpu_seconds = ProcessCpuSeconds() - start;
+  return statistics;
+}
+
 FeLink BuildLink(const LinkGeometry& geometry) {
   FeLink link;
   link.geometry = geometry;
@@ -177,13 +190,8 @@ Swing RunSwing(const sid::ReducedBody& body, const SwingOptions& options) {
     swing.energy.push_back(system.KineticEnergy(y) + system.PotentialEnergy(t, y));
   };
 
-  mbs::SimulationOptions simulation;
-  simulation.integrator = options.integrator;
-  simulation.end_time = options.end_time;
-  simulation.output_interval = options.output_interval;
-  const double start = ProcessCpuSeconds();
-  const mbs::SimulationStatistics statistics = mbs::Simulate(system, simulation, y0, record);
-  swing.cpu_seconds = ProcessCpuSeconds() - start;
+  const mbs::SimulationStatistics statistics = SimulateTimed(system, options.integrator, options.end_time,
+                                                             options.output_interval, y0, record, &swing.cpu_seconds);
   swing.steps = statistics.integrator.steps;
   swing.rhs_evaluations = statistics.integrator.rhs_evaluations;
   return swing;

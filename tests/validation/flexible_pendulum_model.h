@@ -26,7 +26,9 @@
 #include <vector>
 
 #include "fem/mesh.h"
+#include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
+#include "mbs/simulation.h"
 #include "reduction/modal_basis.h"
 #include "sid/reduced_body.h"
 
@@ -96,6 +98,12 @@ struct Swing {
 
 /// The CPU time of this process [s] (CLOCK_PROCESS_CPUTIME_ID), for timing runs.
 double ProcessCpuSeconds();
+
+/// mbs::Simulate from t = 0 with `integrator`, `end_time` and `output_interval`; the process CPU
+/// time it took goes to `cpu_seconds`.
+mbs::SimulationStatistics SimulateTimed(mbs::MultibodySystem& system, const mbs::OdeOptions& integrator,
+                                        double end_time, double output_interval, const Eigen::VectorXd& y0,
+                                        const mbs::OutputCallback& record, double* cpu_seconds);
 
 /// The static deflection of the held link (hub at rest, link horizontal): the modal
 /// coordinates with Ke q = Ct R0^T g_W, the elastic row at rest.

@@ -160,13 +160,8 @@ CrankRun RunSliderCrank(const SliderCrankData& data, const sid::ReducedBody& rod
     run.time.push_back(t);
     run.mid_deflection.push_back(normal.dot(system.MarkerState(mid, y).p_WM_W - p_root));
   };
-  mbs::SimulationOptions simulation;
-  simulation.integrator = options.integrator;
-  simulation.end_time = options.end_time;
-  simulation.output_interval = options.output_interval;
-  const double start = ProcessCpuSeconds();
-  const mbs::SimulationStatistics statistics = mbs::Simulate(system, simulation, y0, record);
-  run.cpu_seconds = ProcessCpuSeconds() - start;
+  const mbs::SimulationStatistics statistics = SimulateTimed(system, options.integrator, options.end_time,
+                                                             options.output_interval, y0, record, &run.cpu_seconds);
   run.dropped_rows = static_cast<long>(statistics.initial_conditions.redundancy.dropped_rows.size());
   run.steps = statistics.integrator.steps;
   run.rhs_evaluations = statistics.integrator.rhs_evaluations;
