@@ -98,10 +98,13 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
     j["error_test_failures"] = stats.integrator.error_test_failures;
     j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
     nlohmann::json dropped = nlohmann::json::array();
-    for (const Eigen::Index row : stats.initial_conditions.redundancy.dropped_rows) {
-      dropped.push_back(scene.system->DescribeConstraintRow(row));
+    const mbs::ConstraintRedundancy& redundancy = stats.initial_conditions.redundancy;
+    for (std::size_t k = 0; k < redundancy.dropped_rows.size(); ++k) {
+      dropped.push_back(redundancy.DescribeRow(*scene.system, k));
     }
     j["redundant_constraints"] = dropped;
+    j["dropped_row_violation"] = stats.dropped_row_violation;
+    j["dropped_row_limit_share"] = stats.dropped_row_limit_share;
     j["energy_j"] = {{"start", energy_start}, {"end", energy_end}};
     j["wall_seconds"] = stats.wall_seconds;
     j["real_time_factor"] = real_time_factor;
@@ -113,6 +116,10 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
              scene.system->num_joints(), scene.system->num_force_elements());
   fmt::print("initial state   {}\n", stats.initial_conditions.Describe(*scene.system));
   fmt::print("redundant       {}\n", stats.initial_conditions.redundancy.Describe(*scene.system));
+  if (!stats.initial_conditions.redundancy.dropped_rows.empty()) {
+    fmt::print("dropped rows    largest violation {:.3g} ({:.2g} of its limit)\n", stats.dropped_row_violation,
+               stats.dropped_row_limit_share);
+  }
   fmt::print("integration     {} steps, {} function evaluations, {} error-test failures\n", stats.integrator.steps,
              stats.integrator.rhs_evaluations, stats.integrator.error_test_failures);
   fmt::print("energy          {:.9g} J -> {:.9g} J\n", energy_start, energy_end);

@@ -14,13 +14,6 @@ namespace {
 
 // Largest | |e| - 1 | of the Euler parameters kept without normalising: round-off.
 constexpr double kEulerNormRoundOff = 1e-14;
-// The dropped (redundant) rows may be violated by this many times the projection tolerance: to
-// first order they are combinations of the kept rows with coefficients of the order of the
-// loop's length ratios, so they follow the kept rows' residual (measured: 1.0e-11 at a tolerance
-// of 1e-11 on the slider-crank of tests/validation/slider_crank_test.cc); a change of the
-// redundancy makes them grow with the motion, far beyond.
-constexpr double kDroppedRowSlack = 100.0;
-
 std::string JointName(const MultibodySystem& system, int joint) {
   return joint < 0 ? std::string("-") : fmt::format("'{}'", system.joint(joint).name());
 }
@@ -58,7 +51,6 @@ ProjectionResult ProjectPositions(const MultibodySystem& system, double t, Eigen
     if (!kept.empty()) row = kept[static_cast<std::size_t>(row)];
     if (iteration == 0) result.initial_residual = residual;
     if (residual <= options.position_tolerance) {
-      CheckDroppedConstraints(system, t, c.g, kDroppedRowSlack * options.position_tolerance);
       result.iterations = iteration;
       result.final_residual = residual;
       return result;
@@ -96,7 +88,11 @@ ConsistencyReport MakeConsistent(MultibodySystem& system, double t, Eigen::Ref<E
                                  const ConsistencyOptions& options) {
   ConsistencyReport report;
   const double singular_pivot = system.constraint_settings().singular_pivot;
-  report.redundancy = FindRedundantConstraints(system, t, y, singular_pivot);
+  if (!(options.redundant_pivot >= singular_pivot && options.redundant_pivot < 1.0)) {
+    throw InputError(fmt::format("simulation: redundant pivot {} must be in [singular pivot {}, 1)",
+                                 options.redundant_pivot, singular_pivot));
+  }
+  report.redundancy = FindRedundantConstraints(system, t, y, options.redundant_pivot);
   system.set_dropped_constraints(report.redundancy.dropped_rows);
   report.before = MeasureConstraints(system, t, y);
   report.euler_parameter_error = EulerParameterError(system, y);
@@ -121,7 +117,7 @@ ConsistencyReport MakeConsistent(MultibodySystem& system, double t, Eigen::Ref<E
   if (report.projected) {
     // Rows that were near-dependent only through the initial violation are found at the
     // projected state (a loop assembled slightly out of its plane).
-    const ConstraintRedundancy projected = FindRedundantConstraints(system, t, y, singular_pivot);
+    const ConstraintRedundancy projected = FindRedundantConstraints(system, t, y, options.redundant_pivot);
     if (projected.dropped_rows != report.redundancy.dropped_rows) {
       report.redundancy = projected;
       system.set_dropped_constraints(report.redundancy.dropped_rows);
@@ -133,6 +129,7 @@ ConsistencyReport MakeConsistent(MultibodySystem& system, double t, Eigen::Ref<E
     report.projected = true;
   }
   report.after = MeasureConstraints(system, t, y);
+  DroppedRowWatch(report.redundancy, kDroppedRowSlack * options.projection.position_tolerance).Check(system, t, y);
   if (system.num_constraints() > 0) {
     // A rank-deficient Jacobian is refused even for consistent initial conditions.
     const ConstraintSolver solver(system, t, y, system.Constraints(t, y).G);

@@ -14,7 +14,7 @@ namespace flexmbs::mbs {
 /// Settings of the position projection.
 struct ProjectionOptions {
   /// Converged when max |g_k| <= this over the kept rows [m for translations, 1 (about rad) for
-  /// rotations]; the dropped rows must then hold to 100 times it (CheckDroppedConstraints).
+  /// rotations]; the dropped rows are watched by the caller (DroppedRowWatch).
   double position_tolerance = 1e-11;
   int max_iterations = 10;
 };
@@ -40,9 +40,7 @@ struct ProjectionResult {
 /// du = -M^-1 G^T (G M^-1 G^T)^-1 g on the kept rows (the smallest change in the kinetic
 /// metric, MultibodySystem::DisplacePositions) until max |g| <= tolerance there. Throws
 /// SimulationError at t naming the joints if G M^-1 G^T is rank deficient or if it does not
-/// converge (naming the joint of the largest residual), and CheckDroppedConstraints' error if a
-/// dropped row is then violated by more than 100 times the tolerance (the redundancy changed;
-/// the dropped rows follow the kept rows' residual with a gain of order 1).
+/// converge (naming the joint of the largest residual). The dropped rows are not looked at.
 ProjectionResult ProjectPositions(const MultibodySystem& system, double t, Eigen::Ref<Eigen::VectorXd> y,
                                   const ProjectionOptions& options);
 
@@ -54,6 +52,13 @@ void ProjectVelocities(const MultibodySystem& system, double t, Eigen::Ref<Eigen
 struct ConsistencyOptions {
   double max_position_residual = 1e-3;  ///< max |g_k| [m or 1] (and | |e| - 1 |)
   double max_velocity_residual = 1e-3;  ///< max |(G u + g_t)_k| [m/s or 1/s]
+  /// Rows whose pivot at t0 (FindRedundantConstraints) is below this are dropped for the run:
+  /// redundant below ConstraintSettings::singular_pivot, nearly redundant above it (within
+  /// about 1e-3 rad of the span of the others: enforced, they would lock a flexible body's modes
+  /// through a trace of motion, with multipliers amplified by 1 / pivot). In
+  /// [singular_pivot, 1). 1e-6 is also where a failing run is blamed on a nearly singular
+  /// configuration (Simulate).
+  double redundant_pivot = 1e-6;
   ProjectionOptions projection;
 };
 
@@ -71,10 +76,11 @@ struct ConsistencyReport {
 /// Checks initial conditions y at t: within ProjectionOptions::position_tolerance (and round-off
 /// for velocities) they are kept; within the limits they are projected (positions, then
 /// velocities); beyond, InputError names the worst joint and the residual ("inconsistent
-/// initial conditions"). Finds the redundant rows (FindRedundantConstraints with the system's
-/// singular_pivot) at y, and again at the projected y, and sets them as the system's
-/// dropped_constraints for the run. Throws SimulationError if the kept rows are rank deficient
-/// at the end (they are not right after the search) or a dropped row does not hold.
+/// initial conditions"). Finds the redundant rows (FindRedundantConstraints with
+/// options.redundant_pivot) at y, and again at the projected y, and sets them as the system's
+/// dropped_constraints for the run. Throws InputError if redundant_pivot is outside
+/// [singular_pivot, 1), SimulationError if the kept rows are rank deficient at the end (they
+/// are not right after the search) or a dropped row does not hold (DroppedRowWatch at t).
 ConsistencyReport MakeConsistent(MultibodySystem& system, double t, Eigen::Ref<Eigen::VectorXd> y,
                                  const ConsistencyOptions& options);
 

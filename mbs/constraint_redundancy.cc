@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "mbs/constraint_solver.h"
 #include "mbs/simulation_error.h"
@@ -12,10 +14,17 @@ namespace flexmbs::mbs {
 std::string ConstraintRedundancy::Describe(const MultibodySystem& system) const {
   if (dropped_rows.empty()) return "none";
   std::string rows;
-  for (const Eigen::Index row : dropped_rows) {
-    rows += fmt::format("{}{}", rows.empty() ? "" : ", ", system.DescribeConstraintRow(row));
+  for (std::size_t k = 0; k < dropped_rows.size(); ++k) {
+    rows += fmt::format("{}{}", rows.empty() ? "" : ", ", DescribeRow(system, k));
   }
   return fmt::format("{} row{} dropped: {}", dropped_rows.size(), dropped_rows.size() == 1 ? "" : "s", rows);
+}
+
+std::string ConstraintRedundancy::DescribeRow(const MultibodySystem& system, std::size_t index) const {
+  const std::string row = system.DescribeConstraintRow(dropped_rows.at(index));
+  const double pivot = pivots.at(index);
+  if (pivot < system.constraint_settings().singular_pivot) return row;
+  return fmt::format("{} (nearly redundant: pivot {:.2g})", row, pivot);
 }
 
 ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, double t, const ConstVectorRef& y,
@@ -24,7 +33,8 @@ ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, dou
   redundancy.pivot_limit = pivot_limit;
   const Eigen::Index m = system.num_constraints();
   if (m == 0) return redundancy;
-  const ConstraintSolver solver(system, t, y, system.Constraints(t, y).G, SolverRows::kAll);
+  const Eigen::MatrixXd G = system.Constraints(t, y).G;
+  const ConstraintSolver solver(system, t, y, G, SolverRows::kAll);
   const Eigen::MatrixXd& S = solver.scaled_schur();
   // L L^T = S(kept, kept), grown one kept row at a time.
   Eigen::MatrixXd L = Eigen::MatrixXd::Zero(m, m);
@@ -36,6 +46,10 @@ ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, dou
     const double pivot = S(row, row) - l.squaredNorm();
     if (!(pivot >= pivot_limit)) {
       redundancy.dropped_rows.push_back(row);
+      redundancy.pivots.push_back(pivot);
+      const Eigen::VectorXd G_row = G.row(row).transpose();
+      const double schur_diagonal = G_row.dot(solver.SolveMass(G_row));
+      redundancy.drift_rates.push_back(std::sqrt(std::max(pivot, 0.0) * schur_diagonal));
       continue;
     }
     L.row(n).head(n) = l.transpose();
@@ -45,16 +59,29 @@ ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, dou
   return redundancy;
 }
 
-void CheckDroppedConstraints(const MultibodySystem& system, double t, const Eigen::VectorXd& g, double limit) {
-  const std::vector<Eigen::Index>& dropped = system.dropped_constraints();
+DroppedRowWatch::DroppedRowWatch(ConstraintRedundancy redundancy, double base_limit)
+    : redundancy_(std::move(redundancy)), base_limit_(base_limit) {}
+
+void DroppedRowWatch::Check(const MultibodySystem& system, double t, const ConstVectorRef& y) {
+  const std::vector<Eigen::Index>& dropped = redundancy_.dropped_rows;
   if (dropped.empty()) return;
-  Eigen::Index worst = 0;
-  const double violation = g(dropped).cwiseAbs().maxCoeff(&worst);
-  if (violation <= limit) return;
-  throw SimulationError(t, fmt::format("t = {:.9g} s: the redundancy of the constraints changed: the dropped "
-                                       "redundant {} is violated by {:.3g} (limit {:.3g}) while the kept rows hold",
-                                       t, system.DescribeConstraintRow(dropped[static_cast<std::size_t>(worst)]),
-                                       violation, limit));
+  const double speed = std::sqrt(2.0 * system.KineticEnergy(y));  // |u|_M
+  if (started_) path_ += std::abs(t - last_time_) * std::max(speed, speed_);
+  started_ = true;
+  speed_ = speed;
+  last_time_ = t;
+  const Eigen::VectorXd g = system.Constraints(t, y).g;
+  for (std::size_t k = 0; k < dropped.size(); ++k) {
+    const double violation = std::abs(g(dropped[k]));
+    const double limit = base_limit_ + redundancy_.drift_rates[k] * path_;
+    largest_violation_ = std::max(largest_violation_, violation);
+    largest_share_ = std::max(largest_share_, violation / limit);
+    if (violation > limit) {
+      throw SimulationError(t, fmt::format("t = {:.9g} s: the redundancy of the constraints changed: the dropped "
+                                           "redundant {} is violated by {:.3g} (limit {:.3g}) while the kept rows hold",
+                                           t, redundancy_.DescribeRow(system, k), violation, limit));
+    }
+  }
 }
 
 }  // namespace flexmbs::mbs

@@ -121,7 +121,7 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
 
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
-                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian"});
+                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "redundant_pivot"});
   SimulationOptions options;
   options.end_time = node.Required("end_time").AsDouble();
   if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
@@ -159,6 +159,14 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
   positive("max_step", &options.integrator.max_step);
   positive("fixed_step", &options.integrator.fixed_step);
   positive("baumgarte_frequency", &options.baumgarte_frequency);
+  if (node.Has("redundant_pivot")) {
+    const YamlNode item = node.Required("redundant_pivot");
+    const double pivot = item.AsDouble();
+    if (!(pivot >= options.singular_pivot && pivot < 1.0)) {
+      item.Fail(fmt::format("{:g} must be in [{:g}, 1) (the singular pivot up to 1)", pivot, options.singular_pivot));
+    }
+    options.initial_conditions.redundant_pivot = pivot;
+  }
   return options;
 }
 

@@ -65,6 +65,9 @@ SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& 
   statistics.baumgarte_frequency = BaumgarteFrequency(options);
   system.set_constraint_settings({statistics.baumgarte_frequency, options.singular_pivot});
   statistics.initial_conditions = MakeConsistent(system, options.start_time, y0, options.initial_conditions);
+  DroppedRowWatch watch(statistics.initial_conditions.redundancy,
+                        kDroppedRowSlack * options.projection.position_tolerance);
+  watch.Check(system, options.start_time, y0);
 
   bool model_failed = false;  // the failure came from the model's own check, already explained
   double last_step_time = options.start_time;  // the last projected step, to explain a failure
@@ -91,6 +94,7 @@ SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& 
     try {
       const ProjectionResult result = ProjectPositions(system, t, y, options.projection);
       ProjectVelocities(system, t, y);
+      watch.Check(system, t, y);
       statistics.max_projection_iterations = std::max(statistics.max_projection_iterations, result.iterations);
       statistics.max_drift = std::max(statistics.max_drift, result.initial_residual);
       ++statistics.projections;
@@ -124,6 +128,8 @@ SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& 
     emit(integrator.time(), integrator.state());
   }
   statistics.integrator = integrator.statistics();
+  statistics.dropped_row_violation = watch.largest_violation();
+  statistics.dropped_row_limit_share = watch.largest_share();
   statistics.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return statistics;
 }

@@ -37,6 +37,10 @@ struct SimulationStatistics {
   long projections = 0;               ///< position + velocity projections (one per step and output)
   int max_projection_iterations = 0;  ///< Gauss-Newton iterations of the worst projection
   double max_drift = 0.0;             ///< largest max |g| a projection started from [m or 1]
+  /// DroppedRowWatch: the largest |g| of a dropped row after a projection [m or 1], and the
+  /// largest share of its limit (0 without dropped rows).
+  double dropped_row_violation = 0.0;
+  double dropped_row_limit_share = 0.0;
   double baumgarte_frequency = 0.0;   ///< the omega_B used [rad/s]
   double wall_seconds = 0.0;
 };
@@ -50,7 +54,7 @@ using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, co
 /// initial state (MakeConsistent). Throws InputError for bad options or inconsistent initial
 /// conditions, SimulationError (with the time) when the integration fails; a failure near a
 /// singular configuration is reported with the joints of the loop, a dropped row that stops
-/// holding as a change of the redundancy (CheckDroppedConstraints).
+/// holding as a change of the redundancy (DroppedRowWatch, after every projection).
 SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
                               const OutputCallback& output);
 

@@ -312,6 +312,15 @@ TEST_F(BadSceneTest, UnknownKeyAndMissingEndTimeAreNamed) {
   ExpectRefused(text, "simulation: missing key 'end_time'");
 }
 
+TEST_F(BadSceneTest, RedundantPivotOutsideItsRangeIsNamed) {
+  std::string text = kPendulum;
+  const std::size_t at = text.find("end_time: 1.0, ");
+  ExpectRefused(std::string(text).replace(at, 15, "end_time: 1.0, redundant_pivot: 1e-12, "),
+                "simulation.redundant_pivot: 1e-12 must be in [1e-10, 1) (the singular pivot up to 1)");
+  ExpectRefused(std::string(text).replace(at, 15, "end_time: 1.0, redundant_pivot: 1, "),
+                "simulation.redundant_pivot: 1 must be in [1e-10, 1)");
+}
+
 TEST_F(BadSceneTest, BadParaviewOutputIsNamed) {
   std::string text = kPendulum;
   const std::size_t at = text.find("output: {markers: [rod.tip]}");

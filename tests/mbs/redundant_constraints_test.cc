@@ -205,11 +205,19 @@ TEST(RedundantConstraints, DroppedRowThatStopsHoldingIsAChangeOfRedundancy) {
   // rows does not restore it, and the check names it.
   FourBar four_bar(FourBarGeometry{}, JointType::kSpherical);
   MultibodySystem& system = four_bar.system;
-  system.set_dropped_constraints({0});
+  ConstraintRedundancy redundancy;
+  redundancy.dropped_rows = {0};
+  redundancy.pivots = {0.0};
+  redundancy.drift_rates = {0.0};
+  system.set_dropped_constraints(redundancy.dropped_rows);
+  const ProjectionOptions options;
+  DroppedRowWatch watch(redundancy, kDroppedRowSlack * options.position_tolerance);
   Eigen::VectorXd y = four_bar.y0;
+  watch.Check(system, 0.0, y);
   y.head(3) += Vector3d(1e-6, 0.0, 0.0);  // the crank's origin off the pivot along x
   try {
-    ProjectPositions(system, 0.25, y, ProjectionOptions{});
+    ProjectPositions(system, 0.25, y, options);
+    watch.Check(system, 0.25, y);
     ADD_FAILURE() << "no error";
   } catch (const SimulationError& error) {
     const std::string message = error.what();
