@@ -44,8 +44,15 @@ enum class ModesOn {
 /// moves their eigenvalues to infinity; K and M are modified in place. The modes are gathered
 /// as `modes_on` says, in the matrices' row order; residuals and round-off floors are those of
 /// EigenSolution, computed with distributed products (K x, M x, |K| |x|, |M| |x|);
-/// `gather_seconds` (if given) receives the time of the gather [s]. Throws InputError if fewer pairs converge than asked or a pair
-/// misses its residual bound, InternalError for a PETSc/SLEPc failure.
+/// `gather_seconds` (if given) receives the time of the gather [s]. The lowest modes are
+/// checked by a Sturm count after the wanted ones (kSturmCount): the shift-invert's MUMPS
+/// instance refactorises K - cut M numerically with its analysis kept, the cut placed by the
+/// Krylov-Schur run's last Ritz values; a band is counted by spectrum slicing's inertias.
+/// Fills EigenSolution's work counts and times: factorization_seconds (EPSSetUp: K - sigma M),
+/// krylov_seconds (EPSSolve and the eigenvectors), sturm_seconds, factorizations (numeric),
+/// operator_applications (solves), krylov_runs, restarts (Krylov-Schur iterations). Throws
+/// InputError if fewer pairs converge than asked, a mode was missed twice or a pair misses its
+/// residual bound, InternalError for a PETSc/SLEPc failure.
 EigenSolution SolveDistributedEigenproblem(_p_Mat* K, _p_Mat* M, const std::vector<int>& fixed_dofs,
                                            const EigenOptions& options, ModesOn modes_on = ModesOn::kEveryRank,
                                            double* gather_seconds = nullptr);
