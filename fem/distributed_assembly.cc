@@ -7,14 +7,10 @@
 
 #include "core/error.h"
 #include "fem/assembly.h"
+#include "fem/petsc_check.h"
 
 namespace flexmbs::fem {
 namespace {
-
-void Check(PetscErrorCode code, const char* call) {
-  if (code != 0) throw InternalError(fmt::format("PETSc call {} failed with error {}", call, static_cast<int>(code)));
-}
-#define FLEXMBS_PETSC(call) Check((call), #call)
 
 // The element's global DOF indices, 3 global_node[a] + i.
 void ElementDofs(std::span<const int> nodes, const std::vector<int>& global_node, std::vector<PetscInt>* dofs) {

@@ -10,17 +10,13 @@
 #include "fem/distributed_assembly.h"
 #include "fem/mesh_partition.h"
 #include "fem/mesh_scatter.h"
+#include "fem/petsc_check.h"
 #include "reduction/slepc_solver.h"
 
 namespace flexmbs::reduction {
 namespace {
 
 using Index = Eigen::Index;
-
-void Check(PetscErrorCode code, const char* call) {
-  if (code != 0) throw InternalError(fmt::format("PETSc/MPI call {} failed with error {}", call, static_cast<int>(code)));
-}
-#define FLEXMBS_PETSC(call) Check((call), #call)
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

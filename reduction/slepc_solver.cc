@@ -9,113 +9,11 @@
 #include <slepceps.h>
 
 #include "core/error.h"
+#include "fem/petsc_check.h"
+#include "reduction/slepc_pair_measures.h"
 
 namespace flexmbs::reduction {
 namespace {
-
-void Check(PetscErrorCode code, const char* call) {
-  if (code != 0) {
-    throw InternalError(fmt::format("PETSc/SLEPc call {} failed with error {}", call, static_cast<int>(code)));
-  }
-}
-#define FLEXMBS_PETSC(call) Check((call), #call)
-
-// Copies a distributed vector into a full-length Eigen vector on every rank, or on rank 0 only
-// (the other ranks get an empty vector).
-Eigen::VectorXd Gather(Vec x, ModesOn modes_on) {
-  VecScatter scatter;
-  Vec all;
-  if (modes_on == ModesOn::kEveryRank) {
-    FLEXMBS_PETSC(VecScatterCreateToAll(x, &scatter, &all));
-  } else {
-    FLEXMBS_PETSC(VecScatterCreateToZero(x, &scatter, &all));
-  }
-  FLEXMBS_PETSC(VecScatterBegin(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  FLEXMBS_PETSC(VecScatterEnd(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscInt n = 0;
-  FLEXMBS_PETSC(VecGetLocalSize(all, &n));
-  const PetscScalar* values = nullptr;
-  FLEXMBS_PETSC(VecGetArrayRead(all, &values));
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(values, n);
-  FLEXMBS_PETSC(VecRestoreArrayRead(all, &values));
-  FLEXMBS_PETSC(VecScatterDestroy(&scatter));
-  FLEXMBS_PETSC(VecDestroy(&all));
-  return out;
-}
-
-// Replaces every stored value of a sequential AIJ matrix by its absolute value.
-void AbsoluteValuesSeq(Mat A) {
-  MatInfo info;
-  FLEXMBS_PETSC(MatGetInfo(A, MAT_LOCAL, &info));
-  PetscScalar* values = nullptr;
-  FLEXMBS_PETSC(MatSeqAIJGetArray(A, &values));
-  const auto count = static_cast<PetscInt>(info.nz_used);
-  for (PetscInt k = 0; k < count; ++k) values[k] = std::abs(values[k]);
-  FLEXMBS_PETSC(MatSeqAIJRestoreArray(A, &values));
-}
-
-// |A|: a copy of the AIJ matrix A with the absolute values of its entries.
-Mat AbsoluteCopy(Mat A) {
-  Mat out;
-  FLEXMBS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &out));
-  PetscBool distributed = PETSC_FALSE;
-  FLEXMBS_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(out), MATMPIAIJ, &distributed));
-  if (distributed) {
-    Mat diagonal_block, off_block;
-    FLEXMBS_PETSC(MatMPIAIJGetSeqAIJ(out, &diagonal_block, &off_block, nullptr));
-    AbsoluteValuesSeq(diagonal_block);
-    AbsoluteValuesSeq(off_block);
-  } else {
-    AbsoluteValuesSeq(out);
-  }
-  return out;
-}
-
-// The norm of the distributed vector x, squared.
-double SquaredNorm(Vec x) {
-  PetscReal norm = 0.0;
-  FLEXMBS_PETSC(VecNorm(x, NORM_2, &norm));
-  return norm * norm;
-}
-
-// Fills residuals, round-off floors and the M-orthonormality error of the pairs (lambda, x),
-// x distributed: the products with K, M, |K| and |M| run where the rows are.
-void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* solution) {
-  const Eigen::VectorXd& lambda = solution->eigenvalues;
-  const auto n = static_cast<Eigen::Index>(x.size());
-  Mat abs_K = AbsoluteCopy(K), abs_M = AbsoluteCopy(M);
-  Vec kx, mx, abs_x, abs_kx, abs_mx;
-  FLEXMBS_PETSC(MatCreateVecs(K, &abs_x, &kx));
-  for (Vec* v : {&mx, &abs_kx, &abs_mx}) FLEXMBS_PETSC(VecDuplicate(kx, v));
-  Eigen::MatrixXd sums(4, n), gram(n, n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const Vec xj = x[static_cast<std::size_t>(j)];
-    FLEXMBS_PETSC(MatMult(K, xj, kx));
-    FLEXMBS_PETSC(MatMult(M, xj, mx));
-    FLEXMBS_PETSC(VecMDot(mx, static_cast<PetscInt>(n), x.data(), gram.col(j).data()));
-    FLEXMBS_PETSC(VecCopy(xj, abs_x));
-    FLEXMBS_PETSC(VecAbs(abs_x));
-    FLEXMBS_PETSC(MatMult(abs_K, abs_x, abs_kx));
-    FLEXMBS_PETSC(MatMult(abs_M, abs_x, abs_mx));
-    sums(0, j) = SquaredNorm(kx);
-    sums(1, j) = SquaredNorm(mx);
-    FLEXMBS_PETSC(VecAXPY(kx, -lambda(j), mx));
-    sums(2, j) = SquaredNorm(kx);
-    FLEXMBS_PETSC(VecAXPY(abs_kx, std::abs(lambda(j)), abs_mx));
-    sums(3, j) = SquaredNorm(abs_kx);
-  }
-  for (Vec* v : {&kx, &mx, &abs_x, &abs_kx, &abs_mx}) FLEXMBS_PETSC(VecDestroy(v));
-  FLEXMBS_PETSC(MatDestroy(&abs_K));
-  FLEXMBS_PETSC(MatDestroy(&abs_M));
-  PetscScalar trace_k = 0.0, trace_m = 0.0;
-  FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
-  FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
-  const PairResiduals residuals =
-      ResidualsFromSums(sums, lambda, solution->shift, kZeroEigenvalue * trace_k / trace_m);
-  solution->relative_residuals = residuals.relative;
-  solution->residual_floors = residuals.floor;
-  solution->orthonormality_error = (gram - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff();
-}
 
 // Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, `nev`
 // pairs (not a band). Purification (one more solve per pair, removing components in M's null
@@ -582,7 +480,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
   MeasurePairs(K, M, x.v, &solution);
   const auto gather_start = std::chrono::steady_clock::now();
   for (std::size_t j = 0; j < x.v.size(); ++j) {
-    Eigen::VectorXd mode = Gather(x.v[j], modes_on);
+    Eigen::VectorXd mode = GatherVector(x.v[j], modes_on);
     if (j == 0) solution.modes.resize(mode.size(), static_cast<Eigen::Index>(x.v.size()));
     solution.modes.col(static_cast<Eigen::Index>(j)) = mode;
   }

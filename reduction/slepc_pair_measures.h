@@ -1,0 +1,25 @@
+#pragma once
+// What the SLEPc backend measures on distributed eigenpairs: the residuals, their round-off
+// floors and the M-orthonormality (as defined in EigenSolution), with the products run where
+// the rows are; and the gather of a distributed mode.
+
+#include <petscmat.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "reduction/eigensolver.h"
+#include "reduction/slepc_solver.h"
+
+namespace flexmbs::reduction {
+
+/// Copies a distributed vector into a full-length Eigen vector on every rank, or on rank 0 only
+/// (the other ranks get an empty vector). Collective.
+Eigen::VectorXd GatherVector(Vec x, ModesOn modes_on);
+
+/// Fills solution's relative_residuals, residual_floors and orthonormality_error for the pairs
+/// (solution->eigenvalues(j), x[j]) of K, M (distributed AIJ, same layout as x), with the shift
+/// solution->shift. Collective.
+void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* solution);
+
+}  // namespace flexmbs::reduction
