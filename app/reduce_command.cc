@@ -87,6 +87,19 @@ nlohmann::json MpiJson(const reduction::DistributedSolveStats& stats, double bas
                        {"basis_rank0", basis_seconds}}}};
 }
 
+// The eigen-solve's accounting (`reduce --json`, key "seconds.eigensolver"; docs/cli.md).
+nlohmann::json EigensolverJson(const reduction::EigensolverSummary& s) {
+  return {{"seconds", s.seconds},
+          {"factorization_seconds", s.factorization_seconds},
+          {"sturm_seconds", s.sturm_seconds},
+          {"krylov_seconds", s.krylov_seconds},
+          {"factorizations", s.factorizations},
+          {"operator_applications", s.operator_applications},
+          {"krylov_runs", s.krylov_runs},
+          {"restarts", s.restarts},
+          {"missed_mode_check", reduction::MissedModeCheckName(s.missed_mode_check)}};
+}
+
 void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, const fem::Mesh& mesh,
             const StageSeconds& seconds, const std::optional<nlohmann::json>& mpi) {
   const reduction::ModeCounts counts = basis.Counts();
@@ -103,6 +116,7 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, 
     j["eigensolver"] = basis.eigensolver;
     j["seconds"] = {{"mesh", seconds.mesh}, {"assembly", seconds.assembly}, {"reduction", seconds.reduction},
                     {"sid", seconds.sid}};
+    if (basis.eigensolver_summary) j["seconds"]["eigensolver"] = EigensolverJson(*basis.eigensolver_summary);
     if (mpi) {
       j["mpi"] = *mpi;
       // Rank 0's peak over the whole run, the SID invariants and the file included.
@@ -260,6 +274,8 @@ void RunReduce(const ReduceOptions& options) {
   }
   if (spec.orthonormalize) r.basis = reduction::OrthonormalizeBasis(model, r.basis);
   r.seconds.reduction += SecondsSince(corrections_start);
+  // The held body's factor serves the stiffening's static solves; without them, free it now.
+  if (!sid_spec.geometric_stiffening) r.basis.held_factorization.reset();
 
   progress.Show("computing the SID invariants ...");
   const auto sid_start = std::chrono::steady_clock::now();

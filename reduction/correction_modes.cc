@@ -129,7 +129,8 @@ CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBas
 
   // Static responses of the body as the basis holds it.
   CorrectionResult result;
-  const StaticResponses responses = SolveStaticResponses(model, basis.held_by, F, "static correction modes");
+  const StaticResponses responses = SolveStaticResponses(model, basis.held_by, F, "static correction modes",
+                                                         basis.held_factorization.get());
   const Eigen::MatrixXd& X = responses.X;
   const std::vector<bool>& carried = responses.carried;  // no interior load at all
 

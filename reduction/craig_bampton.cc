@@ -37,30 +37,30 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
                                  normal_modes.num_modes, n_o));
   }
 
-  // Constraint modes: Psi = B + G X, K_oo X = -G^T K B.
-  const ShiftedFactorization factor = FactorHeldInterior(model, conditions, interior);
+  // Constraint modes: Psi = B + G X, K_oo X = -G^T K B. The factor of K_oo serves the normal
+  // modes (shift 0) and the static solves after the basis too.
+  const std::shared_ptr<const HeldFactorization> factor = FactorHeldBody(model, conditions, interior);
   const Eigen::MatrixXd rhs = -(Eigen::SparseMatrix<double>(t.G.transpose()) * (model.K * t.B));
-  const Eigen::MatrixXd X = factor.Solve(rhs);
+  const Eigen::MatrixXd X = factor->factor.Solve(rhs);
   const Eigen::MatrixXd Psi = Eigen::MatrixXd(t.B) + t.G * X;
 
   // Fixed-interface normal modes (K_oo is known to be positive definite: shift 0 unless set).
-  EigenSolution s;
+  HeldModes modes;
   const bool want_normal = normal_modes.num_modes > 0 || normal_modes.max_frequency_hz > 0.0;
   if (want_normal) {
     EigenOptions options = normal_modes;
     if (!options.shift_hz) options.shift_hz = 0.0;
-    try {
-      s = solver.Solve(interior.K_oo, interior.M_oo, options);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: fixed-interface modes: {}", what, e.what()));
-    }
+    modes = SolveHeldModes(solver, interior, factor.get(), options, what + ": fixed-interface modes");
   }
+  const EigenSolution& s = modes.solution;
   const Index n_b = t.num_boundary();
   const Index n_n = s.modes.cols();
 
   ReducedBasis basis;
   basis.method = "craig_bampton";
   basis.eigensolver = want_normal ? s.backend : std::string();
+  if (want_normal) basis.eigensolver_summary = modes.summary;
+  basis.held_factorization = factor;
   basis.held_by = conditions;
   basis.Phi.resize(model.K.rows(), n_b + n_n);
   basis.Phi.leftCols(n_b) = Psi;
@@ -100,6 +100,8 @@ ReducedBasis OrthonormalizeBasis(const FeModel& model, const ReducedBasis& input
   ReducedBasis basis;
   basis.method = input.method == "craig_bampton" ? "craig_bampton_orthonormalized" : input.method + "+orthonormalized";
   basis.eigensolver = input.eigensolver;
+  basis.eigensolver_summary = input.eigensolver_summary;
+  basis.held_factorization = input.held_factorization;
   basis.held_by = input.held_by;
   basis.Phi = ritz.vectors;
   basis.frequency_hz = FrequenciesHz(ritz.values);

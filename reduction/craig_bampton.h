@@ -28,6 +28,9 @@ namespace flexmbs::reduction {
 /// modes (kNormal, "normal_k") chosen by `normal_modes` (the lowest num_modes, or all below
 /// max_frequency_hz; both 0: none, which is Guyan's static condensation).
 /// Frequencies and residuals of the normal modes are those of the fixed-interface problem.
+/// K_oo is factorised once (held_factorization, kept in the basis) for the constraint modes,
+/// the normal modes (SolveHeldModes) and later static solves; eigensolver_summary is set when
+/// normal modes were computed.
 /// Throws a one-line InputError for: no interface, bad interfaces (BuildConstraintTransform),
 /// more normal modes than interior DOF, conditions that do not hold the body (K_ii singular,
 /// e.g. a node set on one line of an otherwise free body: the message names the interfaces

@@ -27,6 +27,20 @@ const std::vector<std::pair<std::string, std::function<std::unique_ptr<Eigensolv
 
 }  // namespace
 
+std::string_view MissedModeCheckName(MissedModeCheck check) {
+  switch (check) {
+    case MissedModeCheck::kNone:
+      return "none";
+    case MissedModeCheck::kSturmCount:
+      return "sturm_count";
+    case MissedModeCheck::kDeflatedLanczos:
+      return "deflated_lanczos";
+    case MissedModeCheck::kAuto:
+      return "auto";
+  }
+  return "?";
+}
+
 Eigen::VectorXd FrequenciesHz(const Eigen::VectorXd& eigenvalues) {
   return eigenvalues.unaryExpr([](double lambda) {
     const double f = std::sqrt(std::abs(lambda)) / (2.0 * std::numbers::pi);
@@ -48,6 +62,11 @@ double FreeBodyShift(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMa
   const double trace_m = M.diagonal().sum();
   if (!(trace_k > 0.0) || !(trace_m > 0.0) || !std::isfinite(trace_k / trace_m)) return -1.0;
   return -kShiftFraction * trace_k / trace_m;
+}
+
+EigenSolution Eigensolver::SolveFactorized(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                                           const EigenOptions& options, const ShiftedFactorization&) const {
+  return Solve(K, M, options);
 }
 
 std::unique_ptr<Eigensolver> MakeEigensolver(std::string_view backend) {

@@ -10,6 +10,8 @@
 
 namespace flexmbs::reduction {
 
+class ShiftedFactorization;
+
 /// How Solve makes sure no mode below the last returned one was missed (Lanczos from a single
 /// start vector can miss a copy of a repeated eigenvalue).
 enum class MissedModeCheck {
@@ -25,6 +27,9 @@ enum class MissedModeCheck {
   /// kSturmCount when the factorisation is cheap (<= 5e9 flops), else kDeflatedLanczos.
   kAuto,
 };
+
+/// "none", "sturm_count", "deflated_lanczos", "auto": the names used in reports.
+std::string_view MissedModeCheckName(MissedModeCheck check);
 
 /// What to compute for the generalized symmetric eigenproblem K phi = lambda M phi
 /// (K symmetric positive semi-definite [N/m], M symmetric positive definite [kg]).
@@ -141,6 +146,23 @@ class Eigensolver {
   virtual EigenSolution Solve(const Eigen::SparseMatrix<double>& K,
                               const Eigen::SparseMatrix<double>& M,
                               const EigenOptions& options) const = 0;
+  /// Whether SolveFactorized uses the factorisation it is given (else it factorises K - sigma M
+  /// itself, as Solve does). The serial backend does; SLEPc (its own MUMPS factorisation) does not.
+  virtual bool UsesGivenFactorization() const { return false; }
+  /// Solve with a factorisation of K - sigma M the caller already holds, so that it is not made
+  /// again: the Craig-Bampton and fixed-interface bases share the Cholesky factor of the held
+  /// body's K_oo (FactorHeldInterior, sigma = 0) between the constraint modes, the held check,
+  /// the eigen-solve and the static solves after it. Preconditions: `factor` is an ok()
+  /// kSupernodalCholesky factorisation of exactly these K and M at factor.sigma() (positive
+  /// definite), and options.shift_hz is unset or gives that sigma (ShiftFromHz); the shift is
+  /// factor.sigma(), never chosen automatically. The given factorisation is not counted in
+  /// EigenSolution::factorizations or factorization_seconds (the caller made it); Sturm
+  /// counts still make their own LDL^T factorisations. The results equal those of Solve at the
+  /// same shift (same factor, same Lanczos runs), except that Solve's automatic shift also
+  /// probes for a zero eigenvalue (operator_applications). The default (backends for which
+  /// UsesGivenFactorization() is false) ignores `factor` and calls Solve.
+  virtual EigenSolution SolveFactorized(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                                        const EigenOptions& options, const ShiftedFactorization& factor) const;
 };
 
 /// The backend named `backend` ("spectra"). Throws InputError

@@ -121,7 +121,7 @@ Eigen::MatrixXd BuildStiffeningLoads(const FeModel& model, std::span<const Inter
 
 StiffeningResult ComputeGeometricStiffening(const fem::Mesh& mesh, const FeModel& model,
                                             const BoundaryConditions& held_by, const Eigen::MatrixXd& Phi,
-                                            std::span<const InterfaceSpec> nodes) {
+                                            std::span<const InterfaceSpec> nodes, const HeldFactorization* held) {
   ValidateModel(model);
   if (mesh.num_nodes() != model.nodes.cols()) {
     throw InputError(fmt::format("geometric stiffening: the mesh has {} nodes, the model {}", mesh.num_nodes(),
@@ -132,7 +132,7 @@ StiffeningResult ComputeGeometricStiffening(const fem::Mesh& mesh, const FeModel
                                  model.K.rows()));
   }
   const Eigen::MatrixXd F = BuildStiffeningLoads(model, nodes);
-  const StaticResponses responses = SolveStaticResponses(model, held_by, F, "geometric stiffening");
+  const StaticResponses responses = SolveStaticResponses(model, held_by, F, "geometric stiffening", held);
   std::vector<Eigen::MatrixXd> K0 = ProjectedStiffeningMatrices(mesh, responses.X, Phi);
 
   StiffeningResult result;

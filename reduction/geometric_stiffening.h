@@ -88,11 +88,14 @@ std::vector<Eigen::MatrixXd> ProjectedStiffeningMatrices(const fem::Mesh& mesh, 
 /// (3 num_nodes x n), all load cases solved with one factorisation (SolveStaticResponses) of
 /// the body held as `held_by` (the basis's held_by), and projected by
 /// ProjectedStiffeningMatrices (kAuto). `model` is the FE model of `mesh` with its consistent
-/// mass matrix. Throws a one-line InputError for: a bad model, a mesh of another node count,
-/// a basis of another size, bad nodes (BuildStiffeningLoads), conditions that do not hold the
-/// body, and the static solve's errors.
+/// mass matrix. `held`: the basis's factorisation of the held body
+/// (ReducedBasis::held_factorization), reused instead of a new one; null: factorise here.
+/// Throws a one-line InputError for: a bad model, a mesh of another node count, a basis of
+/// another size, bad nodes (BuildStiffeningLoads), conditions that do not hold the body, and
+/// the static solve's errors. Precondition: `held`, if given, was made for `held_by` and K.
 StiffeningResult ComputeGeometricStiffening(const fem::Mesh& mesh, const FeModel& model,
                                             const BoundaryConditions& held_by, const Eigen::MatrixXd& Phi,
-                                            std::span<const InterfaceSpec> nodes = {});
+                                            std::span<const InterfaceSpec> nodes = {},
+                                            const HeldFactorization* held = nullptr);
 
 }  // namespace flexmbs::reduction

@@ -4,6 +4,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -17,6 +18,14 @@ namespace {
 // Held nodes lie on one line when the second singular value of their centred positions is
 // below this fraction of the first (exactly collinear positions give round-off).
 constexpr double kCollinearFraction = 1e-9;
+
+bool SameSupport(const SupportSpec& a, const SupportSpec& b) { return a.name == b.name && a.nodes == b.nodes; }
+
+bool SameInterface(const InterfaceSpec& a, const InterfaceSpec& b) {
+  return a.name == b.name && a.nodes == b.nodes && a.coupling == b.coupling &&
+         a.marker_position.has_value() == b.marker_position.has_value() &&
+         (!a.marker_position || *a.marker_position == *b.marker_position) && a.weights == b.weights;
+}
 
 }  // namespace
 
@@ -85,6 +94,45 @@ ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryCond
     ThrowNotHeld(model, conditions);
   }
   return factor;
+}
+
+std::shared_ptr<const HeldFactorization> FactorHeldBody(const FeModel& model, const BoundaryConditions& conditions,
+                                                        const InteriorProblem& interior) {
+  const auto start = std::chrono::steady_clock::now();
+  auto held = std::make_shared<HeldFactorization>();
+  held->factor = FactorHeldInterior(model, conditions, interior);
+  held->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  held->conditions = conditions;
+  held->transform = interior.transform;
+  return held;
+}
+
+bool FactorizedFor(const HeldFactorization& held, const BoundaryConditions& conditions) {
+  return std::ranges::equal(held.conditions.supports, conditions.supports, SameSupport) &&
+         std::ranges::equal(held.conditions.interfaces, conditions.interfaces, SameInterface);
+}
+
+bool SharesHeldFactorization(const Eigensolver& solver, const EigenOptions& options) {
+  return solver.UsesGivenFactorization() && (!options.shift_hz || *options.shift_hz == 0.0);
+}
+
+HeldModes SolveHeldModes(const Eigensolver& solver, const InteriorProblem& interior, const HeldFactorization* held,
+                         const EigenOptions& options, std::string_view what) {
+  const bool shared = held != nullptr && SharesHeldFactorization(solver, options);
+  HeldModes modes;
+  try {
+    modes.solution = shared ? solver.SolveFactorized(interior.K_oo, interior.M_oo, options, held->factor)
+                            : solver.Solve(interior.K_oo, interior.M_oo, options);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", what, e.what()));
+  }
+  modes.summary = SummarizeEigenSolution(modes.solution);
+  if (shared) {
+    ++modes.summary.factorizations;
+    modes.summary.factorization_seconds += held->seconds;
+    modes.summary.seconds += held->seconds;
+  }
+  return modes;
 }
 
 void ThrowNotHeld(const FeModel& model, const BoundaryConditions& conditions) {

@@ -6,7 +6,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
+#include <string_view>
 
+#include "reduction/eigensolver.h"
 #include "reduction/interface_coupling.h"
 #include "reduction/modal_basis.h"
 #include "reduction/shifted_factorization.h"
@@ -30,6 +33,44 @@ InteriorProblem BuildInteriorProblem(const FeModel& model, const BoundaryConditi
 /// eigenvalue at zero to round-off (HasZeroEnergyMode).
 ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
                                         const InteriorProblem& interior);
+
+/// The held body factorised once for every solve with its K_oo: the Craig-Bampton constraint
+/// modes, the held check, the fixed-interface eigen-solve (Eigensolver::SolveFactorized at
+/// shift 0) and the static solves after the basis (correction modes, geometric stiffening:
+/// SolveStaticResponses). A basis carries it as ReducedBasis::held_factorization.
+struct HeldFactorization {
+  BoundaryConditions conditions;  ///< what holds the body
+  ConstraintTransform transform;  ///< u = B q_b + G u_o of `conditions`
+  ShiftedFactorization factor;    ///< Cholesky factor of K_oo = G^T K G at sigma = 0 (FactorHeldInterior)
+  double seconds = 0.0;           ///< wall-clock time of the factorisation and the held check [s]
+};
+
+/// FactorHeldInterior of `interior` (built from `conditions`), kept with copies of the
+/// conditions and the transform, and timed. Throws as FactorHeldInterior. Precondition:
+/// interior has interior DOF.
+std::shared_ptr<const HeldFactorization> FactorHeldBody(const FeModel& model, const BoundaryConditions& conditions,
+                                                        const InteriorProblem& interior);
+
+/// Whether `held` was made for exactly `conditions`: the same supports (names, nodes) and
+/// interfaces (names, nodes, coupling, marker, weights), in the same order.
+bool FactorizedFor(const HeldFactorization& held, const BoundaryConditions& conditions);
+
+/// Whether the fixed-interface eigen-solve of the held body can use its factor: `solver` uses a
+/// given factorisation (Eigensolver::UsesGivenFactorization) and `options` asks for no shift
+/// other than 0.
+bool SharesHeldFactorization(const Eigensolver& solver, const EigenOptions& options);
+
+/// The fixed-interface normal modes K_oo phi_o = lambda M_oo phi_o of `interior`, with their
+/// summary for ReducedBasis::eigensolver_summary. With `held` (the factor of this interior) and
+/// SharesHeldFactorization, solved by SolveFactorized at shift 0 and the held factorisation
+/// counted in the summary (one factorisation, its time included); else by Solve with
+/// `options` (`held` may then be null). The solver's InputErrors are prefixed with `what`.
+struct HeldModes {
+  EigenSolution solution;
+  EigensolverSummary summary;
+};
+HeldModes SolveHeldModes(const Eigensolver& solver, const InteriorProblem& interior, const HeldFactorization* held,
+                         const EigenOptions& options, std::string_view what);
 
 /// Whether the factorised K (sigma = 0) has an eigenvalue at zero to round-off relative to
 /// trace(K)/trace(M): three steps of inverse iteration from two random vectors, then the

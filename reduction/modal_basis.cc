@@ -83,6 +83,20 @@ ModeCounts ReducedBasis::Counts() const {
   return counts;
 }
 
+EigensolverSummary SummarizeEigenSolution(const EigenSolution& solution) {
+  EigensolverSummary summary;
+  summary.seconds = solution.seconds;
+  summary.factorization_seconds = solution.factorization_seconds;
+  summary.sturm_seconds = solution.sturm_seconds;
+  summary.krylov_seconds = solution.krylov_seconds;
+  summary.factorizations = solution.factorizations;
+  summary.operator_applications = solution.operator_applications;
+  summary.krylov_runs = solution.krylov_runs;
+  summary.restarts = solution.restarts;
+  summary.missed_mode_check = solution.missed_mode_check;
+  return summary;
+}
+
 void ValidateModel(const FeModel& model) {
   const Index n = 3 * model.nodes.cols();
   if (n == 0) throw InputError("model: the mesh has no nodes");
@@ -147,6 +161,7 @@ ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& opt
   ReducedBasis basis;
   basis.method = "free_free_modal";
   basis.eigensolver = s.backend;
+  basis.eigensolver_summary = SummarizeEigenSolution(s);
   basis.Phi.resize(n, kRigid + num_elastic);
   basis.frequency_hz.resize(kRigid + num_elastic);
   basis.relative_residuals.resize(kRigid + num_elastic);
@@ -198,13 +213,20 @@ ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryCondit
   if (eigen.num_modes > n_o) {
     throw InputError(fmt::format("{}: {} modes asked for, but only {} interior DOF are free", held, eigen.num_modes, n_o));
   }
-  const EigenSolution s = SolveOrExplain(solver, interior.K_oo, interior.M_oo, eigen, held);
+  // One factorisation of K_oo for the eigen-solve and the static solves after it, where the
+  // eigensolver can use it; FactorHeldInterior then also checks that the conditions hold the body.
+  const std::shared_ptr<const HeldFactorization> factor =
+      SharesHeldFactorization(solver, eigen) ? FactorHeldBody(model, conditions, interior) : nullptr;
+  const HeldModes modes = SolveHeldModes(solver, interior, factor.get(), eigen, held);
+  const EigenSolution& s = modes.solution;
   const double zero = kZeroEigenvalue * interior.K_oo.diagonal().sum() / interior.M_oo.diagonal().sum();
   if (s.eigenvalues.size() > 0 && std::abs(s.eigenvalues(0)) <= zero) ThrowNotHeld(model, conditions);
 
   ReducedBasis basis;
   basis.method = "fixed_interface_modal";
   basis.eigensolver = s.backend;
+  basis.eigensolver_summary = modes.summary;
+  basis.held_factorization = factor;
   basis.held_by = conditions;
   basis.Phi = interior.transform.G * s.modes;
   basis.kinds.assign(static_cast<std::size_t>(s.modes.cols()), ModeKind::kNormal);

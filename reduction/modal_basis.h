@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -55,6 +56,27 @@ struct FeModel {
 /// Throws InputError unless K and M are square, of size 3 x (number of nodes), and non-empty.
 void ValidateModel(const FeModel& model);
 
+struct HeldFactorization;  // interior_problem.h
+
+/// The eigen-solve behind a basis's normal modes in brief: EigenSolution's accounting, for
+/// reports (`flexmbs reduce --json`, `seconds.eigensolver`). Where the builder factorised the
+/// held body once and the eigensolver used that factorisation (SolveHeldModes), it is counted
+/// here as the solve's factorisation (its time in `seconds` and `factorization_seconds`).
+struct EigensolverSummary {
+  double seconds = 0.0;                ///< wall-clock time of the eigen-solve [s]
+  double factorization_seconds = 0.0;  ///< of which: factorising K - sigma M [s]
+  double sturm_seconds = 0.0;          ///< of which: Sturm counts (LDL^T factorisations) [s]
+  double krylov_seconds = 0.0;         ///< of which: Krylov runs and Rayleigh-Ritz [s]
+  int factorizations = 0;              ///< numeric sparse factorisations (Sturm counts included)
+  int operator_applications = 0;       ///< solves with the factorisation, one per right-hand side
+  int krylov_runs = 0;                 ///< Krylov (Lanczos / Krylov-Schur) runs
+  int restarts = 0;                    ///< restarts over all runs
+  MissedModeCheck missed_mode_check = MissedModeCheck::kNone;  ///< the check made against missed modes
+};
+
+/// The summary of `solution` (its fields of the same names).
+EigensolverSummary SummarizeEigenSolution(const EigenSolution& solution);
+
 /// A reduced basis with its reduced matrices and what each column is.
 struct ReducedBasis {
   /// "free_free_modal", "fixed_interface_modal", "craig_bampton",
@@ -82,6 +104,15 @@ struct ReducedBasis {
   BoundaryConditions held_by;
   /// The eigensolver backend that computed the normal modes ("" if none was used).
   std::string eigensolver;
+  /// How that eigen-solve went (unset if no eigensolver was used).
+  std::optional<EigensolverSummary> eigensolver_summary;
+  /// The Cholesky factor of the held body's K_oo that the builder made (Craig-Bampton;
+  /// fixed-interface when the eigensolver used it, SharesHeldFactorization), for the static
+  /// solves of the body held as `held_by` after the basis (AddStaticCorrectionModes,
+  /// ComputeGeometricStiffening through SolveStaticResponses), which then do not factorise
+  /// again. Null if none. Copies of the basis share it; it holds the factor's memory (nnz(L)
+  /// doubles) until the last copy drops it (reset it when no static solve follows).
+  std::shared_ptr<const HeldFactorization> held_factorization;
   /// Only for a transformed basis (OrthonormalizeBasis): Phi = Phi_original * original_transform,
   /// with the kinds and names of the original columns.
   std::vector<ModeKind> original_kinds;
@@ -135,7 +166,9 @@ ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& opt
 /// interfaces: the marker held, W u = 0, the nodes free to deform). Solved in the interior
 /// coordinates of BuildConstraintTransform, K_oo = G^T K G, M_oo = G^T M G (symmetric positive
 /// definite), expanded to the full DOF: Phi = G phi_o. M-orthonormal; the residuals are those
-/// of the constrained problem (the constraint forces are not residual).
+/// of the constrained problem (the constraint forces are not residual). Where the solver shares
+/// the held body's factorisation (SharesHeldFactorization), K_oo is factorised once for the
+/// eigen-solve and kept in held_factorization for the static solves that follow.
 /// `eigen`: the lowest num_modes, or all below max_frequency_hz (Craig & Bampton 1968;
 /// Craig & Kurdila 2006, component-mode synthesis).
 /// Throws a one-line InputError for: no interface or support, bad interfaces (see

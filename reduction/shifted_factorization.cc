@@ -3,6 +3,7 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -14,6 +15,11 @@
 #include "core/error.h"
 
 namespace flexmbs::reduction {
+namespace {
+
+std::atomic<long> numeric_factorizations{0};  // NumericFactorizations()
+
+}  // namespace
 
 struct ShiftedFactorization::Impl {
   cholmod_common common{};
@@ -123,6 +129,7 @@ ShiftedFactorization::Status ShiftedFactorization::Factorize(const Eigen::Sparse
     d.factor_nonzeros = c.lnz;
     d.factor_flops = c.fl;
   }
+  numeric_factorizations.fetch_add(1, std::memory_order_relaxed);
   cholmod_factorize(&a, d.factor, &c);
   if (c.status == CHOLMOD_OUT_OF_MEMORY || c.status == CHOLMOD_TOO_LARGE) {
     d.FreeFactor();
@@ -168,6 +175,7 @@ double ShiftedFactorization::PivotRatio() const { return impl_->pivot_ratio; }
 Eigen::Index ShiftedFactorization::FailedPivot() const { return impl_->failed_pivot; }
 double ShiftedFactorization::FactorNonzeros() const { return impl_->factor_nonzeros; }
 double ShiftedFactorization::FactorFlops() const { return impl_->factor_flops; }
+long ShiftedFactorization::NumericFactorizations() { return numeric_factorizations.load(std::memory_order_relaxed); }
 
 void ShiftedFactorization::Solve(const double* B, double* X, Eigen::Index num_rhs) const {
   Impl& d = *impl_;

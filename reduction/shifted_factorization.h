@@ -67,6 +67,11 @@ class ShiftedFactorization {
   /// Floating-point operations of the numeric factorisation (CHOLMOD's analysis estimate).
   double FactorFlops() const;
 
+  /// Numeric factorisations attempted by Factorize in this process so far, by every object and
+  /// thread (successful or not). For tests and benchmarks that check that one factorisation is
+  /// shared instead of repeated: compare the count before and after.
+  static long NumericFactorizations();
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

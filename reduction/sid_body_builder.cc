@@ -162,7 +162,8 @@ sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& b
   if (source.sid.geometric_stiffening) {
     std::vector<InterfaceSpec> loaded;
     for (const sid::Node& node : out.nodes) loaded.push_back(NodeInterface(node));
-    StiffeningResult stiffening = ComputeGeometricStiffening(mesh, model, basis.held_by, Phi, loaded);
+    StiffeningResult stiffening = ComputeGeometricStiffening(mesh, model, basis.held_by, Phi, loaded,
+                                                              basis.held_factorization.get());
     out.stiffening = std::move(stiffening.body);
     AddStiffeningToInvariants(out.stiffening, &out);
     for (std::size_t k = 0; k < out.nodes.size(); ++k) {

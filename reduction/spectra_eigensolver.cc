@@ -324,11 +324,23 @@ RitzPairs SolveDense(const SparseMatrix& K, const SparseMatrix& M) {
 class SpectraEigensolver final : public Eigensolver {
  public:
   std::string_view name() const override { return "spectra"; }
-  EigenSolution Solve(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options) const override;
+  EigenSolution Solve(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options) const override {
+    return SolveWith(K, M, options, nullptr);
+  }
+  bool UsesGivenFactorization() const override { return true; }
+  EigenSolution SolveFactorized(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options,
+                                const ShiftedFactorization& factor) const override {
+    return SolveWith(K, M, options, &factor);
+  }
+
+ private:
+  // `given`: the caller's factorisation of K - sigma M (SolveFactorized), or null to make one.
+  EigenSolution SolveWith(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options,
+                          const ShiftedFactorization* given) const;
 };
 
-EigenSolution SpectraEigensolver::Solve(const SparseMatrix& K, const SparseMatrix& M,
-                                        const EigenOptions& options) const {
+EigenSolution SpectraEigensolver::SolveWith(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options,
+                                            const ShiftedFactorization* given) const {
   const auto start = std::chrono::steady_clock::now();
   ValidateEigenInputs(K, M, options);
   const Index n = K.rows();
@@ -338,32 +350,43 @@ EigenSolution SpectraEigensolver::Solve(const SparseMatrix& K, const SparseMatri
   const double omega_max = 2.0 * std::numbers::pi * options.max_frequency_hz;
   const double lambda_max = band ? omega_max * omega_max : std::numeric_limits<double>::infinity();
   const Index cap = options.num_modes;  // with a band: 0 = no cap
-  const bool automatic = !options.shift_hz.has_value();
+  const bool automatic = given == nullptr && !options.shift_hz.has_value();
   const double lambda_scale = K.diagonal().sum() / M.diagonal().sum();
   int solves = 0;
 
   // Shift-invert operator: Cholesky of K - sigma M, which must be positive definite. The
   // automatic shift tries sigma = 0 first and moves below zero if K has zero eigenvalues.
-  ShiftedFactorization factor;
-  double sigma = automatic ? 0.0 : ShiftFromHz(*options.shift_hz);
-  ++solution.factorizations;
-  auto status = factor.Factorize(K, M, sigma, ShiftedFactorization::Method::kSupernodalCholesky);
-  if (automatic && (status != ShiftedFactorization::Status::kOk ||
-                    HasZeroEigenvalue(factor, K, M, lambda_scale, &solves))) {
-    sigma = FreeBodyShift(K, M);
+  ShiftedFactorization own;
+  double sigma = 0.0;
+  if (given != nullptr) {
+    FLEXMBS_CHECK(given->ok() && given->rows() == n &&
+                      given->method() == ShiftedFactorization::Method::kSupernodalCholesky,
+                  "SolveFactorized: the factorisation must be an ok() Cholesky factorisation of K - sigma M");
+    sigma = given->sigma();
+    FLEXMBS_CHECK(!options.shift_hz || ShiftFromHz(*options.shift_hz) == sigma,
+                  "SolveFactorized: options.shift_hz differs from the factorisation's shift");
+  } else {
+    sigma = automatic ? 0.0 : ShiftFromHz(*options.shift_hz);
     ++solution.factorizations;
-    status = factor.Factorize(K, M, sigma, ShiftedFactorization::Method::kSupernodalCholesky);
+    auto status = own.Factorize(K, M, sigma, ShiftedFactorization::Method::kSupernodalCholesky);
+    if (automatic && (status != ShiftedFactorization::Status::kOk ||
+                      HasZeroEigenvalue(own, K, M, lambda_scale, &solves))) {
+      sigma = FreeBodyShift(K, M);
+      ++solution.factorizations;
+      status = own.Factorize(K, M, sigma, ShiftedFactorization::Method::kSupernodalCholesky);
+    }
+    if (status != ShiftedFactorization::Status::kOk) {
+      const double free_body_shift = FreeBodyShift(K, M);
+      const bool free_body_shift_works =
+          sigma < 0.0 && free_body_shift < sigma &&
+          own.Factorize(K, M, free_body_shift, ShiftedFactorization::Method::kSupernodalCholesky) ==
+              ShiftedFactorization::Status::kOk;
+      throw InputError(NotPositiveDefiniteMessage(sigma, automatic, free_body_shift_works, free_body_shift));
+    }
+    solution.factorization_seconds = Seconds(start);
   }
-  if (status != ShiftedFactorization::Status::kOk) {
-    const double free_body_shift = FreeBodyShift(K, M);
-    const bool free_body_shift_works =
-        sigma < 0.0 && free_body_shift < sigma &&
-        factor.Factorize(K, M, free_body_shift, ShiftedFactorization::Method::kSupernodalCholesky) ==
-            ShiftedFactorization::Status::kOk;
-    throw InputError(NotPositiveDefiniteMessage(sigma, automatic, free_body_shift_works, free_body_shift));
-  }
+  const ShiftedFactorization& factor = given != nullptr ? *given : own;
   solution.shift = sigma;
-  solution.factorization_seconds = Seconds(start);
 
   MissedModeCheck check = options.check_missed_modes;
   if (check == MissedModeCheck::kAuto) {

@@ -11,6 +11,8 @@ namespace flexmbs::reduction {
 /// (supernodal Cholesky when positive definite, else simplicial LDL^T). Missed modes are found
 /// again by a deflated Lanczos run after a Sturm count; every pair is then Rayleigh-Ritz
 /// refined and checked. Problems too small for Lanczos (nev >= DOF - 1) are solved densely.
+/// SolveFactorized uses the caller's Cholesky factorisation of K - sigma M as its shift-invert
+/// operator instead of making one (UsesGivenFactorization() is true).
 std::unique_ptr<Eigensolver> MakeSpectraEigensolver();
 
 }  // namespace flexmbs::reduction

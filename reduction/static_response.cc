@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 
 #include "core/error.h"
 #include "reduction/basis_algebra.h"
@@ -75,7 +76,8 @@ Eigen::MatrixXd InertiaReliefResponses(const FeModel& model, const Eigen::Matrix
 }  // namespace
 
 StaticResponses SolveStaticResponses(const FeModel& model, const BoundaryConditions& held_by,
-                                     const Eigen::MatrixXd& F, std::string_view what) {
+                                     const Eigen::MatrixXd& F, std::string_view what,
+                                     const HeldFactorization* held) {
   FLEXMBS_CHECK(F.rows() == model.K.rows(), "one load row per DOF");
   StaticResponses result;
   result.carried.assign(static_cast<std::size_t>(F.cols()), false);
@@ -83,11 +85,17 @@ StaticResponses SolveStaticResponses(const FeModel& model, const BoundaryConditi
     result.X = InertiaReliefResponses(model, F, what);
     return result;
   }
-  const InteriorProblem interior = BuildInteriorProblem(model, held_by);
-  const ShiftedFactorization factor = FactorHeldInterior(model, held_by, interior);
-  const Eigen::MatrixXd rhs = Eigen::SparseMatrix<double>(interior.transform.G.transpose()) * F;
+  std::shared_ptr<const HeldFactorization> own;
+  if (held == nullptr) {
+    own = FactorHeldBody(model, held_by, BuildInteriorProblem(model, held_by));
+    held = own.get();
+  }
+  FLEXMBS_CHECK(FactorizedFor(*held, held_by) && held->transform.num_dofs() == model.K.rows(),
+                "SolveStaticResponses: the held factorisation belongs to other conditions or another model");
+  const Eigen::SparseMatrix<double>& G = held->transform.G;
+  const Eigen::MatrixXd rhs = Eigen::SparseMatrix<double>(G.transpose()) * F;
   for (Index j = 0; j < F.cols(); ++j) result.carried[static_cast<std::size_t>(j)] = rhs.col(j).isZero(0.0);
-  result.X = interior.transform.G * factor.Solve(rhs);
+  result.X = G * held->factor.Solve(rhs);
   return result;
 }
 

@@ -34,12 +34,15 @@ struct StaticResponses {
 };
 
 /// The static responses of the body held as `held_by` (see the file comment) to the loads F
-/// (num_dofs x cases, DOF 3 n + i) [N], all solved with one factorisation. `what` prefixes the
-/// messages ("static correction modes"). Throws a one-line InputError for conditions that do
-/// not hold the body (FactorHeldInterior), a free body whose nodes lie on one line or whose
-/// stiffness with a 3-2-1 support is singular (a disconnected part or a mechanism).
-/// Preconditions: a valid model (ValidateModel), F with num_dofs rows.
+/// (num_dofs x cases, DOF 3 n + i) [N], all solved with one factorisation: `held`'s if given
+/// (the basis's ReducedBasis::held_factorization; no new factorisation), else a new one. `what`
+/// prefixes the messages ("static correction modes"). Throws a one-line InputError for
+/// conditions that do not hold the body (FactorHeldInterior), a free body whose nodes lie on
+/// one line or whose stiffness with a 3-2-1 support is singular (a disconnected part or a
+/// mechanism). Preconditions: a valid model (ValidateModel), F with num_dofs rows; `held`, if
+/// given, factorised for `held_by` (FactorizedFor) and this model's K.
 StaticResponses SolveStaticResponses(const FeModel& model, const BoundaryConditions& held_by,
-                                     const Eigen::MatrixXd& F, std::string_view what);
+                                     const Eigen::MatrixXd& F, std::string_view what,
+                                     const HeldFactorization* held = nullptr);
 
 }  // namespace flexmbs::reduction

@@ -229,6 +229,33 @@ TEST_F(CliTest, MatrixMarketIntoMissingFolderFailsBeforeMeshing) {
 
 // --- reduce ---
 
+// `seconds.eigensolver` of `reduce --json` (docs/cli.md): every field present, the parts within
+// the eigen-solve's total, which lies within the reduction's, and at least one factorisation.
+void ExpectEigensolverSplit(const nlohmann::json& seconds) {
+  ASSERT_TRUE(seconds.contains("eigensolver")) << seconds.dump();
+  const nlohmann::json& e = seconds["eigensolver"];
+  for (const char* key : {"seconds", "factorization_seconds", "sturm_seconds", "krylov_seconds", "factorizations",
+                          "operator_applications", "krylov_runs", "restarts", "missed_mode_check"}) {
+    EXPECT_TRUE(e.contains(key)) << key;
+  }
+  const double total = e["seconds"].get<double>();
+  const double factorization = e["factorization_seconds"].get<double>();
+  const double sturm = e["sturm_seconds"].get<double>();
+  const double krylov = e["krylov_seconds"].get<double>();
+  EXPECT_GT(factorization, 0.0);
+  EXPECT_GE(sturm, 0.0);
+  EXPECT_GE(krylov, 0.0);
+  EXPECT_LE(factorization + sturm + krylov, total);
+  EXPECT_LE(total, seconds["reduction"].get<double>());
+  EXPECT_GE(e["factorizations"].get<int>(), 1);
+  EXPECT_GE(e["krylov_runs"].get<int>(), 1);
+  EXPECT_GE(e["operator_applications"].get<int>(), e["krylov_runs"].get<int>());
+  EXPECT_GE(e["restarts"].get<int>(), 0);
+  // The cube is small: the automatic check is the Sturm count (spectra_eigensolver.cc).
+  EXPECT_EQ(e["missed_mode_check"], "sturm_count");
+  EXPECT_GT(sturm, 0.0);
+}
+
 TEST_F(CliTest, ReduceWritesTheBodyFileItReports) {
   const fs::path body = WriteBody(CubeBody() + "reduction: {method: free_free, modes: 4}\n");
   const fs::path output = dir_ / "out" / "cube.sid.h5";
@@ -239,6 +266,9 @@ TEST_F(CliTest, ReduceWritesTheBodyFileItReports) {
   EXPECT_EQ(j["modes"]["rigid"], 6);
   EXPECT_EQ(j["modes"]["normal"], 4);
   EXPECT_EQ(j["modes"]["total"], 10);
+  ExpectEigensolverSplit(j["seconds"]);
+  // The free body's automatic shift: K (singular) is factorised first, then K - sigma M.
+  EXPECT_GE(j["seconds"]["eigensolver"]["factorizations"].get<int>(), 2);
   const flexmbs::sid::ReducedBody file = flexmbs::sid::ReadReducedBody(output);
   ASSERT_EQ(file.phi.cols(), 10);
   EXPECT_EQ(file.mode_kinds[0], "rigid");
@@ -250,6 +280,19 @@ TEST_F(CliTest, ReduceWritesTheBodyFileItReports) {
   // The basis is M-orthonormal: the reduced mass matrix is the identity.
   EXPECT_LT((file.Me.m0 - Eigen::MatrixXd::Identity(10, 10)).cwiseAbs().maxCoeff(), 1e-10);
   EXPECT_EQ(OutputFiles(), std::vector<std::string>{"cube.sid.h5"});
+}
+
+TEST_F(CliTest, ReduceJsonReportsTheCraigBamptonEigenSolveWithOneFactorisationOfTheHeldBody) {
+  const fs::path body = WriteBody(CubeBody() +
+                                  "reduction:\n  method: craig_bampton\n  modes: 2\n  interfaces:\n"
+                                  "    - {node_set: bottom, coupling: rigid}\n    - {node_set: top, coupling: rigid}\n");
+  const Outcome run = Flexmbs({"reduce", body.string(), "-o", (dir_ / "out" / "cb.sid.h5").string(), "--json"});
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["modes"]["constraint"], 12);
+  ExpectEigensolverSplit(j["seconds"]);
+  // K_oo once (constraint modes and the shift-invert operator), plus the Sturm count's LDL^T.
+  EXPECT_EQ(j["seconds"]["eigensolver"]["factorizations"], 2);
 }
 
 TEST_F(CliTest, ReduceWithoutAReductionSectionIsAnInputError) {

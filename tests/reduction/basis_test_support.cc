@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "fem/assembly.h"
+#include "reduction/shifted_factorization.h"
 #include "test_problems.h"
 #include "tests/fem/test_meshes.h"
 
@@ -80,6 +81,40 @@ std::vector<int> NodesWhere(const fem::Mesh& mesh, const std::function<bool(cons
 const Eigensolver& Spectra() {
   static const std::unique_ptr<Eigensolver> solver = MakeEigensolver("spectra");
   return *solver;
+}
+
+namespace {
+
+class FactorisingItself final : public Eigensolver {
+ public:
+  std::string_view name() const override { return "spectra"; }
+  EigenSolution Solve(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options) const override {
+    return Spectra().Solve(K, M, options);
+  }
+};
+
+}  // namespace
+
+const Eigensolver& SpectraFactorisingItself() {
+  static const FactorisingItself solver;
+  return solver;
+}
+
+long FactorizationsDuring(const std::function<void()>& f) {
+  const long before = ShiftedFactorization::NumericFactorizations();
+  f();
+  return ShiftedFactorization::NumericFactorizations() - before;
+}
+
+void ExpectConsistentSummary(const EigensolverSummary& s) {
+  EXPECT_GT(s.factorization_seconds, 0.0);
+  EXPECT_GE(s.sturm_seconds, 0.0);
+  EXPECT_GE(s.krylov_seconds, 0.0);
+  EXPECT_LE(s.factorization_seconds + s.sturm_seconds + s.krylov_seconds, s.seconds);
+  EXPECT_GE(s.factorizations, 1);
+  EXPECT_GE(s.krylov_runs, 1);
+  EXPECT_GE(s.restarts, 0);
+  EXPECT_GE(s.operator_applications, s.krylov_runs);
 }
 
 DenseModes DenseModesOn(const SparseMatrix& K, const SparseMatrix& M, const Eigen::MatrixXd& N, double sigma) {

@@ -46,6 +46,18 @@ std::vector<int> NodesWhere(const fem::Mesh& mesh, const std::function<bool(cons
 
 /// The serial eigensolver.
 const Eigensolver& Spectra();
+/// The serial eigensolver behind the base class's SolveFactorized, which ignores a given
+/// factorisation and factorises on its own (as a backend without UsesGivenFactorization does):
+/// the path on which nothing is shared, to compare the shared one with.
+const Eigensolver& SpectraFactorisingItself();
+
+/// Numeric factorisations made by `f` (ShiftedFactorization::NumericFactorizations).
+long FactorizationsDuring(const std::function<void()>& f);
+
+/// Expects the parts of an eigen-solve's time to fit in its total (factorisation + Sturm +
+/// Krylov <= seconds, each >= 0, the factorisation > 0) and at least one factorisation, Krylov
+/// run and operator application.
+void ExpectConsistentSummary(const EigensolverSummary& summary);
 
 /// All eigenpairs of K x = lambda M x restricted to span(N) (N: num_dofs x k, independent
 /// columns): dense, in shift-invert form with shift `sigma` (test_problems.h SolveDense), the

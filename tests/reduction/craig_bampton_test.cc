@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 
 #include "basis_test_support.h"
 #include "core/error.h"
+#include "reduction/correction_modes.h"
+#include "reduction/interior_problem.h"
 #include "test_problems.h"
 
 namespace flexmbs::reduction {
@@ -28,6 +31,9 @@ constexpr double kRitzRoundOff = 1e-10;
 // With all fixed-interface modes the CB space is the full space: equal eigenvalues (the brief's
 // 1e-8; measured ~1e-12).
 constexpr double kCompleteAgreement = 1e-8;
+// A basis computed with one shared factorisation and with two: the same CHOLMOD factor (it is
+// deterministic) and the same Lanczos runs, so the same numbers up to round-off (measured: 0).
+constexpr double kSameComputation = 1e-13;
 // Orthonormalised CB: M_reduced = I to this (the brief's 1e-10).
 constexpr double kOrthonormalityBound = 1e-10;
 // Off-diagonal of K_reduced relative to its largest diagonal: round-off (measured ~1e-15).
@@ -181,7 +187,56 @@ TEST(CraigBampton, WithoutNormalModesIsGuyanStaticCondensation) {
   EXPECT_EQ(cb.Counts(), (ModeCounts{0, 0, 6, 0}));
   EXPECT_EQ(cb.names[3], "constraint_end_rx");
   EXPECT_TRUE(cb.eigensolver.empty());
+  EXPECT_FALSE(cb.eigensolver_summary.has_value());
   EXPECT_TRUE(std::isnan(cb.frequency_hz(0)));
+}
+
+TEST(CraigBampton, OneFactorisationOfTheHeldBodyServesConstraintModesNormalModesAndCorrectionModes) {
+  // Two rigid end interfaces of a hex20 bar; the deflated Lanczos check, since a Sturm count
+  // factorises K - cut M on its own.
+  const Body b = testing::MakeBox(ElementType::kHex20, {6, 1, 1}, {0.6, 0.06, 0.05}, kSteel);
+  BoundaryConditions conditions;
+  conditions.interfaces.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0), Coupling::kRigid, std::nullopt, {}});
+  conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.6), Coupling::kRigid, std::nullopt, {}});
+  EigenOptions eigen;
+  eigen.num_modes = 6;
+  eigen.check_missed_modes = MissedModeCheck::kDeflatedLanczos;
+  ReducedBasis shared, own;
+  EXPECT_EQ(testing::FactorizationsDuring([&] { shared = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra()); }), 1);
+  ASSERT_TRUE(shared.eigensolver_summary.has_value());
+  EXPECT_EQ(shared.eigensolver_summary->factorizations, 1);
+  testing::ExpectConsistentSummary(*shared.eigensolver_summary);
+  ASSERT_NE(shared.held_factorization, nullptr);
+  EXPECT_TRUE(FactorizedFor(*shared.held_factorization, conditions));
+
+  // Without sharing: the constraint modes' factorisation and the eigensolver's own.
+  EXPECT_EQ(testing::FactorizationsDuring(
+                [&] { own = CraigBamptonBasis(b.model(), conditions, eigen, testing::SpectraFactorisingItself()); }),
+            2);
+  EXPECT_EQ(own.eigensolver_summary->factorizations, 1);  // the eigensolver's, the only one it used
+  // The same factor (CHOLMOD is deterministic) and the same Lanczos runs: the same basis.
+  ASSERT_EQ(shared.Phi.cols(), own.Phi.cols());
+  const double difference = (shared.Phi - own.Phi).cwiseAbs().maxCoeff() / own.Phi.cwiseAbs().maxCoeff();
+  EXPECT_LE(difference, kSameComputation);
+  EXPECT_LE((shared.frequency_hz.tail(6) - own.frequency_hz.tail(6)).cwiseAbs().maxCoeff(),
+            kSameComputation * own.frequency_hz.tail(6).maxCoeff());
+
+  // Correction modes of the basis, and of its orthonormalised form, solve with its factor.
+  const LoadSet side{"side", testing::NodesAt(b.mesh, 1, 0.0), Eigen::Vector3d::UnitY(), LoadDistribution::kResultant, {}};
+  CorrectionResult with_shared, with_own;
+  EXPECT_EQ(testing::FactorizationsDuring([&] { with_shared = AddStaticCorrectionModes(b.model(), shared, std::span(&side, 1)); }), 0);
+  EXPECT_EQ(testing::FactorizationsDuring(
+                [&] { AddStaticCorrectionModes(b.model(), OrthonormalizeBasis(b.model(), shared), std::span(&side, 1)); }),
+            0);
+  own.held_factorization.reset();
+  EXPECT_EQ(testing::FactorizationsDuring([&] { with_own = AddStaticCorrectionModes(b.model(), own, std::span(&side, 1)); }), 1);
+  ASSERT_EQ(with_shared.added, 1);
+  const double correction_difference = (with_shared.basis.Phi.rightCols(1) - with_own.basis.Phi.rightCols(1))
+                                           .cwiseAbs().maxCoeff() / with_own.basis.Phi.rightCols(1).cwiseAbs().maxCoeff();
+  EXPECT_LE(correction_difference, kSameComputation);
+  std::printf("[ numbers  ] CB with one factorisation vs two: basis %.1e, correction mode %.1e apart; eigen-solve "
+              "%.3f s (factorisation %.3f s)\n", difference, correction_difference, shared.eigensolver_summary->seconds,
+              shared.eigensolver_summary->factorization_seconds);
 }
 
 TEST(CraigBamptonBadInput, GivesOneLineInputErrors) {

@@ -14,6 +14,7 @@
 #include "fem/assembly.h"
 #include "fem/mass_properties.h"
 #include "reduction/dof_constraints.h"
+#include "reduction/shifted_factorization.h"
 #include "test_problems.h"
 
 namespace flexmbs::reduction {
@@ -370,6 +371,42 @@ TEST(SpectraEigensolver, AutomaticCheckIsTheSturmCountOnSmallModels) {
   EXPECT_EQ(s.missed_mode_check, MissedModeCheck::kNone);
   EXPECT_EQ(s.sturm_count, -1);
   EXPECT_EQ(s.factorizations, 1);
+}
+
+TEST(SpectraEigensolver, SolveFactorizedUsesTheGivenFactorisationAndEqualsSolve) {
+  // The same factor (CHOLMOD is deterministic) and the same Lanczos runs: the same pairs up to
+  // round-off (measured: 0).
+  constexpr double kSameComputation = 1e-13;
+  const Cantilever c = MakeCantilever(Steel(), Steel());
+  ShiftedFactorization factor;
+  ASSERT_EQ(factor.Factorize(c.K, c.M, 0.0, ShiftedFactorization::Method::kSupernodalCholesky),
+            ShiftedFactorization::Status::kOk);
+  ASSERT_TRUE(Spectra()->UsesGivenFactorization());
+  for (const MissedModeCheck check : {MissedModeCheck::kDeflatedLanczos, MissedModeCheck::kSturmCount}) {
+    EigenOptions options;
+    options.num_modes = 5;
+    options.check_missed_modes = check;
+    options.shift_hz = 0.0;
+    const long before = ShiftedFactorization::NumericFactorizations();
+    const EigenSolution given = Spectra()->SolveFactorized(c.K, c.M, options, factor);
+    const long made = ShiftedFactorization::NumericFactorizations() - before;
+    const EigenSolution own = Spectra()->Solve(c.K, c.M, options);
+    ExpectContract(c.K, c.M, given);
+    // Only the Sturm counts' LDL^T factorisations are made, and counted.
+    EXPECT_EQ(given.factorizations, check == MissedModeCheck::kSturmCount ? 1 : 0);
+    EXPECT_EQ(made, given.factorizations);
+    EXPECT_EQ(given.factorization_seconds, 0.0);
+    EXPECT_EQ(own.factorizations, given.factorizations + 1);
+    EXPECT_EQ(given.shift, 0.0);
+    EXPECT_LE((given.eigenvalues - own.eigenvalues).cwiseAbs().maxCoeff(), kSameComputation * own.eigenvalues(4));
+    EXPECT_LE((given.modes - own.modes).cwiseAbs().maxCoeff(), kSameComputation * own.modes.cwiseAbs().maxCoeff());
+    EXPECT_EQ(given.operator_applications, own.operator_applications);
+  }
+  // A shift other than the factorisation's is a programming error.
+  EigenOptions other;
+  other.num_modes = 2;
+  other.shift_hz = -1.0;
+  EXPECT_THROW(Spectra()->SolveFactorized(c.K, c.M, other, factor), InternalError);
 }
 
 TEST(SpectraEigensolver, ExpandedCantileverModesAreZeroOnTheClampAndSolveTheFullProblem) {

@@ -18,11 +18,13 @@
 #include <vector>
 
 #include "basis_test_support.h"
+#include "core/error.h"
 #include "fem/element_integrator.h"
 #include "fem/geometric_stiffness.h"
 #include "fem/mass_properties.h"
 #include "fem/reference_element.h"
 #include "reduction/dof_constraints.h"
+#include "reduction/interior_problem.h"
 #include "reduction/modal_basis.h"
 #include "tests/fem/test_meshes.h"
 
@@ -570,6 +572,48 @@ TEST(GeometricStiffening, LoadsCarriedByTheHoldOrBalancedByInertiaReliefCauseNoS
     EXPECT_LE(relative, kInertiaReliefResidual) << "axis " << a;
   }
   EXPECT_GT(f.nodes[0].K0F[0].norm(), 0.0);
+}
+
+TEST(GeometricStiffening, ReusesTheBasisFactorisationOfTheHeldBodyWithTheSameResult) {
+  // The same factor either way (CHOLMOD is deterministic): the same matrices up to round-off
+  // (measured: 0).
+  constexpr double kSameComputation = 1e-13;
+  const reduction::testing::Body b = Column();
+  reduction::BoundaryConditions held;
+  held.supports.push_back({"root", reduction::testing::NodesAt(b.mesh, 0, 0.0)});
+  const reduction::InterfaceSpec tip{"tip", reduction::testing::NodesAt(b.mesh, 0, kColumnLength),
+                                     reduction::Coupling::kAveraging, std::nullopt, {}};
+  reduction::EigenOptions eigen;
+  eigen.num_modes = 4;
+  const reduction::ReducedBasis basis =
+      reduction::FixedInterfaceModalBasis(b.model(), held, eigen, reduction::testing::Spectra());
+  ASSERT_NE(basis.held_factorization, nullptr);
+  reduction::StiffeningResult shared, own;
+  EXPECT_EQ(reduction::testing::FactorizationsDuring([&] {
+              shared = reduction::ComputeGeometricStiffening(b.mesh, b.model(), held, basis.Phi, std::span(&tip, 1),
+                                                             basis.held_factorization.get());
+            }),
+            0);
+  EXPECT_EQ(reduction::testing::FactorizationsDuring([&] {
+              own = reduction::ComputeGeometricStiffening(b.mesh, b.model(), held, basis.Phi, std::span(&tip, 1));
+            }),
+            1);
+  const auto expect_same = [&](const Eigen::MatrixXd& a, const Eigen::MatrixXd& reference) {
+    EXPECT_LE((a - reference).cwiseAbs().maxCoeff(), kSameComputation * reference.cwiseAbs().maxCoeff());
+  };
+  for (std::size_t a = 0; a < 3; ++a) {
+    expect_same(shared.body.K0t[a], own.body.K0t[a]);
+    expect_same(shared.body.K0r[a], own.body.K0r[a]);
+    expect_same(shared.nodes[0].K0F[a], own.nodes[0].K0F[a]);
+    expect_same(shared.nodes[0].K0M[a], own.nodes[0].K0M[a]);
+  }
+  for (std::size_t l = 0; l < 6; ++l) expect_same(shared.body.K0omega[l], own.body.K0omega[l]);
+  // A factor of other conditions is refused.
+  reduction::BoundaryConditions other = held;
+  other.supports[0].name = "base";
+  EXPECT_THROW(reduction::ComputeGeometricStiffening(b.mesh, b.model(), other, basis.Phi, {},
+                                                     basis.held_factorization.get()),
+               InternalError);
 }
 
 TEST(GeometricStiffening, RejectsBadNodesAndSizes) {

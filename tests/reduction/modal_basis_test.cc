@@ -34,6 +34,9 @@ constexpr double kDenseAgreement = 1e-8;
 // Sine of the largest principal angle between two computations of one eigenspace:
 // Davis-Kahan, residual (<= 1e-8) over the relative gap (>= 1e-2 here).
 constexpr double kSubspaceAgreement = 1e-6;
+// The fixed-interface basis with the held body's factorisation shared and without: the same
+// CHOLMOD factor and Lanczos runs, the same numbers up to round-off (measured: 0).
+constexpr double kSameComputation = 1e-13;
 // |R^T M E| after the exact rigid replacement: two Gram-Schmidt passes leave round-off.
 constexpr double kExactOrthogonality = 1e-12;
 // ||K r|| / (||K|| ||r||) of an exact rigid-body vector: round-off of the assembly.
@@ -163,6 +166,44 @@ TEST(FixedInterfaceModalBasis, ClampedBoxMatchesTheDenseClampedModel) {
   EXPECT_LE((supported.frequency_hz - basis.frequency_hz).cwiseAbs().maxCoeff(), 1e-9 * basis.frequency_hz(7));
   std::printf("[ numbers  ] clamped hex20 beam: f1 = %.3f Hz, f8 = %.3f Hz, max residual %.1e\n", basis.frequency_hz(0),
               basis.frequency_hz(7), basis.relative_residuals.maxCoeff());
+}
+
+TEST(FixedInterfaceModalBasis, FactorisesTheHeldBodyOnceAndKeepsTheFactorForTheStaticSolves) {
+  const Body b = testing::MakeBox(ElementType::kHex20, {4, 1, 1}, {0.4, 0.05, 0.04}, kSteel);
+  BoundaryConditions conditions;
+  conditions.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
+  EigenOptions eigen;
+  eigen.num_modes = 5;
+  eigen.check_missed_modes = MissedModeCheck::kDeflatedLanczos;  // a Sturm count factorises on its own
+  ReducedBasis shared, own;
+  EXPECT_EQ(testing::FactorizationsDuring(
+                [&] { shared = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::Spectra()); }),
+            1);
+  ASSERT_TRUE(shared.eigensolver_summary.has_value());
+  EXPECT_EQ(shared.eigensolver_summary->factorizations, 1);
+  EXPECT_EQ(shared.eigensolver_summary->missed_mode_check, MissedModeCheck::kDeflatedLanczos);
+  testing::ExpectConsistentSummary(*shared.eigensolver_summary);
+  ASSERT_NE(shared.held_factorization, nullptr);
+
+  // A backend that does not use a given factorisation: no held factor is made or kept.
+  EXPECT_EQ(testing::FactorizationsDuring([&] {
+              own = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::SpectraFactorisingItself());
+            }),
+            1);
+  EXPECT_EQ(own.held_factorization, nullptr);
+  EXPECT_EQ(own.eigensolver_summary->factorizations, 1);
+  testing::ExpectConsistentSummary(*own.eigensolver_summary);
+  EXPECT_LE((shared.Phi - own.Phi).cwiseAbs().maxCoeff() / own.Phi.cwiseAbs().maxCoeff(), kSameComputation);
+  EXPECT_LE((shared.frequency_hz - own.frequency_hz).cwiseAbs().maxCoeff(), kSameComputation * own.frequency_hz(4));
+
+  // The free-free basis reports its solve: the automatic shift factorises K (singular), then K - sigma M.
+  FreeFreeOptions options;
+  options.eigen = eigen;
+  const ReducedBasis free = FreeFreeModalBasis(b.model(), options, testing::Spectra());
+  ASSERT_TRUE(free.eigensolver_summary.has_value());
+  EXPECT_EQ(free.eigensolver_summary->factorizations, 2);
+  testing::ExpectConsistentSummary(*free.eigensolver_summary);
+  EXPECT_EQ(free.held_factorization, nullptr);
 }
 
 TEST(ModeKind, NamesRoundTrip) {
