@@ -1,19 +1,24 @@
 // VTK XML formats: "VTK File Formats", VTK User's Guide (Kitware), section "XML File Formats":
-// PolyData with Points, Verts/Lines/Polys as connectivity + offsets (the end of each cell), the
+// PolyData with Points, Verts/Lines/Polys as connectivity + offsets (the end of each cell), its
+// arrays in a base64 AppendedData section (each a header_type byte count and the values, encoded
+// together; offsets count characters), the
 // multiblock file (.vtm) of DataSet entries, and ParaView's data collection (.pvd) of DataSet
 // entries with a timestep.
 #include "mbs/paraview_writer.h"
 
-#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <iterator>
 #include <ostream>
 #include <regex>
 #include <span>
+#include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -48,25 +53,53 @@ bool IsSampleFileName(const std::string& name, const std::string& stem) {
 
 using Buffer = fmt::memory_buffer;
 
-/// An ascii DataArray of `values` (numbers separated by spaces; doubles in their shortest form
-/// that reads back exactly).
-template <typename Values>
-void AppendArray(Buffer& out, std::string_view attributes, const Values& values) {
-  fmt::format_to(std::back_inserter(out), "        <DataArray {} format=\"ascii\">\n", attributes);
-  for (const auto& value : values) fmt::format_to(std::back_inserter(out), FMT_COMPILE("{} "), value);
-  fmt::format_to(std::back_inserter(out), "\n        </DataArray>\n");
+/// The XML part of a PolyData file and its appended data: per DataArray a UInt64 byte count and
+/// the values in the file's byte order (little-endian, as the machines flexmbs runs on), base64
+/// encoded together (as VTK's own writer does), at the character offset the DataArray names.
+struct PolyDataBuffers {
+  Buffer xml;
+  std::string appended;
+};
+
+/// Appends `bytes` base64-encoded (RFC 4648 alphabet, '=' padding) to `out`.
+void AppendBase64(const std::vector<unsigned char>& bytes, std::string& out) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t triple = 0;
+    for (std::size_t k = 0; k < 3; ++k) triple = (triple << 8) | (k < n ? bytes[i + k] : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(triple >> (18 - 6 * k)) & 63u] : '=';
+  }
+}
+
+/// A DataArray of `values` converted to `Stored` (VTK type `type`), appended.
+template <typename Stored, typename Values>
+void AppendArray(PolyDataBuffers& out, std::string_view type, std::string_view attributes, const Values& values) {
+  static_assert(std::endian::native == std::endian::little, "the files declare LittleEndian");
+  fmt::format_to(std::back_inserter(out.xml),
+                 "        <DataArray type=\"{}\" {} format=\"appended\" offset=\"{}\"/>\n", type, attributes,
+                 out.appended.size());
+  std::vector<unsigned char> bytes;
+  const auto append = [&](const auto& value) {
+    const auto* first = reinterpret_cast<const unsigned char*>(&value);
+    bytes.insert(bytes.end(), first, first + sizeof(value));
+  };
+  append(static_cast<std::uint64_t>(sizeof(Stored) * std::size(values)));
+  for (const auto& value : values) append(static_cast<Stored>(value));
+  AppendBase64(bytes, out.appended);
 }
 
 /// A Verts, Lines or Polys section of cells given by their sizes and concatenated points.
-void AppendCells(Buffer& out, std::string_view section, const std::vector<int>& sizes, const std::vector<int>& points) {
+void AppendCells(PolyDataBuffers& out, std::string_view section, const std::vector<int>& sizes,
+                 const std::vector<int>& points) {
   if (sizes.empty()) return;
-  std::vector<long> offsets(sizes.size());
-  long end = 0;
+  std::vector<std::int32_t> offsets(sizes.size());
+  std::int32_t end = 0;
   for (std::size_t c = 0; c < sizes.size(); ++c) offsets[c] = end += sizes[c];
-  fmt::format_to(std::back_inserter(out), "      <{}>\n", section);
-  AppendArray(out, "type=\"Int64\" Name=\"connectivity\"", points);
-  AppendArray(out, "type=\"Int64\" Name=\"offsets\"", offsets);
-  fmt::format_to(std::back_inserter(out), "      </{}>\n", section);
+  fmt::format_to(std::back_inserter(out.xml), "      <{}>\n", section);
+  AppendArray<std::int32_t>(out, "Int32", "Name=\"connectivity\"", points);
+  AppendArray<std::int32_t>(out, "Int32", "Name=\"offsets\"", offsets);
+  fmt::format_to(std::back_inserter(out.xml), "      </{}>\n", section);
 }
 
 /// The columns of a 3 x N matrix as a flat list, x y z per column.
@@ -75,27 +108,28 @@ std::span<const double> Flat(const Eigen::Matrix3Xd& points) {
 }
 
 /// The one <Piece> of a body's PolyData file.
-void AppendPiece(Buffer& out, const BodyGeometry& body, int body_id) {
+void AppendPiece(PolyDataBuffers& out, const BodyGeometry& body, int body_id) {
   const std::vector<int> vertex_sizes(body.vertex_points.size(), 1), line_sizes(body.line_points.size() / 2, 2);
-  fmt::format_to(std::back_inserter(out),
+  fmt::format_to(std::back_inserter(out.xml),
                  "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
                  "NumberOfPolys=\"{}\">\n",
                  body.p_WP_W.cols(), vertex_sizes.size(), line_sizes.size(), body.polygon_sizes.size());
-  fmt::format_to(std::back_inserter(out),
+  fmt::format_to(std::back_inserter(out.xml),
                  "      <PointData Vectors=\"displacement\" Scalars=\"displacement_magnitude\">\n");
-  AppendArray(out, "type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\"", Flat(body.u_P_W));
+  AppendArray<double>(out, "Float64", "Name=\"displacement\" NumberOfComponents=\"3\"", Flat(body.u_P_W));
   const Eigen::VectorXd magnitude = body.u_P_W.colwise().norm().transpose();
-  AppendArray(out, "type=\"Float64\" Name=\"displacement_magnitude\"",
-              std::span<const double>(magnitude.data(), static_cast<std::size_t>(magnitude.size())));
-  fmt::format_to(std::back_inserter(out), "      </PointData>\n      <CellData Scalars=\"body_id\">\n");
-  AppendArray(out, "type=\"Int32\" Name=\"body_id\"", std::vector<int>(static_cast<std::size_t>(body.num_cells()), body_id));
-  fmt::format_to(std::back_inserter(out), "      </CellData>\n      <Points>\n");
-  AppendArray(out, "type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"", Flat(body.p_WP_W));
-  fmt::format_to(std::back_inserter(out), "      </Points>\n");
+  AppendArray<double>(out, "Float64", "Name=\"displacement_magnitude\"",
+                      std::span<const double>(magnitude.data(), static_cast<std::size_t>(magnitude.size())));
+  fmt::format_to(std::back_inserter(out.xml), "      </PointData>\n      <CellData Scalars=\"body_id\">\n");
+  AppendArray<std::int32_t>(out, "Int32", "Name=\"body_id\"",
+                            std::vector<int>(static_cast<std::size_t>(body.num_cells()), body_id));
+  fmt::format_to(std::back_inserter(out.xml), "      </CellData>\n      <Points>\n");
+  AppendArray<double>(out, "Float64", "Name=\"Points\" NumberOfComponents=\"3\"", Flat(body.p_WP_W));
+  fmt::format_to(std::back_inserter(out.xml), "      </Points>\n");
   AppendCells(out, "Verts", vertex_sizes, body.vertex_points);
   AppendCells(out, "Lines", line_sizes, body.line_points);
   AppendCells(out, "Polys", body.polygon_sizes, body.polygon_points);
-  fmt::format_to(std::back_inserter(out), "    </Piece>\n");
+  fmt::format_to(std::back_inserter(out.xml), "    </Piece>\n");
 }
 
 }  // namespace
@@ -105,13 +139,14 @@ fs::path ParaviewCollectionFor(const fs::path& results) {
 }
 
 void WritePolyData(std::ostream& out, const BodyGeometry& body, int body_id) {
-  Buffer buffer;
-  fmt::format_to(std::back_inserter(buffer),
-                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                 "  <PolyData>\n");
-  AppendPiece(buffer, body, body_id);
-  fmt::format_to(std::back_inserter(buffer), "  </PolyData>\n</VTKFile>\n");
-  out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+  PolyDataBuffers buffers;
+  fmt::format_to(std::back_inserter(buffers.xml),
+                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                 "header_type=\"UInt64\">\n  <PolyData>\n");
+  AppendPiece(buffers, body, body_id);
+  fmt::format_to(std::back_inserter(buffers.xml), "  </PolyData>\n  <AppendedData encoding=\"base64\">\n   _");
+  out.write(buffers.xml.data(), static_cast<std::streamsize>(buffers.xml.size()));
+  out << buffers.appended << "\n  </AppendedData>\n</VTKFile>\n";
 }
 
 ParaviewWriter::ParaviewWriter(const MultibodySystem& system, const fs::path& collection, int every)

@@ -25,7 +25,8 @@ namespace flexmbs::mbs {
 /// The .pvd collection beside results file `results`: the same folder and stem, ".pvd".
 std::filesystem::path ParaviewCollectionFor(const std::filesystem::path& results);
 
-/// Writes `body` as a VTK XML PolyData file of one piece (ascii, Float64 points, Int64 cells) to
+/// Writes `body` as a VTK XML PolyData file of one piece (base64 appended data, Float64 points,
+/// Int32 cells) to
 /// `out`: point data `displacement` (3 components, [m] in W) and `displacement_magnitude` [m],
 /// cell data `body_id`.
 void WritePolyData(std::ostream& out, const BodyGeometry& body, int body_id);
