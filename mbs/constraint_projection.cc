@@ -73,7 +73,7 @@ void ProjectVelocities(const MultibodySystem& system, double t, Eigen::Ref<Eigen
   const ConstraintSolver solver(system, t, y, c.G);
   solver.RequireFullRank(t, system.constraint_settings().singular_pivot);
   auto u = y.tail(system.num_velocities());
-  u -= solver.mass_inverse_G_transpose() * solver.SolveSchur(c.G * u + c.g_t);
+  u -= solver.mass_inverse_G_transpose() * solver.SolveSchur(solver.constraint_jacobian() * u + c.g_t);
 }
 
 std::string ConsistencyReport::Describe(const MultibodySystem& system) const {

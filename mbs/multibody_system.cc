@@ -204,13 +204,14 @@ void MultibodySystem::Accelerations(double t, const ConstVectorRef& y, Eigen::Re
                          Eigen::Ref<Eigen::VectorXd> multipliers) {
     out = solver.SolveMass(r);
     if (num_constraints_ == 0) return;
-    multipliers = solver.SolveSchur(target - c.G * out);
+    multipliers = solver.SolveSchur(target - solver.constraint_jacobian() * out);
     out += solver.mass_inverse_G_transpose() * multipliers;
   };
   const double omega = settings_.baumgarte_frequency;
   const Eigen::VectorXd u = y.tail(num_velocities_);
   // G u' = gamma - 2 omega (G u + g_t) - omega^2 g.
-  const Eigen::VectorXd target = c.gamma - 2.0 * omega * (c.G * u + c.g_t) - omega * omega * c.g;
+  const Eigen::VectorXd G_u = solver.constraint_jacobian() * u;
+  const Eigen::VectorXd target = c.gamma - 2.0 * omega * (G_u + c.g_t) - omega * omega * c.g;
   solve(h, target, u_dot, lambda);
   // The corrector: the acceleration-dependent forces at the first u', solved with a zero target.
   Eigen::VectorXd h_a(num_velocities_);

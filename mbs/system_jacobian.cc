@@ -106,13 +106,10 @@ void SystemJacobian(const MultibodySystem& system, double t, const ConstVectorRe
   // du'/d. = M^-1 dh - Z (G M^-1 dh + [omega^2 G, 2 omega G]), Z = M^-1 G^T S^-1.
   const SystemConstraints c = system.Constraints(t, y);
   const ConstraintSolver solver(system, t, y, c.G);
-  MatrixXd du_dot = MatrixXd::Zero(nu, 2 * nu);
-  for (Index j = 0; j < 2 * nu; ++j) {
-    if (!dh.col(j).isZero(0.0)) du_dot.col(j) = solver.SolveMass(dh.col(j));
-  }
+  MatrixXd du_dot = solver.SolveMassColumns(dh);
   if (m > 0) {
     const double omega = system.constraint_settings().baumgarte_frequency;
-    MatrixXd target = c.G * du_dot;
+    MatrixXd target = solver.constraint_jacobian() * du_dot;
     target.leftCols(nu) += omega * omega * c.G;
     target.rightCols(nu) += 2.0 * omega * c.G;
     MatrixXd multipliers(m, 2 * nu);

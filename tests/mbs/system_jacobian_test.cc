@@ -454,8 +454,12 @@ void Print(const char* what, const SimulationStatistics& s) {
 // Newton with the model Jacobian runs at rtol 1e-12, atol 1e-15 (difference quotients fail there,
 // at 0.072 s; at any atol / rtol <= 1e-4 too) and reaches the state of a run at rtol 1e-10,
 // atol 1e-12 (both solve the same stage equations, to 0.1 of their tolerances). atol 1e-16 fails
-// with either Jacobian at t = 0.035 .. 0.036 s, for any rtol from 1e-10 to 1e-14: below
-// the round-off of the stage residual (eps |v| = 4.4e-16 m/s at 2 m/s), not a Jacobian's doing.
+// with either Jacobian early in the run, for any rtol from 1e-10 to 1e-14 (at 0.035 .. 0.036 s with
+// the dense constraint solve, at 0.0002 s with the sparse one: the time depends on the round-off
+// of the operation order): below the round-off of the stage residual (eps |v| = 4.4e-16 m/s at
+// 2 m/s), not a Jacobian's doing. atol 1e-15 is within a factor 2.3 of that floor: the run at it
+// depends on round-off too (a Schur solve of all columns at once instead of one by one made it
+// fail at 0.108 s).
 TEST(SystemJacobian, StiffModesRunAtTightTolerances) {
   constexpr double kEndTime = 0.3;  // 500 steps
   const LinkRun tight = RunLink(1e-12, 1e-15, OdeJacobian::kModel, kEndTime);
