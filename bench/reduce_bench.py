@@ -141,6 +141,8 @@ def run_flexmbs(a, body, solver, out_dir, tag):
     if solver.startswith("slepc"):
         env.update(PETSC_OPTIONS=f"-log_view :{log}", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                    OMPI_MCA_rmaps_base_oversubscribe="1")
+        if a.mpi_yield:
+            env.update(OMPI_MCA_mpi_yield_when_idle="1")
     cmd = [a.flexmbs, "reduce", body, "-o", os.path.join(out_dir, f"{tag}_{solver}.sid.h5"), "--json"]
     rank_rss = None
     if solver == "slepc_np2":
@@ -319,6 +321,9 @@ def main():
     p.add_argument("--peer-timeout", type=float, default=600.0, help="s; a peer still running then is stopped")
     p.add_argument("--peer-memory-gb", type=float, default=16.0, help="address-space limit of each peer process")
     p.add_argument("--flexmbs-timeout", type=float, default=1800.0)
+    p.add_argument("--mpi-yield", action="store_true",
+                   help="let waiting MPI ranks yield their core (OMPI_MCA_mpi_yield_when_idle=1): on a machine "
+                        "shared with other jobs a polling rank holds a core the other rank needs (bench/README.md)")
     p.add_argument("--flexmbs", default=DEFAULT_FLEXMBS)
     p.add_argument("--bound", default=os.path.join(BIN, "bench_cholmod_bound"))
     p.add_argument("--split", default=os.path.join(BIN, "bench_eigensolver_split"))
