@@ -7,8 +7,8 @@
 // Measured (0.4 s, explicit Dormand-Prince): the modal truncation dominates (1, 2, 4 modes:
 // 0.58, 0.13, 0.037 of the peak at every tolerance); 8 modes fail at rtol 1e-4 and 1e-6 (the
 // step size collapses at 0.12 s and 0.19 s) and differ from the peer by 0.013 at 1e-8: the
-// undamped top mode is linearly unstable with stiffening on (docs/mbs.md, "Geometric
-// stiffening": +447 1/s at 10.9 kHz), and the looser tolerances let it start.
+// undamped top mode is linearly unstable with the centrifugal stiffening on (docs/mbs.md,
+// "Geometric stiffening": +447 1/s at 10.9 kHz), and the looser tolerances let it start.
 #include <fmt/format.h>
 
 #include <algorithm>
