@@ -1,7 +1,8 @@
 #pragma once
 // What the SLEPc backend measures on distributed eigenpairs: the residuals, their round-off
 // floors and the M-orthonormality (as defined in EigenSolution), with the products run where
-// the rows are; and the gather of a distributed mode.
+// the rows are; and the gather of a distributed mode. Internal to the SLEPc backend: it names
+// PETSc types, so only slepc_solver.cc includes it, never a header other modules see.
 
 #include <petscmat.h>
 
