@@ -1,18 +1,18 @@
 #pragma once
-// The check of PETSc and SLEPc return codes shared by the distributed assembly and the SLEPc
-// backend: a failing call is an internal error naming the call.
+// The check of PETSc, SLEPc and MPI return codes shared by the distributed assembly and the
+// SLEPc backend: a failing call is an internal error naming the call.
 
 #include <fmt/format.h>
-#include <petscsys.h>
 
 #include "core/error.h"
 
 namespace flexmbs::fem {
 
-/// Throws InternalError naming `call` if a PETSc, SLEPc or MPI call returned a non-zero error code.
-inline void CheckPetsc(PetscErrorCode code, const char* call) {
+/// Throws InternalError naming `call` if a PETSc, SLEPc or MPI call returned a non-zero error code
+/// (PetscErrorCode and MPI's codes are int: the header needs no PETSc include).
+inline void CheckPetsc(int code, const char* call) {
   if (code != 0) {
-    throw InternalError(fmt::format("PETSc/SLEPc/MPI call {} failed with error {}", call, static_cast<int>(code)));
+    throw InternalError(fmt::format("PETSc/SLEPc/MPI call {} failed with error {}", call, code));
   }
 }
 
