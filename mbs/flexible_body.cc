@@ -162,18 +162,14 @@ FlexibleBody::FlexibleBody(std::string name, sid::ReducedBody data, bool geometr
   for (Index jk = 0; jk < static_cast<Index>(d.J.m2.size()); ++jk) J2_.col(jk) = d.J.m2[static_cast<std::size_t>(jk)].reshaped();
 
   // The file's order-1 blocks hold kinematics + stiffening: the kinematic part is their
-  // difference. M_b keeps it alone; the stiffening acts as forces in the elastic row.
-  const MatrixXd K0t = SideBySide(K0.K0t, n), K0r = SideBySide(K0.K0r, n), K0omega = SideBySide(K0.K0omega, n);
+  // difference. M_b keeps it alone; the stiffening is the field of StiffeningInertia.
   Ct0_ = d.Ct.m0;
   Cr0_ = d.Cr.m0;
-  Ct1_ = SideBySide(d.Ct, n) - K0t;
-  Cr1_ = SideBySide(d.Cr, n) - K0r;
-  if (geometric_stiffening_ && !K0.empty()) {
-    K0t_ = K0t;
-    K0r_ = K0r;
-  }
+  Ct1_ = SideBySide(d.Ct, n) - SideBySide(K0.K0t, n);
+  Cr1_ = SideBySide(d.Cr, n) - SideBySide(K0.K0r, n);
+  if (geometric_stiffening_ && !K0.empty()) stiffening_.emplace(K0);
   Oe0_ = d.Oe.m0;
-  Oe1_ = geometric_stiffening_ ? SideBySide(d.Oe, n) : MatrixXd(SideBySide(d.Oe, n) - K0omega);
+  Oe1_ = SideBySide(d.Oe, n) - SideBySide(K0.K0omega, n);
   Me_ = d.Me.m0;
   Ke_ = d.Ke.m0;
   De_ = d.De.m0;
@@ -254,16 +250,14 @@ void FlexibleBody::Forces(double, const ConstVectorRef& x, const ConstVectorRef&
   h.segment<3>(3) = b.mdCM.cross(g_B) - W * (b.J * w) - Gr * qdot_w;
   const Eigen::Matrix<double, 6, 1> w_q = AngularVelocityProducts(w);
   h.tail(n) = b.Ct * g_B - Oe0_ * w_q - Oe1_ * Kronecker(w_q, q) - Ge0_ * qdot_w - Ke_ * q - De_ * qdot - ksigma_;
-  // Gravity's stiffening: the inertia load of a frame accelerating by -g (sum_a -g_a K0t_a q).
-  if (K0t_.size() > 0) h.tail(n) += OrderOneBlock(K0t_, q) * g_B;
+  if (stiffening_) stiffening_->AddStateForces(stiffening_->At(q), qdot, w, g_B, h);
 }
 
 bool FlexibleBody::AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef&,
                                                   const ConstVectorRef& u_dot, Eigen::Ref<VectorXd> h) const {
-  if (K0t_.size() == 0) return false;
-  const VectorXd q = x.tail(n_);
+  if (!stiffening_) return false;
   const Vector3d a_B = RotationFromEulerParameters(x.segment<4>(3)).transpose() * u_dot.head<3>();
-  h.tail(n_) -= OrderOneBlock(K0t_, q) * a_B + OrderOneBlock(K0r_, q) * u_dot.segment<3>(3);
+  stiffening_->AddAccelerationForces(stiffening_->At(x.tail(n_)), a_B, u_dot.segment<3>(3), h.tail(n_));
   return true;
 }
 
@@ -277,18 +271,15 @@ void FlexibleBody::AddForceJacobian(const ConstVectorRef& x, const ConstVectorRe
   stiffness -= Ke_;
   for (Index a = 0; a < 3; ++a) stiffness += g_B(a) * Ct1_.middleCols(a * n, n);
   for (Index l = 0; l < 6; ++l) stiffness -= w_q(l) * Oe1_.middleCols(l * n, n);
-  if (K0t_.size() > 0) {
-    const Vector3d a_B = R.transpose() * u_dot.head<3>(), alpha = u_dot.segment<3>(3);
-    for (Index a = 0; a < 3; ++a) {
-      stiffness += (g_B(a) - a_B(a)) * K0t_.middleCols(a * n, n) - alpha(a) * K0r_.middleCols(a * n, n);
-    }
+  if (stiffening_) {
+    stiffening_->AddElasticStiffness(w, g_B - R.transpose() * u_dot.head<3>(), u_dot.segment<3>(3), stiffness);
   }
   auto damping = dh_du.bottomRightCorner(n, n);
   damping -= De_;
   for (Index j = 0; j < n; ++j) damping.col(j) -= Ge0_.middleCols(3 * j, 3) * w;
 }
 
-VectorXd FlexibleBody::KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const {
+VectorXd FlexibleBody::Momenta(const ConstVectorRef& x, const ConstVectorRef& u) const {
   const Index n = n_;
   const VectorXd q = x.tail(n), qdot = u.tail(n);
   const Vector3d v = u.head<3>(), w = u.segment<3>(3);
@@ -299,22 +290,24 @@ VectorXd FlexibleBody::KinematicMomenta(const ConstVectorRef& x, const ConstVect
   out.head<3>() = mass_ * v + R * (w.cross(b.mdCM) + b.Ct.transpose() * qdot);
   out.segment<3>(3) = b.mdCM.cross(v_B) + b.J * w + b.Cr.transpose() * qdot;
   out.tail(n) = b.Ct * v_B + b.Cr * w + Me_ * qdot;
+  if (stiffening_) out.segment<3>(3) += stiffening_->At(q).dJ * w;
   return out;
 }
 
 double FlexibleBody::KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const {
-  return 0.5 * u.dot(KinematicMomenta(x, u));
+  return 0.5 * u.dot(Momenta(x, u));
 }
 
 double FlexibleBody::PotentialEnergy(const ConstVectorRef& x, const Vector3d& g_W) const {
   const VectorXd q = x.tail(n_);
   const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
   const Vector3d mdCM = mdCM0_ + mdCM1_ * q;
-  return 0.5 * q.dot(Ke_ * q) + ksigma_.dot(q) - g_W.dot(mass_ * x.head<3>() + R * mdCM);
+  const double field = stiffening_ ? stiffening_->PotentialEnergy(stiffening_->At(q), R, g_W) : 0.0;
+  return 0.5 * q.dot(Ke_ * q) + ksigma_.dot(q) - g_W.dot(mass_ * x.head<3>() + R * mdCM) + field;
 }
 
 Momentum FlexibleBody::ComputeMomentum(const ConstVectorRef& x, const ConstVectorRef& u) const {
-  const VectorXd momenta = KinematicMomenta(x, u);
+  const VectorXd momenta = Momenta(x, u);
   const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
   Momentum out;
   out.linear_W = momenta.head<3>();

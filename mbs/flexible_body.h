@@ -10,15 +10,19 @@
 //         [ Ct R^T       Cr          Me     ]          [ Ct R^T g_W - Oe w_q - sum_j Ge_j w qdot_j - Ke q - De qdot - ksigma ]
 //
 // with mdCM, J, Ct, Cr the kinematic blocks (the exact integrals of the FE model's mass: the
-// file's order-1 Ct and Cr less the stiffening matrices), so M_b is symmetric positive definite
-// and the first two rows are the exact momentum balance. Geometric stiffening (docs/mbs.md,
-// docs/sid.md) acts in the elastic row only, as forces: with it on, h_e gains
+// file's order-1 Ct and Cr less the stiffening matrices; Oe's order-1 block less K0omega), so
+// M_b is symmetric positive definite and the first two rows are the exact momentum balance.
+// Geometric stiffening (docs/mbs.md, docs/sid.md), when on, is the inertia of the second-order
+// displacement field of mbs/stiffening_inertia.h. In the elastic row that field gives SID's
+// stiffening forces
 //
 //   - sum_a (a_B - g_B)_a K0t_a q - sum_a alpha_a K0r_a q - sum_l w_q,l K0omega_l q,
 //
-// a_B = R^T v' and alpha = w' from the accelerations (AddAccelerationDependentForces; the
-// system solves for them by a corrector), g_B = R^T g_W and the centrifugal term in Forces (Oe
-// with its order-1 stiffening). With it off Oe's order-1 block is its kinematic part.
+// a_B = R^T v', alpha = w', g_B = R^T g_W (the acceleration terms in
+// AddAccelerationDependentForces: the system solves for u' by a corrector), and in the
+// rotational row the torques dc x g_B - (dJ' w + w x dJ w) (Forces; dc, dJ the field's mass
+// moment and inertia change): the centrifugal stiffening's gyroscopic partner, without which
+// loop-held spinning bodies flutter.
 //
 // Markers: the SID nodes, in their order, then the body frame itself, named "origin". A node K
 // with p_BoK_B(q) = origin(q) = o0 + Phi_K q and small rotation theta = Psi_K q (Psi_K = psi.m0)
@@ -38,11 +42,13 @@
 // the Jacobian: with stiffening on they are the marker's load_stiffening (NodeLoadStiffening).
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "mbs/body.h"
+#include "mbs/stiffening_inertia.h"
 #include "sid/reduced_body.h"
 
 namespace flexmbs::mbs {
@@ -81,16 +87,18 @@ class FlexibleBody final : public Body {
   bool AddAccelerationDependentForces(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
                                       Eigen::Ref<Eigen::VectorXd> h) const override;
   /// The elastic row's derivatives, exact: dh_e/dq = -Ke + sum_a g_B,a (Ct1_a + K0t_a)
-  /// - sum_l w_q,l Oe1_l - sum_a (a_B,a K0t_a + alpha_a K0r_a) (Ct1 kinematic; K0 with stiffening
-  /// on, the accelerations a_B = R^T v', alpha = w' from u_dot held fixed) and dh_e/dqdot = -De
-  /// - [Ge_j w]_j. Not the rigid rows nor the elastic row's rotation and w columns (gyroscopic,
-  /// centrifugal and gravity terms, of the motion's own frequencies).
+  /// - sum_l w_q,l (Oe1_l + K0omega_l) - sum_a (a_B,a K0t_a + alpha_a K0r_a) (Ct1, Oe1
+  /// kinematic; K0 with stiffening on, the accelerations a_B = R^T v', alpha = w' from u_dot held
+  /// fixed) and dh_e/dqdot = -De - [Ge_j w]_j. Not the rigid rows nor the elastic row's rotation
+  /// and w columns (gyroscopic, centrifugal and gravity terms, of the motion's own frequencies).
   void AddForceJacobian(const ConstVectorRef& x, const ConstVectorRef& u, const ConstVectorRef& u_dot,
                         const Eigen::Vector3d& g_W, Eigen::Ref<Eigen::MatrixXd> dh_dx,
                         Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
-  /// 1/2 u^T M_kin u, M_kin the mass matrix of the kinematic blocks [J].
+  /// 1/2 u^T M_kin u + 1/2 w^T dJ w [J]: M_kin the mass matrix of the kinematic blocks, dJ the
+  /// stiffening field's inertia change (zero with stiffening off).
   double KineticEnergy(const ConstVectorRef& x, const ConstVectorRef& u) const override;
-  /// 1/2 q^T Ke q + ksigma^T q - g_W . (m p_WBo_W + R mdCM(q)) [J].
+  /// 1/2 q^T Ke q + ksigma^T q - g_W . (m p_WBo_W + R (mdCM(q) + dc(q))) [J] (dc: the
+  /// stiffening field's, zero with stiffening off).
   double PotentialEnergy(const ConstVectorRef& x, const Eigen::Vector3d& g_W) const override;
 
   /// Node markers by their SID names (indices 0 .. nodes - 1), the body frame by kOriginMarker.
@@ -100,7 +108,8 @@ class FlexibleBody final : public Body {
   MarkerKinematics Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const override;
 
   /// P = m v + R (w~ mdCM + Ct^T qdot), L = p x P + R (mdCM~ R^T v + J w + Cr^T qdot): the
-  /// first two block rows of M_kin u (Schwertassek & Wallrapp 1999, ch. 6).
+  /// first two block rows of M_kin u (Schwertassek & Wallrapp 1999, ch. 6), with R dJ w added to
+  /// L when stiffening is on (the stiffening field's inertia change).
   Momentum ComputeMomentum(const ConstVectorRef& x, const ConstVectorRef& u) const;
 
   /// The stiffening part of the generalised force of a force f_W [N] and moment tau_W [N m] at
@@ -135,8 +144,8 @@ class FlexibleBody final : public Body {
   Blocks Evaluate(const Eigen::VectorXd& q) const;
   /// The marker's load_stiffening (n_u x 6) at x, or empty.
   Eigen::Matrix<double, Eigen::Dynamic, 6> LoadStiffening(const NodeFrame& node, const ConstVectorRef& x) const;
-  /// M_kin u split as [translation (W); rotation (B); elastic].
-  Eigen::VectorXd KinematicMomenta(const ConstVectorRef& x, const ConstVectorRef& u) const;
+  /// M_kin u, plus dJ w in the rotational row, split as [translation (W); rotation (B); elastic].
+  Eigen::VectorXd Momenta(const ConstVectorRef& x, const ConstVectorRef& u) const;
 
   std::string name_;
   sid::ReducedBody data_;
@@ -150,15 +159,15 @@ class FlexibleBody final : public Body {
   Eigen::MatrixX3d Ct0_, Cr0_;  ///< n x 3
   /// Order-1 parts as n x 3n [X_x X_y X_z], X_a(i, j) = m1[j](i, a), kinematic only.
   Eigen::MatrixXd Ct1_, Cr1_;
-  /// [K0t_x K0t_y K0t_z], [K0r_x K0r_y K0r_z] (n x 3n) with stiffening on; empty otherwise.
-  Eigen::MatrixXd K0t_, K0r_;
+  /// The stiffening field, with stiffening on and matrices in the file.
+  std::optional<StiffeningInertia> stiffening_;
   Eigen::MatrixXd Me_, Ke_, De_;
   Eigen::VectorXd ksigma_;
   Eigen::MatrixXd Gr0_;         ///< 3 x 3n
   Eigen::MatrixXd Gr1_;         ///< 9n x n: column k = vec(m1[k])
   Eigen::MatrixXd Ge0_;         ///< n x 3n
   Eigen::MatrixXd Oe0_;         ///< n x 6
-  Eigen::MatrixXd Oe1_;         ///< n x 6n: [Oe_1 .. Oe_6], Oe_l(i, j) = m1[j](i, l), stiffening as chosen
+  Eigen::MatrixXd Oe1_;         ///< n x 6n: [Oe_1 .. Oe_6], Oe_l(i, j) = m1[j](i, l), kinematic only
   std::vector<NodeFrame> nodes_;
 };
 

@@ -373,10 +373,13 @@ TEST_P(FlexibleBodyTest, MarkerJacobianAndBiasAreTheDerivativesOfThePose) {
   }
 }
 
-// Stiffening on adds exactly the K0 terms of docs/sid.md, all in the elastic row: M_b stays the
-// kinematic one; h_b gains dCt R^T g - sum_l w_q,l K0omega_l q (dCt = [K0t_a q]_a, dCr likewise)
-// and the acceleration-dependent forces -(dCt R^T v' + dCr w').
-TEST_P(FlexibleBodyTest, GeometricStiffeningAddsTheK0TermsToTheElasticRow) {
+// Stiffening on adds exactly the K0 terms of docs/sid.md to the elastic row and the stiffening
+// field's torques to the rotational row (mbs/stiffening_inertia.h): M_b stays the kinematic
+// one; h_b gains dCt R^T g - sum_l w_q,l K0omega_l q (dCt = [K0t_a q]_a, dCr likewise) in the
+// elastic row and dc x R^T g - dJ' w - w x dJ w in the rotational row, with dc_a = q^T K0t_a q / 2
+// and w^T dJ w = -sum_l w_q,l q^T K0omega_l q; the acceleration-dependent forces are
+// -(dCt R^T v' + dCr w'); the kinetic energy gains w^T dJ w / 2, the potential -g . R dc.
+TEST_P(FlexibleBodyTest, GeometricStiffeningAddsTheK0TermsAndTheirRotationalPartners) {
   const FlexibleBody stiff("beam", RestrictModes(fe_->body, keep_), true);
   const sid::GeometricStiffening& K0 = fe_->body.stiffening;
   ASSERT_FALSE(K0.empty());
@@ -394,6 +397,12 @@ TEST_P(FlexibleBodyTest, GeometricStiffeningAddsTheK0TermsToTheElasticRow) {
        w.z() * w.x()).finished();
   VectorXd centrifugal = VectorXd::Zero(n());
   for (std::size_t l = 0; l < 6; ++l) centrifugal += w_q(static_cast<Index>(l)) * (K0.K0omega[l](keep_, keep_) * q);
+  // dJ and its rate from the quadratic forms s_l = q^T K0omega_l q, s_l' = 2 qdot^T K0omega_l q.
+  const VectorXd qdot = s.u.tail(n());
+  const sid::GeometricStiffening kept = RestrictModes(fe_->body, keep_).stiffening;
+  const Matrix3d dJ = testing::CentrifugalInertiaChange(kept, q, q);
+  const Matrix3d dJ_dot = 2.0 * testing::CentrifugalInertiaChange(kept, qdot, q);
+  const Vector3d dc = 0.5 * dCt.transpose() * q;
 
   MatrixXd M_stiff(6 + n(), 6 + n());
   stiff.MassMatrix(s.x, M_stiff);
@@ -402,6 +411,7 @@ TEST_P(FlexibleBodyTest, GeometricStiffeningAddsTheK0TermsToTheElasticRow) {
   // Differences of two evaluations: round-off of h_b itself. (The free-free beam's K0t and K0r
   // vanish to round-off: inertia relief balances uniform and angular accelerations.)
   VectorXd dh = VectorXd::Zero(6 + n());
+  dh.segment<3>(3) = dc.cross(R.transpose() * kGravity) - dJ_dot * w - w.cross(dJ * w);
   dh.tail(n()) = dCt * R.transpose() * kGravity - centrifugal;
   VectorXd h_stiff(6 + n());
   stiff.Forces(0.0, s.x, s.u, kGravity, h_stiff);
@@ -420,8 +430,10 @@ TEST_P(FlexibleBodyTest, GeometricStiffeningAddsTheK0TermsToTheElasticRow) {
   expected.tail(n()) = -(dCt * R.transpose() * u_dot.head<3>() + dCr * u_dot.segment<3>(3));
   // Against the size of its terms: the free-free beam's are round-off themselves.
   EXPECT_LE((h_a - expected).norm(), kRoundOff * (dCt.norm() + dCr.norm()) * u_dot.norm());
-  // Energies and momenta are the kinematic ones whatever the setting.
-  EXPECT_EQ(stiff.KineticEnergy(s.x, s.u), body_->KineticEnergy(s.x, s.u));
+  const double kinetic = body_->KineticEnergy(s.x, s.u) + 0.5 * w.dot(dJ * w);
+  EXPECT_NEAR(stiff.KineticEnergy(s.x, s.u), kinetic, kRoundOff * kinetic);
+  const double potential = body_->PotentialEnergy(s.x, kGravity) - kGravity.dot(R * dc);
+  EXPECT_NEAR(stiff.PotentialEnergy(s.x, kGravity), potential, kRoundOff * std::abs(potential));
 }
 
 // The nodes' stiffening blocks give -K0F(f_B) q - K0M(tau_B) q, K0F_a(i, j) = -phi.m1[j](a, i):

@@ -122,4 +122,22 @@ reduction::ReducedBasis KeepColumns(const reduction::ReducedBasis& basis, const 
   return out;
 }
 
+Eigen::Matrix3d CentrifugalInertiaChange(const sid::GeometricStiffening& K0, const Eigen::VectorXd& a,
+                                         const Eigen::VectorXd& b) {
+  const auto form = [&](const Eigen::Vector3d& w) {
+    const double products[6] = {w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.y() * w.z(), w.z() * w.x()};
+    double sum = 0.0;
+    for (std::size_t l = 0; l < 6; ++l) sum -= products[l] * a.dot(K0.K0omega[l] * b);
+    return sum;
+  };
+  Eigen::Matrix3d D;
+  for (Index i = 0; i < 3; ++i) {
+    for (Index j = 0; j < 3; ++j) {
+      const Eigen::Vector3d e_i = Eigen::Vector3d::Unit(i), e_j = Eigen::Vector3d::Unit(j);
+      D(i, j) = 0.5 * (form(e_i + e_j) - form(e_i) - form(e_j));
+    }
+  }
+  return D;
+}
+
 }  // namespace flexmbs::mbs::testing

@@ -53,4 +53,11 @@ reduction::ReducedBasis KeepColumns(const reduction::ReducedBasis& basis, const 
 /// BuildReducedBody of `basis` on `fe`'s mesh with `fe.sid_spec`.
 sid::ReducedBody Reduce(const FeReducedBody& fe, const reduction::ReducedBasis& basis);
 
+/// The symmetric D with w^T D w = -sum_l w_q,l a^T K0omega_l b for every w (w_q: the six
+/// products w1^2, w2^2, w3^2, w1 w2, w2 w3, w3 w1), built by polarisation: the stiffening
+/// field's inertia change dJ for a = b = q, half its rate for a = qdot, b = q
+/// (mbs/stiffening_inertia.h), computed independently of it.
+Eigen::Matrix3d CentrifugalInertiaChange(const sid::GeometricStiffening& K0, const Eigen::VectorXd& a,
+                                         const Eigen::VectorXd& b);
+
 }  // namespace flexmbs::mbs::testing
