@@ -27,14 +27,20 @@ the axial force of the rod's own inertia with the rod held at its root,
 P(x) = rho A (phi'^2 (L^2 - x^2) / 2 - a_x (L - x)), KG = int P psi' psi'^T dx -- the
 stiffening flexmbs takes from SID's K0 matrices (the frame's acceleration and angular
 velocity); the share of the axial force that the joint at the slider transmits is left out
-on both sides (docs/mbs.md: joint reactions do not stiffen). The constraint is eliminated:
+on both sides (docs/mbs.md: joint reactions do not stiffen). The centrifugal part of the
+stiffening, phi'^2 q^T Ts q with Ts = int rho A (L^2 - x^2) / 2 psi' psi'^T dx, is the
+kinetic energy -phi'^2 q^T Ts q / 2 of the rod's axial foreshortening (mbs/stiffening_inertia.h);
+its partner in the phi row, -d/dt(phi' q^T Ts q) = -phi'' q^T Ts q - 2 phi' q^T Ts q', is
+chosen by --partner: none (the elastic row only), gyroscopic (the velocity term alone, as
+flexmbs: the default) or full (both: the Lagrangian of the foreshortening's kinetic energy).
+The constraint is eliminated:
 phi'' = (gamma - G_q q'') / G_phi (gamma from g'' = 0), phi and phi' from g = 0 and g' = 0,
 leaving an ODE in (q, q') integrated by SciPy's DOP853 at tight tolerances.
 
 Output: the midpoint deflection w = ((L, v_L) x (L/2, v_mid)) / |(L, v_L)|: the distance of the
 rod's midpoint from the chord through its ends, positive along the frame's y' (z x x').
 
-Usage: slider_crank_reference.py MODES STIFFENING(0|1) t1 t2 ...
+Usage: slider_crank_reference.py [--partner=none|gyroscopic|full] MODES STIFFENING(0|1) t1 t2 ...
 Prints JSON: {"times": [...], "mid": [w in m ...], "frequencies_hz": the clamped rod's,
 "elements": n}.
        slider_crank_reference.py table > slider_crank_reference.json
@@ -118,7 +124,10 @@ def assemble():
             mid[free])
 
 
-def midpoint_deflection(modes, stiffening, times):
+PARTNERS = ("none", "gyroscopic", "full")
+
+
+def midpoint_deflection(modes, stiffening, times, partner="gyroscopic"):
     """w(t) [m] at `times` and the clamped rod's frequencies [Hz]."""
     assert ELEMENTS % 2 == 0
     K, M, T_spin, T_acc, m0, m1, tip, mid = assemble()
@@ -161,11 +170,12 @@ def midpoint_deflection(modes, stiffening, times):
         gamma = -A_ddot[1] + (LENGTH * sin + v_L * cos) * phi_dot**2 + 2 * v_L_dot * sin * phi_dot
         # M s'' = f with s = (phi, q).
         Mass = np.zeros((modes + 1, modes + 1))
-        Mass[0, 0] = J0 + q @ Mq @ q
+        Mass[0, 0] = J0 + q @ Mq @ q - (stiffening * (q @ Ts @ q) if partner == "full" else 0.0)
         Mass[0, 1:] = Mass[1:, 0] = d
         Mass[1:, 1:] = Mq
         stiffness = Kq - phi_dot**2 * Mq + stiffening * (phi_dot**2 * Ts - a_x * Ta)
-        f = np.concatenate([[a_x * (c @ q) - a_y * S - 2 * phi_dot * (q @ Mq @ q_dot)],
+        gyroscopic = 0.0 if partner == "none" else 2 * stiffening * phi_dot * (q @ Ts @ q_dot)
+        f = np.concatenate([[a_x * (c @ q) - a_y * S - 2 * phi_dot * (q @ Mq @ q_dot) + gyroscopic],
                             -c * a_y - stiffness @ q])
         # s'' = N q'' + e_phi gamma / G_phi; N^T (M s'' - f) = 0 (the multiplier's work vanishes).
         N = np.vstack([-G_q / G_phi, np.eye(modes)])
@@ -187,15 +197,20 @@ def midpoint_deflection(modes, stiffening, times):
 
 
 def main():
+    partner = "gyroscopic"
+    if sys.argv[1].startswith("--partner="):
+        partner = sys.argv.pop(1).split("=", 1)[1]
+        if partner not in PARTNERS:
+            raise SystemExit(f"--partner={partner}: not one of {', '.join(PARTNERS)}")
     if sys.argv[1] == "table":
         modes, times = 4, [0.0005 * k for k in range(801)]
-        on, frequencies = midpoint_deflection(modes, 1.0, times)
-        off, _ = midpoint_deflection(modes, 0.0, times)
-        print(json.dumps({"modes": modes, "elements": ELEMENTS, "frequencies_hz": frequencies, "times": times,
+        on, frequencies = midpoint_deflection(modes, 1.0, times, partner)
+        off, _ = midpoint_deflection(modes, 0.0, times, partner)
+        print(json.dumps({"modes": modes, "elements": ELEMENTS, "partner": partner, "frequencies_hz": frequencies, "times": times,
                           "stiffening_on": on, "stiffening_off": off}))
         return
     times = [float(a) for a in sys.argv[3:]]
-    mid, frequencies = midpoint_deflection(int(sys.argv[1]), float(sys.argv[2]), times)
+    mid, frequencies = midpoint_deflection(int(sys.argv[1]), float(sys.argv[2]), times, partner)
     print(json.dumps({"times": times, "mid": mid, "frequencies_hz": frequencies, "elements": ELEMENTS}))
 
 
