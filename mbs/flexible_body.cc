@@ -340,7 +340,15 @@ MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const
   }
   const NodeFrame& node = nodes_[static_cast<std::size_t>(marker)];
   const VectorXd q = x.tail(n), qdot = u.tail(n);
-  const Vector3d s = node.o0 + node.Phi * q;
+  // With stiffening on, the node's second-order position u2 = 1/2 sum_j q_j phi1_j q (its
+  // Jacobian Phi + sum_j q_j phi1_j: SID's phi(q)), so that every force at the node, joint
+  // reactions included, does the stiffening work.
+  Eigen::Matrix3Xd Phi_q = node.Phi, Phi_rate = Eigen::Matrix3Xd::Zero(3, n);
+  for (std::size_t j = 0; j < node.phi1.size(); ++j) {
+    Phi_q += q(static_cast<Index>(j)) * node.phi1[j];
+    Phi_rate += qdot(static_cast<Index>(j)) * node.phi1[j];
+  }
+  const Vector3d s = node.o0 + 0.5 * (node.Phi + Phi_q) * q;
   const Vector3d theta = node.Psi * q, theta_dot = node.Psi * qdot;
   const RotationCoefficients k = Coefficients(theta.norm());
   const Matrix3d Theta = Skew(theta), Theta2 = Theta * Theta;
@@ -350,16 +358,16 @@ MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const
   const double rate = theta.dot(theta_dot);
   const Vector3d cross = theta.cross(theta_dot);
   const Vector3d T_dot_theta_dot = k.c * rate * cross + k.d * rate * theta.cross(cross) + k.b * theta_dot.cross(cross);
-  const Vector3d elastic_velocity = node.Phi * qdot, angular_rate = T * theta_dot;
+  const Vector3d elastic_velocity = Phi_q * qdot, angular_rate = T * theta_dot;
 
   out.p_WM_W = p + R * s;
   out.R_WM = R * (Matrix3d::Identity() + k.s * Theta + k.a * Theta2) * node.AP0;
   out.v_WM_W = v + R * (w.cross(s) + elastic_velocity);
   out.w_WM_W = R * (w + angular_rate);
   out.jacobian.block<3, 3>(0, 3) = -R * Skew(s);
-  out.jacobian.block(0, 6, 3, n) = R * node.Phi;
+  out.jacobian.block(0, 6, 3, n) = R * Phi_q;
   out.jacobian.block(3, 6, 3, n) = R * T * node.Psi;
-  out.bias.head<3>() = R * (w.cross(w.cross(s)) + 2.0 * w.cross(elastic_velocity));
+  out.bias.head<3>() = R * (w.cross(w.cross(s)) + 2.0 * w.cross(elastic_velocity) + Phi_rate * qdot);
   out.bias.tail<3>() = R * (w.cross(angular_rate) + T_dot_theta_dot);
   out.load_stiffening = LoadStiffening(node, x);
   return out;
@@ -368,17 +376,12 @@ MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const
 Eigen::Matrix<double, Eigen::Dynamic, 6> FlexibleBody::LoadStiffening(const NodeFrame& node,
                                                                       const ConstVectorRef& x) const {
   Eigen::Matrix<double, Eigen::Dynamic, 6> out;
-  if (node.phi1.empty() && node.psi1.empty()) return out;
-  const Matrix3d R = RotationFromEulerParameters(x.segment<4>(3));
+  if (node.psi1.empty()) return out;
   out = Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(6 + n_, 6);
-  for (std::size_t j = 0; j < node.phi1.size(); ++j) {
-    out.bottomLeftCorner(n_, 3) += x(7 + static_cast<Index>(j)) * node.phi1[j].transpose();
-  }
   for (std::size_t j = 0; j < node.psi1.size(); ++j) {
     out.bottomRightCorner(n_, 3) += x(7 + static_cast<Index>(j)) * node.psi1[j].transpose();
   }
-  out.bottomLeftCorner(n_, 3) *= R.transpose();
-  out.bottomRightCorner(n_, 3) *= R.transpose();
+  out.bottomRightCorner(n_, 3) *= RotationFromEulerParameters(x.segment<4>(3)).transpose();
   return out;
 }
 

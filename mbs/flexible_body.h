@@ -25,21 +25,26 @@
 // loop-held spinning bodies flutter.
 //
 // Markers: the SID nodes, in their order, then the body frame itself, named "origin". A node K
-// with p_BoK_B(q) = origin(q) = o0 + Phi_K q and small rotation theta = Psi_K q (Psi_K = psi.m0)
-// has the frame
+// with p_BoK_B(q) = s = o0 + Phi_K q (+ u2_K with stiffening on, below) and small rotation
+// theta = Psi_K q (Psi_K = psi.m0) has the frame
 //
-//   p_WK_W = p_WBo_W + R (o0 + Phi_K q),   R_WK = R exp(theta~) AP0,
+//   p_WK_W = p_WBo_W + R s,   R_WK = R exp(theta~) AP0,
 //
 // the exponential map making R_WK a rotation for any q (exp(theta~) = I + theta~ + O(theta^2),
 // SID's AP(q) to first order), and velocities exactly the derivatives of that pose:
 //
-//   v_WK_W = v + R (w~ s + Phi_K qdot),   w_WK_W = R (w + T(theta) Psi_K qdot),   s = o0 + Phi_K q,
+//   v_WK_W = v + R (w~ s + Phi_K qdot),   w_WK_W = R (w + T(theta) Psi_K qdot),
 //
 // T(theta) = I + (1 - cos t)/t^2 theta~ + (t - sin t)/t^3 theta~^2 (t = |theta|), the left
 // Jacobian of SO(3) (the angular velocity of exp(theta~) in its fixed frame). A moment at the
-// node thus does the work of T^T Psi_K^T R^T tau, SID's psi^T M to first order in theta. The
-// nodes' stiffening blocks (phi.m1, psi.m1: unit nodal loads) are not kinematics and are not in
-// the Jacobian: with stiffening on they are the marker's load_stiffening (NodeLoadStiffening).
+// node thus does the work of T^T Psi_K^T R^T tau, SID's psi^T M to first order in theta. With
+// stiffening on, the node's translational stiffening blocks (phi.m1[j] = -[K0F_a(:, j)]_a, unit
+// nodal forces) are the node's second-order displacement u2_K = 1/2 sum_j q_j phi1_j q (the
+// stiffening field of mbs/stiffening_inertia.h at the node; a symmetric form as K0F_a is):
+// s gains u2_K and Phi_K becomes Phi_K + sum_j q_j phi1_j (SID's phi(q)) in the velocity and the
+// Jacobian, so every force at the node, joint reactions included, does the stiffening work
+// -K0F(f_B) q through J^T f. The rotational blocks (psi.m1, unit moments) are the marker's
+// load_stiffening (NodeLoadStiffening): applied moments stiffen, reaction moments do not.
 
 #include <Eigen/Core>
 #include <optional>
@@ -112,11 +117,11 @@ class FlexibleBody final : public Body {
   /// L when stiffening is on (the stiffening field's inertia change).
   Momentum ComputeMomentum(const ConstVectorRef& x, const ConstVectorRef& u) const;
 
-  /// The stiffening part of the generalised force of a force f_W [N] and moment tau_W [N m] at
-  /// node marker `marker`: [0; 0; (sum_j q_j phi1_j)^T f_B + (sum_j q_j psi1_j)^T tau_B] with
-  /// f_B = R^T f_W, tau_B = R^T tau_W (docs/sid.md, nodes: -K0F(f_B) q - K0M(tau_B) q), part of
-  /// MarkerLoad and MultibodySystem::AddMarkerLoad. Zero with stiffening off, for the "origin"
-  /// marker and for nodes without stiffening blocks.
+  /// The moment's stiffening part of the generalised force of a force f_W [N] and moment tau_W
+  /// [N m] at node marker `marker`: [0; 0; (sum_j q_j psi1_j)^T tau_B] with tau_B = R^T tau_W
+  /// (docs/sid.md, nodes: -K0M(tau_B) q), part of MarkerLoad and MultibodySystem::AddMarkerLoad;
+  /// the force's, -K0F(f_B) q, is in the marker's Jacobian (file comment). Zero with stiffening
+  /// off, for the "origin" marker and for nodes without stiffening blocks.
   Eigen::VectorXd NodeLoadStiffening(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
                                      const Eigen::Vector3d& tau_W) const;
 
@@ -142,7 +147,8 @@ class FlexibleBody final : public Body {
   };
   /// The kinematic blocks at q.
   Blocks Evaluate(const Eigen::VectorXd& q) const;
-  /// The marker's load_stiffening (n_u x 6) at x, or empty.
+  /// The marker's load_stiffening (n_u x 6: zero force columns, the moments' psi1 part) at x,
+  /// or empty.
   Eigen::Matrix<double, Eigen::Dynamic, 6> LoadStiffening(const NodeFrame& node, const ConstVectorRef& x) const;
   /// M_kin u, plus dJ w in the rotational row, split as [translation (W); rotation (B); elastic].
   Eigen::VectorXd Momenta(const ConstVectorRef& x, const ConstVectorRef& u) const;
