@@ -4,12 +4,13 @@
 // completes (the most modes at the tightest tolerance; a failed run is reported); errors are max |w_mid(t) - w_peer(t)| over the run relative to the
 // peer's peak |w_mid|, times the CPU time of a run relative to the peer's. Run by hand:
 //   build/bin/bench_slider_crank [end_time_s]
-// Measured (0.4 s, explicit Dormand-Prince; peer 8 modes at rtol 1e-10, 229k steps, peak
-// 5.05 mm): the modal truncation dominates (1, 2, 4 modes: 0.57, 0.12, 0.022 of the peak at
-// every tolerance, 0.3-4.6 s); 8 modes: 4.0e-5, 1.7e-8, 2.3e-9 at rtol 1e-4, 1e-6, 1e-8 in
-// 0.15, 0.16, 0.40 of the peer's CPU time. (Before the centrifugal stiffening's gyroscopic
-// torque, docs/mbs.md "Geometric stiffening", the undamped top mode fluttered at +447 1/s and
-// 8 modes failed at rtol 1e-4 and 1e-6.)
+// Measured (0.4 s, explicit Dormand-Prince; peer 8 modes at rtol 1e-10, 202k steps, peak
+// 3.98 mm, which the geometrically exact beam of tests/validation/slider_crank_exact.py puts at
+// 3.978 mm): the modal truncation dominates (1, 2, 4 modes: 0.59, 0.11, 0.017 of the peak at
+// every tolerance, 0.5-5.8 s); 8 modes: 3.5e-6, 5.5e-9, 1.2e-9 at rtol 1e-4, 1e-6, 1e-8 in
+// 0.11, 0.15, 0.34 of the peer's CPU time. (Before the centrifugal stiffening's gyroscopic torque,
+// docs/mbs.md "Geometric stiffening", the undamped top mode fluttered at +447 1/s and 8 modes
+// failed at rtol 1e-4 and 1e-6.)
 #include <fmt/format.h>
 
 #include <algorithm>
