@@ -16,6 +16,7 @@
 #include "reduction/correction_modes.h"
 #include "reduction/craig_bampton.h"
 #include "reduction/distributed_reduction.h"
+#include "reduction/interior_problem.h"
 #include "reduction/modal_basis.h"
 #include "reduction/sid_body_builder.h"
 #include "reduction/sid_nodes.h"
@@ -34,21 +35,32 @@ struct ReduceOptions {
   bool json = false;
 };
 
+// The eigen-solve's options the spec asks for (the normal modes; a free-free basis adds the
+// rigid-body modes itself).
+reduction::EigenOptions EigenOptionsOf(const reduction::ReductionSpec& spec) {
+  reduction::EigenOptions eigen;
+  eigen.num_modes = spec.num_modes;
+  eigen.max_frequency_hz = spec.max_frequency_hz;
+  return eigen;
+}
+
+// The free-free basis's options the spec asks for.
+reduction::FreeFreeOptions FreeFreeOptionsOf(const reduction::ReductionSpec& spec) {
+  reduction::FreeFreeOptions options;
+  options.eigen = EigenOptionsOf(spec);
+  options.rigid_modes =
+      spec.exact_rigid_body_modes ? reduction::RigidModes::kExact : reduction::RigidModes::kComputed;
+  return options;
+}
+
 // The basis the spec asks for, before correction modes.
 reduction::ReducedBasis BuildBasis(const reduction::ReductionSpec& spec, const reduction::FeModel& model,
                                    const reduction::BoundaryConditions& conditions,
                                    const reduction::Eigensolver& solver) {
-  reduction::EigenOptions eigen;
-  eigen.num_modes = spec.num_modes;
-  eigen.max_frequency_hz = spec.max_frequency_hz;
+  const reduction::EigenOptions eigen = EigenOptionsOf(spec);
   switch (spec.method) {
-    case reduction::ReductionMethod::kFreeFree: {
-      reduction::FreeFreeOptions options;
-      options.eigen = eigen;
-      options.rigid_modes = spec.exact_rigid_body_modes ? reduction::RigidModes::kExact
-                                                        : reduction::RigidModes::kComputed;
-      return reduction::FreeFreeModalBasis(model, options, solver);
-    }
+    case reduction::ReductionMethod::kFreeFree:
+      return reduction::FreeFreeModalBasis(model, FreeFreeOptionsOf(spec), solver);
     case reduction::ReductionMethod::kFixedInterface:
       return reduction::FixedInterfaceModalBasis(model, conditions, eigen, solver);
     case reduction::ReductionMethod::kCraigBampton:
@@ -74,14 +86,22 @@ struct StageSeconds {
   double sid = 0.0;
 };
 
-// The MPI path's accounting (`reduce --json`, key "mpi"; docs/reduction.md, "Under MPI").
-nlohmann::json MpiJson(const reduction::DistributedSolveStats& stats, double basis_seconds) {
+// The MPI path's accounting (`reduce --json`, key "mpi"; docs/reduction.md, "Under MPI"): the
+// solve's, and what the products and static solves with the kept matrices cost after it.
+nlohmann::json MpiJson(const reduction::DistributedSolveStats& stats, double basis_seconds,
+                       const reduction::DistributedModelStats& after) {
   nlohmann::json ranks = nlohmann::json::array();
   for (const reduction::RankShare& r : stats.ranks) {
+    const auto k = static_cast<std::size_t>(r.rank);
     ranks.push_back({{"rank", r.rank}, {"elements", r.elements}, {"nodes", r.nodes}, {"rows", r.rows},
-                     {"nonzeros", r.nonzeros}, {"peak_rss_mb_after_solve", r.peak_rss_mb}});
+                     {"nonzeros", r.nonzeros}, {"peak_rss_mb_after_solve", r.peak_rss_mb},
+                     {"peak_rss_mb", k < after.peak_rss_mb.size() ? after.peak_rss_mb[k] : r.peak_rss_mb}});
   }
   return {{"ranks", ranks},
+          {"products", {{"columns", after.product_columns}, {"seconds", after.product_seconds}}},
+          {"static_solves",
+           {{"factorizations", after.factorizations}, {"solves", after.static_solves},
+            {"seconds", after.static_solve_seconds}}},
           {"seconds", {{"partition_scatter", stats.partition_seconds}, {"assembly", stats.assembly_seconds},
                        {"factorisation_solve", stats.solve_seconds}, {"gather", stats.gather_seconds},
                        {"basis_rank0", basis_seconds}}}};
@@ -144,14 +164,23 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, 
 }
 
 // A body reduced: its mesh and matrices, the basis before correction modes, and the timings.
-// Filled on the rank that writes (rank 0 under mpirun).
+// Filled on the rank that writes (rank 0 under mpirun). On the distributed path the matrices
+// stay distributed (`distributed`, on every rank) and `system` is empty.
 struct Reduction {
   fem::Mesh mesh;
   fem::SystemMatrices system;
+  std::unique_ptr<reduction::DistributedModel> distributed;
   reduction::BoundaryConditions conditions;
   reduction::ReducedBasis basis;
   StageSeconds seconds;
-  std::optional<nlohmann::json> mpi;  ///< the distributed path's accounting
+  reduction::DistributedSolveStats solve_stats;  ///< the distributed path's accounting
+  double basis_seconds = 0.0;                    ///< of the distributed path's basis on rank 0
+
+  // The FE model: the assembled matrices, or the distributed ones' products.
+  reduction::FeModel Model() const {
+    return distributed ? reduction::FeModel(*distributed, mesh.nodes)
+                       : reduction::FeModel(system.stiffness, system.mass, mesh.nodes);
+  }
 };
 
 // Whether the reduction runs distributed end to end (SolveModesDistributed): the slepc backend
@@ -180,19 +209,18 @@ bool ReduceOnEveryRank(const fem::BodySpec& body, const reduction::ReductionSpec
   out->seconds.assembly = SecondsSince(assembly_start);
   progress.Show(fmt::format("reducing ({}) ...", reduction::MethodName(spec.method)));
   const auto reduction_start = std::chrono::steady_clock::now();
-  const reduction::FeModel model{out->system.stiffness, out->system.mass, out->mesh.nodes};
   out->conditions = reduction::ResolveConditions(spec, out->mesh.node_sets);
   const std::unique_ptr<reduction::Eigensolver> solver = reduction::MakeEigensolver(spec.eigensolver);
-  out->basis = BuildBasis(spec, model, out->conditions, *solver);
+  out->basis = BuildBasis(spec, out->Model(), out->conditions, *solver);
   out->seconds.reduction = SecondsSince(reduction_start);
   return writer;
 }
 
 // Rank 0 meshes; the ranks assemble their element shares and solve together
-// (SolveModesDistributed); rank 0 gets the modes and builds the basis. K and M are whole on
-// rank 0 only after the distributed matrices and factors are gone: the basis builders
-// (rigid modes, Rayleigh-Ritz, residuals, reduced matrices) and the SID invariants take the
-// serial matrices. Returns false on the other ranks.
+// (SolveModesDistributed); rank 0 gets the modes and builds the basis, and later the SID data,
+// from products and static solves with the distributed matrices, which stay distributed
+// (DistributedModel): no rank assembles K and M whole. The other ranks serve those products
+// until rank 0 is done, then return false.
 bool ReduceDistributed(const fem::BodySpec& body, const reduction::ReductionSpec& spec,
                        std::chrono::steady_clock::time_point start, Progress& progress, Reduction* out) {
   const bool root = reduction::SlepcSession::Rank() == 0;
@@ -218,30 +246,32 @@ bool ReduceDistributed(const fem::BodySpec& body, const reduction::ReductionSpec
 
   // The options the basis builder passes to its eigensolver: FreeFreeModalBasis asks for the
   // six rigid-body modes on top of the elastic ones.
-  reduction::EigenOptions eigen;
-  eigen.num_modes = spec.num_modes + (free_free && spec.num_modes > 0 ? 6 : 0);
-  eigen.max_frequency_hz = spec.max_frequency_hz;
+  reduction::EigenOptions eigen = EigenOptionsOf(spec);
+  if (free_free && spec.num_modes > 0) eigen.num_modes += 6;
   progress.Show(fmt::format("assembling and solving on {} ranks ...", reduction::SlepcSession::Size()));
-  reduction::DistributedSolveStats stats;
+  reduction::DistributedSolveStats& stats = out->solve_stats;
   reduction::EigenSolution solution;
   try {
-    solution = reduction::SolveModesDistributed(out->mesh, body.mass_matrix, clamped, eigen, &stats);
+    solution = reduction::SolveModesDistributed(out->mesh, body.mass_matrix, clamped, eigen, &stats, &out->distributed);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", body.file.string(), e.what()));
   }
   out->seconds.assembly = stats.partition_seconds + stats.assembly_seconds;
-  if (!root) return false;
+  if (!root) {
+    out->distributed->Serve();
+    return false;
+  }
 
   progress.Show(fmt::format("building the basis ({}) ...", reduction::MethodName(spec.method)));
   const auto basis_start = std::chrono::steady_clock::now();
-  out->system = fem::AssembleBodySystem(body, out->mesh);
-  const reduction::FeModel model{out->system.stiffness, out->system.mass, out->mesh.nodes};
-  const std::unique_ptr<reduction::Eigensolver> solver =
-      reduction::MakePrecomputedEigensolver(std::move(solution), clamped, eigen);
-  out->basis = BuildBasis(spec, model, out->conditions, *solver);
-  const double basis_seconds = SecondsSince(basis_start);
-  out->seconds.reduction = stats.solve_seconds + stats.gather_seconds + basis_seconds;
-  out->mpi = MpiJson(stats, basis_seconds);
+  const reduction::FeModel model = out->Model();
+  if (free_free) {
+    out->basis = reduction::FreeFreeModalBasis(model, FreeFreeOptionsOf(spec), solution);
+  } else {
+    out->basis = reduction::FixedInterfaceModalBasis(model, out->conditions, eigen, solution);
+  }
+  out->basis_seconds = SecondsSince(basis_start);
+  out->seconds.reduction = stats.solve_seconds + stats.gather_seconds + out->basis_seconds;
   return true;
 }
 
@@ -267,7 +297,7 @@ void RunReduce(const ReduceOptions& options) {
     return;
   }
   const auto corrections_start = std::chrono::steady_clock::now();
-  const reduction::FeModel model{r.system.stiffness, r.system.mass, r.mesh.nodes};
+  const reduction::FeModel model = r.Model();
   if (!spec.corrections.empty()) {
     const std::vector<reduction::LoadSet> loads = reduction::ResolveLoadSets(spec, r.mesh.node_sets);
     r.basis = reduction::AddStaticCorrectionModes(model, r.basis, loads).basis;
@@ -279,13 +309,15 @@ void RunReduce(const ReduceOptions& options) {
 
   progress.Show("computing the SID invariants ...");
   const auto sid_start = std::chrono::steady_clock::now();
-  sid::ReducedBody reduced = reduction::BuildReducedBody({r.mesh, r.system, body.mass_matrix, sid_spec}, r.basis);
+  sid::ReducedBody reduced = reduction::BuildReducedBody(r.mesh, model, body.mass_matrix, sid_spec, r.basis);
   reduced.name = body.name;
   reduced.provenance = reduction::ReductionProvenance(body, spec, sid_spec, r.mesh, r.basis);
   r.seconds.sid = SecondsSince(sid_start);
+  std::optional<nlohmann::json> mpi_report;
+  if (r.distributed) mpi_report = MpiJson(r.solve_stats, r.basis_seconds, r.distributed->Finish());
   progress.Clear();
   format.write(options.output, reduced);
-  Report(options, r.basis, r.mesh, r.seconds, r.mpi);
+  Report(options, r.basis, r.mesh, r.seconds, mpi_report);
 }
 
 }  // namespace

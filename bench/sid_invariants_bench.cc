@@ -153,7 +153,7 @@ void GeometricStiffening(const std::vector<int>& bars, const std::vector<int>& m
   for (std::size_t s = 0; s < bars.size(); ++s) {
     const HeldBar bar = MakeHeldBar(bars[s]);
     const reduction::FeModel model = bar.model();
-    const Index dofs = model.K.rows();
+    const Index dofs = model.K().rows();
     table.AddSize(static_cast<double>(dofs));
 
     // The stages of SolveStaticResponses for a held body, timed one by one.
@@ -172,7 +172,7 @@ void GeometricStiffening(const std::vector<int>& bars, const std::vector<int>& m
       X = G * factor->Solve(rhs);
     });
     factor.reset();
-    const Eigen::MatrixXd Phi = reduction::MOrthonormalized(model.M, G * Eigen::MatrixXd::Random(G.cols(), max_modes));
+    const Eigen::MatrixXd Phi = reduction::MOrthonormalized(model.M(), G * Eigen::MatrixXd::Random(G.cols(), max_modes));
 
     // The assembly of K_G alone (the n-independent part of the assembled way).
     const double t_asm = FastestSeconds(repeat, [&] {
@@ -196,7 +196,7 @@ void GeometricStiffening(const std::vector<int>& bars, const std::vector<int>& m
       }
       table.at(s, m, kTotal) =
           t_loads + t_factor + t_solves + table.at(s, m, assembles ? kAssembled : kElement);
-      std::printf("%8ld %9ld %3ld %4d", static_cast<long>(dofs), static_cast<long>(model.K.nonZeros()),
+      std::printf("%8ld %9ld %3ld %4d", static_cast<long>(dofs), static_cast<long>(model.K().nonZeros()),
                   static_cast<long>(X.cols()), modes[m]);
       for (std::size_t k = 0; k < table.stages.size(); ++k) {
         const double t = table.at(s, m, k);

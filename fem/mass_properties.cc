@@ -34,7 +34,11 @@ MassProperties MassPropertiesFromMassMatrix(const Eigen::SparseMatrix<double>& M
                                             const Eigen::Matrix3Xd& nodes) {
   FLEXMBS_CHECK(M.rows() == 3 * nodes.cols() && M.cols() == M.rows(), "M must be 3 n x 3 n");
   const Eigen::MatrixXd R = RigidBodyModes(nodes);
-  const Eigen::MatrixXd Mrr = R.transpose() * (M * R);
+  return MassPropertiesFromRigidProjection(R.transpose() * (M * R));
+}
+
+MassProperties MassPropertiesFromRigidProjection(const Eigen::MatrixXd& Mrr) {
+  FLEXMBS_CHECK(Mrr.rows() == 6 && Mrr.cols() == 6, "R^T M R must be 6 x 6");
   const double mass = Mrr.topLeftCorner<3, 3>().trace() / 3.0;
   // Lower-left block m c~: c = (c~(2,1), c~(0,2), c~(1,0)).
   const Eigen::Matrix3d mc_skew = Mrr.bottomLeftCorner<3, 3>();

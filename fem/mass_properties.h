@@ -27,6 +27,10 @@ Eigen::MatrixXd RigidBodyModes(const Eigen::Matrix3Xd& nodes);
 MassProperties MassPropertiesFromMassMatrix(const Eigen::SparseMatrix<double>& M,
                                             const Eigen::Matrix3Xd& nodes);
 
+/// Mass properties from the rigid-body projection R^T M R (6 x 6, R = RigidBodyModes) of a mass
+/// matrix, where M is known by its products only: MassPropertiesFromMassMatrix's second half.
+MassProperties MassPropertiesFromRigidProjection(const Eigen::MatrixXd& Mrr);
+
 /// Mass properties by quadrature of rho, rho x and rho x x^T over every element's volume,
 /// independently of any assembled matrix.
 MassProperties IntegrateMassProperties(const Mesh& mesh);

@@ -11,8 +11,8 @@ namespace flexmbs::reduction {
 namespace {
 
 // One Cholesky-QR pass: Q = X L^-T with L L^T = X^T M X; returns L^-T (Q = X L^-T).
-Eigen::MatrixXd CholeskyQrStep(const Eigen::SparseMatrix<double>& M, Eigen::MatrixXd* X) {
-  const Eigen::MatrixXd G = Symmetrized(X->transpose() * (M * *X));
+Eigen::MatrixXd CholeskyQrStep(const SymmetricOperator& M, Eigen::MatrixXd* X) {
+  const Eigen::MatrixXd G = Symmetrized(X->transpose() * M.Times(*X));
   const Eigen::LLT<Eigen::MatrixXd> llt(G);
   FLEXMBS_CHECK(llt.info() == Eigen::Success, "M-orthonormalisation: the basis columns are dependent");
   const Eigen::MatrixXd U_inv =
@@ -25,8 +25,7 @@ Eigen::MatrixXd CholeskyQrStep(const Eigen::SparseMatrix<double>& M, Eigen::Matr
 
 Eigen::MatrixXd Symmetrized(const Eigen::MatrixXd& A) { return 0.5 * (A + A.transpose()); }
 
-RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
-                        const Eigen::MatrixXd& B) {
+RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, const Eigen::MatrixXd& B) {
   RitzResult ritz;
   const Eigen::Index n = B.cols();
   if (n == 0) {
@@ -35,7 +34,7 @@ RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::Spars
     return ritz;
   }
   // Unit M-norm columns first: correction and constraint modes differ in scale by many decades.
-  const Eigen::MatrixXd MB = M * B;
+  const Eigen::MatrixXd MB = M.Times(B);
   Eigen::VectorXd scale(n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const double norm = std::sqrt(std::max(B.col(j).dot(MB.col(j)), 0.0));
@@ -45,7 +44,7 @@ RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::Spars
   Eigen::MatrixXd Q = B * scale.asDiagonal();
   Eigen::MatrixXd T = scale.asDiagonal();
   for (int pass = 0; pass < 2; ++pass) T = T * CholeskyQrStep(M, &Q);
-  const Eigen::MatrixXd Kr = Symmetrized(Q.transpose() * (K * Q));
+  const Eigen::MatrixXd Kr = Symmetrized(Q.transpose() * K.Times(Q));
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(Kr);
   FLEXMBS_CHECK(eigen.info() == Eigen::Success, "Rayleigh-Ritz: reduced eigenproblem failed");
   ritz.values = eigen.eigenvalues();
@@ -54,15 +53,24 @@ RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::Spars
   return ritz;
 }
 
-void MOrthogonalizeAgainst(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
+RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                        const Eigen::MatrixXd& B) {
+  return RayleighRitz(SparseOperator(K), SparseOperator(M), B);
+}
+
+void MOrthogonalizeAgainst(const SymmetricOperator& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
   if (Q.cols() == 0 || X->cols() == 0) return;
-  const Eigen::MatrixXd MQ = M * Q;
+  const Eigen::MatrixXd MQ = M.Times(Q);
   for (int pass = 0; pass < 2; ++pass) *X -= Q * (MQ.transpose() * *X);
 }
 
-Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& X) {
+void MOrthogonalizeAgainst(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
+  MOrthogonalizeAgainst(SparseOperator(M), Q, X);
+}
+
+Eigen::MatrixXd MOrthonormalized(const SymmetricOperator& M, const Eigen::MatrixXd& X) {
   if (X.cols() == 0) return X;
-  const Eigen::MatrixXd MX = M * X;
+  const Eigen::MatrixXd MX = M.Times(X);
   Eigen::VectorXd scale(X.cols());
   for (Eigen::Index j = 0; j < X.cols(); ++j) {
     const double norm = std::sqrt(std::max(X.col(j).dot(MX.col(j)), 0.0));
@@ -72,6 +80,10 @@ Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eig
   Eigen::MatrixXd Q = X * scale.asDiagonal();
   for (int pass = 0; pass < 2; ++pass) CholeskyQrStep(M, &Q);
   return Q;
+}
+
+Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& X) {
+  return MOrthonormalized(SparseOperator(M), X);
 }
 
 }  // namespace flexmbs::reduction

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "reduction/model_operators.h"
+
 namespace flexmbs::reduction {
 
 /// Rayleigh-Ritz on span(B): the eigenpairs of (B^T K B, B^T M B), as M-orthonormal Ritz
@@ -16,14 +18,20 @@ struct RitzResult {
 };
 /// B must have independent columns (checked: InternalError otherwise). Columns are scaled to
 /// unit M-norm first, then orthonormalised by two Cholesky-QR passes in the M inner product.
+RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, const Eigen::MatrixXd& B);
+/// The same with K and M held here (SparseOperator).
 RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                         const Eigen::MatrixXd& B);
 
 /// X -= Q (Q^T M X), twice (classical Gram-Schmidt with re-orthogonalisation): X becomes
 /// M-orthogonal to the M-orthonormal columns of Q.
+void MOrthogonalizeAgainst(const SymmetricOperator& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X);
+/// The same with M held here (SparseOperator).
 void MOrthogonalizeAgainst(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X);
 
 /// An M-orthonormal basis of span(X) (independent columns, checked) by two Cholesky-QR passes.
+Eigen::MatrixXd MOrthonormalized(const SymmetricOperator& M, const Eigen::MatrixXd& X);
+/// The same with M held here (SparseOperator).
 Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& X);
 
 /// 0.5 (A + A^T).

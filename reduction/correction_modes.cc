@@ -95,7 +95,7 @@ LoadCases BuildLoadCases(Index num_nodes, const LoadSet& load) {
 CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBasis& basis,
                                           std::span<const LoadSet> loads, const CorrectionOptions& options) {
   ValidateModel(model);
-  const Index n = model.K.rows();
+  const Index n = model.num_dofs();
   if (basis.Phi.rows() != n) {
     throw InputError(fmt::format("static correction modes: the basis has {} rows, the model {} DOF", basis.Phi.rows(), n));
   }
@@ -144,7 +144,7 @@ CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBas
     against_columns.resize(n, static_cast<Index>(keep.size()));
     for (std::size_t k = 0; k < keep.size(); ++k) against_columns.col(static_cast<Index>(k)) = basis.Phi.col(keep[k]);
   }
-  Eigen::MatrixXd Q = MOrthonormalized(model.M, against_columns);
+  Eigen::MatrixXd Q = MOrthonormalized(model.mass(), against_columns);
   std::vector<Index> accepted;
   Eigen::MatrixXd added(n, 0);
   for (Index j = 0; j < num_cases; ++j) {
@@ -155,9 +155,9 @@ CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBas
       continue;
     }
     Eigen::MatrixXd x = X.col(j);
-    const double before = std::sqrt(x.col(0).dot(model.M * x.col(0)));
-    MOrthogonalizeAgainst(model.M, Q, &x);
-    const double after = std::sqrt(std::max(x.col(0).dot(model.M * x.col(0)), 0.0));
+    const double before = std::sqrt(x.col(0).dot(model.mass().Times(x).col(0)));
+    MOrthogonalizeAgainst(model.mass(), Q, &x);
+    const double after = std::sqrt(std::max(x.col(0).dot(model.mass().Times(x).col(0)), 0.0));
     if (!(before > 0.0) || !(after > options.dependency_tolerance * before)) {
       result.dropped.push_back(fmt::format("{}: linearly dependent on the basis (M-norm left after orthogonalisation "
                                            "{:.2g} of the static response's)", name, before > 0.0 ? after / before : 0.0));

@@ -40,7 +40,7 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
   // Constraint modes: Psi = B + G X, K_oo X = -G^T K B. The factor of K_oo serves the normal
   // modes (shift 0) and the static solves after the basis too.
   const std::shared_ptr<const HeldFactorization> factor = FactorHeldBody(model, conditions, interior);
-  const Eigen::MatrixXd rhs = -(Eigen::SparseMatrix<double>(t.G.transpose()) * (model.K * t.B));
+  const Eigen::MatrixXd rhs = -(Eigen::SparseMatrix<double>(t.G.transpose()) * (model.K() * t.B));
   const Eigen::MatrixXd X = factor->factor.Solve(rhs);
   const Eigen::MatrixXd Psi = Eigen::MatrixXd(t.B) + t.G * X;
 
@@ -62,7 +62,7 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
   if (want_normal) basis.eigensolver_summary = modes.summary;
   basis.held_factorization = factor;
   basis.held_by = conditions;
-  basis.Phi.resize(model.K.rows(), n_b + n_n);
+  basis.Phi.resize(model.num_dofs(), n_b + n_n);
   basis.Phi.leftCols(n_b) = Psi;
   if (n_n > 0) basis.Phi.rightCols(n_n) = t.G * s.modes;
   basis.kinds.assign(static_cast<std::size_t>(n_b), ModeKind::kConstraint);
@@ -88,13 +88,13 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
 
 ReducedBasis OrthonormalizeBasis(const FeModel& model, const ReducedBasis& input) {
   ValidateModel(model);
-  if (input.Phi.rows() != model.K.rows()) {
+  if (input.Phi.rows() != model.num_dofs()) {
     throw InputError(fmt::format("orthonormalise basis: the basis has {} rows, the model {} DOF", input.Phi.rows(),
-                                 model.K.rows()));
+                                 model.num_dofs()));
   }
   if (input.num_modes() == 0) throw InputError("orthonormalise basis: the basis has no columns");
-  const RitzResult ritz = RayleighRitz(model.K, model.M, input.Phi);
-  const double zero = kZeroEigenvalue * model.K.diagonal().sum() / model.M.diagonal().sum();
+  const RitzResult ritz = RayleighRitz(model.stiffness(), model.mass(), input.Phi);
+  const double zero = kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
   const Index n = input.num_modes();
 
   ReducedBasis basis;

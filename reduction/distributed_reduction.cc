@@ -4,13 +4,13 @@
 #include <chrono>
 #include <fmt/format.h>
 #include <petscmat.h>
-#include <sys/resource.h>
 
 #include "core/error.h"
 #include "fem/distributed_assembly.h"
 #include "fem/mesh_partition.h"
 #include "fem/mesh_scatter.h"
 #include "fem/petsc_check.h"
+#include "reduction/slepc_pair_measures.h"
 #include "reduction/slepc_solver.h"
 
 namespace flexmbs::reduction {
@@ -20,13 +20,6 @@ using Index = Eigen::Index;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// This process's peak resident set size so far [MB] (Linux reports ru_maxrss in KiB).
-double PeakRssMb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 // Rank 0's vector on every rank.
@@ -82,57 +75,30 @@ std::vector<RankShare> GatherShares(const RankShare& mine) {
   return out;
 }
 
-// Mesh-numbered full-length modes from the rows of the free DOF in partition numbering:
-// row p of `free_rows` is new DOF free_new[p].
-Eigen::MatrixXd ToMeshNumbering(const Eigen::MatrixXd& free_rows, const std::vector<int>& free_new,
-                                const std::vector<int>& new_node) {
-  std::vector<int> old_node(new_node.size());
-  for (std::size_t n = 0; n < new_node.size(); ++n) old_node[static_cast<std::size_t>(new_node[n])] = static_cast<int>(n);
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(3 * static_cast<Index>(new_node.size()), free_rows.cols());
-  for (std::size_t p = 0; p < free_new.size(); ++p) {
-    const int dof = free_new[p];
-    out.row(3 * old_node[static_cast<std::size_t>(dof / 3)] + dof % 3) = free_rows.row(static_cast<Index>(p));
+// Mesh-numbered full-length rows from the rows of the DOF `new_dofs` in partition numbering:
+// row p of `rows` is new DOF new_dofs[p]; old_node[n] is the mesh node of partition node n.
+Eigen::MatrixXd ToMeshNumbering(const Eigen::MatrixXd& rows, const std::vector<int>& new_dofs,
+                                const std::vector<int>& old_node) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(3 * static_cast<Index>(old_node.size()), rows.cols());
+  for (std::size_t p = 0; p < new_dofs.size(); ++p) {
+    const int dof = new_dofs[p];
+    out.row(3 * old_node[static_cast<std::size_t>(dof / 3)] + dof % 3) = rows.row(static_cast<Index>(p));
   }
   return out;
 }
 
-class PrecomputedEigensolver final : public Eigensolver {
- public:
-  PrecomputedEigensolver(EigenSolution solution, std::vector<int> clamped, EigenOptions asked)
-      : solution_(std::move(solution)), clamped_(std::move(clamped)), asked_(asked) {}
-
-  std::string_view name() const override { return solution_.backend; }
-
-  EigenSolution Solve(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>&,
-                      const EigenOptions& options) const override {
-    const Index n = solution_.modes.rows();
-    const Index n_free = n - static_cast<Index>(clamped_.size());
-    if (K.rows() != n_free || options.num_modes != asked_.num_modes ||
-        options.max_frequency_hz != asked_.max_frequency_hz) {
-      throw InputError(fmt::format(
-          "eigenproblem: the distributed solve (mpirun, slepc) computed {} modes of {} DOF; a second solve for {} "
-          "modes of {} DOF is not available there: run on one rank",
-          solution_.modes.cols(), n_free, options.num_modes, K.rows()));
-    }
-    EigenSolution out = solution_;
-    out.modes.resize(n_free, solution_.modes.cols());
-    auto next = clamped_.begin();
-    Index row = 0;
-    for (Index dof = 0; dof < n; ++dof) {
-      if (next != clamped_.end() && *next == dof) {
-        ++next;
-      } else {
-        out.modes.row(row++) = solution_.modes.row(dof);
-      }
-    }
-    return out;
-  }
-
- private:
-  EigenSolution solution_;
-  std::vector<int> clamped_;
-  EigenOptions asked_;
-};
+// The diagonal of the distributed A on rank 0, in the mesh's DOF numbering (others: empty).
+Eigen::VectorXd GatherDiagonal(Mat A, const std::vector<int>& old_node) {
+  Vec diagonal;
+  FLEXMBS_PETSC(MatCreateVecs(A, &diagonal, nullptr));
+  FLEXMBS_PETSC(MatGetDiagonal(A, diagonal));
+  const Eigen::VectorXd values = GatherVector(diagonal, ModesOn::kRankZero);
+  FLEXMBS_PETSC(VecDestroy(&diagonal));
+  if (values.size() == 0) return values;
+  std::vector<int> all(static_cast<std::size_t>(values.size()));
+  for (std::size_t dof = 0; dof < all.size(); ++dof) all[dof] = static_cast<int>(dof);
+  return ToMeshNumbering(values, all, old_node);
+}
 
 }  // namespace
 
@@ -144,18 +110,22 @@ void ShareRootError(const std::string& error_on_root) {
 
 EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
                                     const std::vector<int>& clamped_dofs, const EigenOptions& options,
-                                    DistributedSolveStats* stats) {
+                                    DistributedSolveStats* stats, std::unique_ptr<DistributedModel>* keep) {
   const int rank = SlepcSession::Rank();
   const int size = SlepcSession::Size();
   auto start = std::chrono::steady_clock::now();
   fem::MeshPartition partition;
   if (rank == 0) partition = fem::PartitionByCoordinateBisection(mesh, size);
-  const fem::MeshPart part = fem::ScatterMeshParts(mesh, partition);
-  // The clamped DOF in partition numbering, ascending, on every rank.
-  std::vector<int> clamped;
+  fem::MeshPart part = fem::ScatterMeshParts(mesh, partition);
+  // The clamped DOF in partition numbering, ascending, on every rank; rank 0: the mesh node of
+  // each partition node.
+  std::vector<int> clamped, old_node(partition.new_node.size());
   if (rank == 0) {
     for (int dof : clamped_dofs) clamped.push_back(3 * partition.new_node[static_cast<std::size_t>(dof / 3)] + dof % 3);
     std::sort(clamped.begin(), clamped.end());
+    for (std::size_t n = 0; n < old_node.size(); ++n) {
+      old_node[static_cast<std::size_t>(partition.new_node[n])] = static_cast<int>(n);
+    }
   }
   clamped = Broadcast(std::move(clamped));
   stats->partition_seconds = SecondsSince(start);
@@ -173,11 +143,19 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
   stats->assembly_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  Mat K = matrices.stiffness, M = matrices.mass;
+  Mat K = matrices.stiffness, M = matrices.mass, M_s = nullptr;
   matrices = {};
   EigenSolution solution;
+  Eigen::VectorXd K_diagonal, M_diagonal;
   double gather_seconds = 0.0;
   try {
+    if (keep) {
+      // What the products after the solve need of the whole matrices: their diagonals and,
+      // for a held body, the whole M as M_s (1/9 of its entries).
+      K_diagonal = GatherDiagonal(K, old_node);
+      M_diagonal = GatherDiagonal(M, old_node);
+      if (!clamped.empty()) M_s = DistributedScalarMass(M);
+    }
     if (!clamped.empty()) {
       K = RemoveClamped(K, clamped);
       M = RemoveClamped(M, clamped);
@@ -186,10 +164,22 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
   } catch (...) {
     MatDestroy(&K);
     MatDestroy(&M);
+    if (M_s != nullptr) MatDestroy(&M_s);
     throw;
   }
-  FLEXMBS_PETSC(MatDestroy(&K));
-  FLEXMBS_PETSC(MatDestroy(&M));
+  if (keep && M_s != nullptr) {
+    FLEXMBS_PETSC(MatDestroy(&M));
+    M = M_s;
+  }
+  if (keep) {
+    const bool lumped = mass_kind != fem::MassMatrixKind::kConsistent;
+    *keep = std::make_unique<DistributedModel>(K, M, M_s != nullptr, lumped ? std::move(part) : fem::MeshPart{},
+                                               mass_kind, old_node, clamped, std::move(K_diagonal),
+                                               std::move(M_diagonal));
+  } else {
+    FLEXMBS_PETSC(MatDestroy(&K));
+    FLEXMBS_PETSC(MatDestroy(&M));
+  }
   stats->solve_seconds = SecondsSince(start) - gather_seconds;
 
   start = std::chrono::steady_clock::now();
@@ -203,39 +193,12 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
         free_new.push_back(dof);
       }
     }
-    solution.modes = ToMeshNumbering(solution.modes, free_new, partition.new_node);
+    solution.modes = ToMeshNumbering(solution.modes, free_new, old_node);
   }
   stats->gather_seconds = gather_seconds + SecondsSince(start);
   share.peak_rss_mb = PeakRssMb();
   stats->ranks = GatherShares(share);
   return solution;
-}
-
-std::optional<std::vector<int>> ClampedDofs(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions) {
-  const ConstraintTransform transform = BuildConstraintTransform(nodes, conditions);
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> G = transform.G;
-  std::vector<int> clamped;
-  for (Index dof = 0; dof < G.rows(); ++dof) {
-    const Index count = G.outerIndexPtr()[dof + 1] - G.outerIndexPtr()[dof];
-    if (count == 0) {
-      clamped.push_back(static_cast<int>(dof));
-    } else if (count != 1 || G.valuePtr()[G.outerIndexPtr()[dof]] != 1.0) {
-      return std::nullopt;
-    }
-  }
-  // A selection: each interior coordinate is one free DOF, in ascending order.
-  if (G.cols() != G.rows() - static_cast<Index>(clamped.size())) return std::nullopt;
-  Index expected = 0;
-  for (Index dof = 0; dof < G.rows(); ++dof) {
-    if (G.outerIndexPtr()[dof + 1] == G.outerIndexPtr()[dof]) continue;
-    if (G.innerIndexPtr()[G.outerIndexPtr()[dof]] != expected++) return std::nullopt;
-  }
-  return clamped;
-}
-
-std::unique_ptr<Eigensolver> MakePrecomputedEigensolver(EigenSolution solution, std::vector<int> clamped_dofs,
-                                                        EigenOptions asked) {
-  return std::make_unique<PrecomputedEigensolver>(std::move(solution), std::move(clamped_dofs), asked);
 }
 
 }  // namespace flexmbs::reduction

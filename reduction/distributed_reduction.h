@@ -1,7 +1,8 @@
 #pragma once
 // The MPI path of `flexmbs reduce` for modal bases: rank 0 meshes and partitions the elements,
 // every rank assembles its share of K and M into distributed PETSc matrices, the clamped DOF
-// are removed there, SLEPc solves, and the modes come back to rank 0 only.
+// are removed there, SLEPc solves, and the modes come back to rank 0 only; the matrices may be
+// kept for the products and static solves after the solve (distributed_model.h).
 
 #include <Eigen/Core>
 #include <memory>
@@ -11,8 +12,8 @@
 
 #include "fem/element_integrator.h"
 #include "fem/mesh.h"
+#include "reduction/distributed_model.h"
 #include "reduction/eigensolver.h"
-#include "reduction/interface_coupling.h"
 
 namespace flexmbs::reduction {
 
@@ -44,27 +45,16 @@ struct DistributedSolveStats {
 /// ones. Returns on every rank the eigenvalues, residuals and checks; on rank 0 the modes,
 /// full length in the mesh's DOF numbering with zero rows at the clamped DOF (other ranks: no
 /// rows). Throws (on every rank) the InputErrors of the assembly and the solve.
+/// With `keep`, the distributed matrices are not destroyed after the solve but handed, as a
+/// DistributedModel, to `*keep` on every rank (the held body's K_oo and the whole body's M_s,
+/// or the free body's K and M), so that rank 0 can finish the basis and the SID data with
+/// products and static solves while no rank holds K and M whole.
 EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
                                     const std::vector<int>& clamped_dofs, const EigenOptions& options,
-                                    DistributedSolveStats* stats);
+                                    DistributedSolveStats* stats, std::unique_ptr<DistributedModel>* keep = nullptr);
 
 /// Collective: if `error_on_root` (rank 0's) is not empty, every rank throws InputError with
 /// it. For errors on rank 0 before a collective step, so that no rank waits for it forever.
 void ShareRootError(const std::string& error_on_root);
-
-/// The DOF (ascending) that `conditions` clamp, if they clamp whole node DOF only (supports,
-/// node-set and rigid interfaces: G of BuildConstraintTransform then selects the other DOF);
-/// nothing if an averaging interface ties DOF together. Throws BuildConstraintTransform's
-/// InputErrors.
-std::optional<std::vector<int>> ClampedDofs(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions);
-
-/// An Eigensolver that hands out one solution computed beforehand (by SolveModesDistributed),
-/// so that the basis builders (FreeFreeModalBasis, FixedInterfaceModalBasis) finish a
-/// distributed solve unchanged. `solution.modes` are full length with zero rows at
-/// `clamped_dofs`; Solve returns them restricted to the other DOF (in ascending order, the
-/// interior coordinates of ClampedDofs' conditions) if K has that many rows and `options` asks
-/// for the modes of `asked` (num_modes, max_frequency_hz); else it throws InputError.
-std::unique_ptr<Eigensolver> MakePrecomputedEigensolver(EigenSolution solution, std::vector<int> clamped_dofs,
-                                                        EigenOptions asked);
 
 }  // namespace flexmbs::reduction

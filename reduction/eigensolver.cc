@@ -152,15 +152,15 @@ PairResiduals ResidualsFromSums(const ResidualSums& sums, const Eigen::VectorXd&
   return result;
 }
 
-PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+PairResiduals ComputeResiduals(const SymmetricOperator& K, const SymmetricOperator& M,
                                const Eigen::VectorXd& eigenvalues, const Eigen::MatrixXd& modes, double sigma) {
   FLEXMBS_CHECK(modes.cols() == eigenvalues.size() && modes.rows() == K.rows(),
                 "ComputeResiduals: modes and eigenvalues do not match");
-  const Eigen::MatrixXd KX = K * modes;
-  const Eigen::MatrixXd MX = M * modes;
+  const Eigen::MatrixXd KX = K.Times(modes);
+  const Eigen::MatrixXd MX = M.Times(modes);
   const Eigen::MatrixXd abs_modes = modes.cwiseAbs();
-  const Eigen::MatrixXd abs_KX = Eigen::SparseMatrix<double>(K.cwiseAbs()) * abs_modes;
-  const Eigen::MatrixXd abs_MX = Eigen::SparseMatrix<double>(M.cwiseAbs()) * abs_modes;
+  const Eigen::MatrixXd abs_KX = K.AbsTimes(abs_modes);
+  const Eigen::MatrixXd abs_MX = M.AbsTimes(abs_modes);
   ResidualSums sums(4, eigenvalues.size());
   for (Eigen::Index j = 0; j < eigenvalues.size(); ++j) {
     const double lambda = eigenvalues(j);
@@ -170,7 +170,12 @@ PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen
     sums(3, j) = (abs_KX.col(j) + std::abs(lambda) * abs_MX.col(j)).squaredNorm();
   }
   return ResidualsFromSums(sums, eigenvalues, sigma,
-                           kZeroEigenvalue * K.diagonal().sum() / M.diagonal().sum());
+                           kZeroEigenvalue * K.Diagonal().sum() / M.Diagonal().sum());
+}
+
+PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                               const Eigen::VectorXd& eigenvalues, const Eigen::MatrixXd& modes, double sigma) {
+  return ComputeResiduals(SparseOperator(K), SparseOperator(M), eigenvalues, modes, sigma);
 }
 
 bool PairResiduals::Accepted(double tolerance, Eigen::Index* worst, double floor_factor) const {

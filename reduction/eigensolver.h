@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "reduction/model_operators.h"
+
 namespace flexmbs::reduction {
 
 class ShiftedFactorization;
@@ -208,7 +210,10 @@ using ResidualSums = Eigen::Matrix<double, 4, Eigen::Dynamic>;
 /// `zero_eigenvalue` = kZeroEigenvalue trace(K) / trace(M) marks rigid-body modes.
 PairResiduals ResidualsFromSums(const ResidualSums& sums, const Eigen::VectorXd& eigenvalues,
                                 double sigma, double zero_eigenvalue);
-/// Residuals of K, M held whole in this process.
+/// Residuals of K, M known by their products (K X, M X, |K| |X|, |M| |X|, the diagonals).
+PairResiduals ComputeResiduals(const SymmetricOperator& K, const SymmetricOperator& M,
+                               const Eigen::VectorXd& eigenvalues, const Eigen::MatrixXd& modes, double sigma);
+/// Residuals of K, M held whole in this process (SparseOperator).
 PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                                const Eigen::VectorXd& eigenvalues, const Eigen::MatrixXd& modes,
                                double sigma);

@@ -93,7 +93,7 @@ Eigen::MatrixXd BuildStiffeningLoads(const FeModel& model, std::span<const Inter
     for (int l = 0; l < 6; ++l) b.block<3, 1>(3 * n, 6 + l) = -CentrifugalBasis()[static_cast<std::size_t>(l)] * r;
   }
   Eigen::MatrixXd F = Eigen::MatrixXd::Zero(3 * num_nodes, num_cases);
-  F.leftCols(kBodyCases) = model.M * b;
+  F.leftCols(kBodyCases) = model.mass().Times(b);
 
   Index column = kBodyCases;
   for (const InterfaceSpec& node : nodes) {
@@ -127,9 +127,9 @@ StiffeningResult ComputeGeometricStiffening(const fem::Mesh& mesh, const FeModel
     throw InputError(fmt::format("geometric stiffening: the mesh has {} nodes, the model {}", mesh.num_nodes(),
                                  model.nodes.cols()));
   }
-  if (Phi.rows() != model.K.rows()) {
+  if (Phi.rows() != model.num_dofs()) {
     throw InputError(fmt::format("geometric stiffening: the basis has {} rows, the model {} DOF", Phi.rows(),
-                                 model.K.rows()));
+                                 model.num_dofs()));
   }
   const Eigen::MatrixXd F = BuildStiffeningLoads(model, nodes);
   const StaticResponses responses = SolveStaticResponses(model, held_by, F, "geometric stiffening", held);

@@ -47,13 +47,13 @@ InteriorProblem BuildInteriorProblem(const FeModel& model, const BoundaryConditi
       if (!interior[static_cast<std::size_t>(dof)]) fixed.push_back(dof);
     }
     const FreeDofMap map(G.rows(), fixed);
-    p.K_oo = map.Restrict(model.K);
-    p.M_oo = map.Restrict(model.M);
+    p.K_oo = map.Restrict(model.K());
+    p.M_oo = map.Restrict(model.M());
     return p;
   }
   const Eigen::SparseMatrix<double> Gt = G.transpose();
-  p.K_oo = Gt * (model.K * G);
-  p.M_oo = Gt * (model.M * G);
+  p.K_oo = Gt * (model.K() * G);
+  p.M_oo = Gt * (model.M() * G);
   p.K_oo.prune(0.0);
   p.M_oo.prune(0.0);
   return p;
@@ -82,6 +82,28 @@ bool HasZeroEnergyMode(const ShiftedFactorization& factor, const Eigen::SparseMa
     if (!(rayleigh > kZeroEigenvalue * scale)) return true;
   }
   return false;
+}
+
+std::optional<std::vector<int>> ClampedDofs(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions) {
+  const ConstraintTransform transform = BuildConstraintTransform(nodes, conditions);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> G = transform.G;
+  std::vector<int> clamped;
+  for (Eigen::Index dof = 0; dof < G.rows(); ++dof) {
+    const Eigen::Index count = G.outerIndexPtr()[dof + 1] - G.outerIndexPtr()[dof];
+    if (count == 0) {
+      clamped.push_back(static_cast<int>(dof));
+    } else if (count != 1 || G.valuePtr()[G.outerIndexPtr()[dof]] != 1.0) {
+      return std::nullopt;
+    }
+  }
+  // A selection: each interior coordinate is one free DOF, in ascending order.
+  if (G.cols() != G.rows() - static_cast<Eigen::Index>(clamped.size())) return std::nullopt;
+  Eigen::Index expected = 0;
+  for (Eigen::Index dof = 0; dof < G.rows(); ++dof) {
+    if (G.outerIndexPtr()[dof + 1] == G.outerIndexPtr()[dof]) continue;
+    if (G.innerIndexPtr()[G.outerIndexPtr()[dof]] != expected++) return std::nullopt;
+  }
+  return clamped;
 }
 
 ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,

@@ -7,7 +7,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <string_view>
+#include <vector>
 
 #include "reduction/eigensolver.h"
 #include "reduction/interface_coupling.h"
@@ -27,6 +29,12 @@ struct InteriorProblem {
 /// Builds the interior problem of `conditions` (which may be empty: then G = I, a free body).
 /// Throws InputError for bad conditions (BuildConstraintTransform) or a bad model.
 InteriorProblem BuildInteriorProblem(const FeModel& model, const BoundaryConditions& conditions);
+
+/// The DOF (ascending) that `conditions` clamp, if they clamp whole node DOF only (supports,
+/// node-set and rigid interfaces: G of BuildConstraintTransform then selects the other DOF);
+/// nothing if an averaging interface ties DOF together. Throws BuildConstraintTransform's
+/// InputErrors.
+std::optional<std::vector<int>> ClampedDofs(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions);
 
 /// The Cholesky factor of K_oo (sigma = 0). Throws a one-line InputError naming the conditions
 /// and the reason if they do not hold the body: K_oo is not positive definite, or has an

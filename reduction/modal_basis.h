@@ -17,6 +17,7 @@
 
 #include "reduction/eigensolver.h"
 #include "reduction/interface_coupling.h"
+#include "reduction/model_operators.h"
 
 namespace flexmbs::reduction {
 
@@ -45,12 +46,38 @@ struct ModeCounts {
 /// "6 rigid, 10 normal, 0 constraint, 2 static_correction".
 std::string FormatModeCounts(const ModeCounts& counts);
 
-/// The FE model a basis is built from (views, not copies): K [N/m] and M [kg], symmetric, full
-/// storage, DOF 3 n + i (fem::SystemMatrices), and the node positions p_BoN_B [m] (3 x n).
-struct FeModel {
-  const Eigen::SparseMatrix<double>& K;
-  const Eigen::SparseMatrix<double>& M;
+/// The FE model a basis is built from (views, not copies): K [N/m] and M [kg], symmetric, DOF
+/// 3 n + i (fem::SystemMatrices), and the node positions p_BoN_B [m] (3 x n). K and M are either
+/// assembled in this process (full storage) or known by their products and static solves only
+/// (ModelOperators: the distributed path of `reduce`, where no rank holds them whole). The
+/// builders of modal bases, correction modes, orthonormalised bases and the SID data take
+/// either; Craig-Bampton, the held body's matrices (interior_problem.h) and the eigensolvers
+/// need them assembled.
+class FeModel {
+ public:
+  /// K and M assembled in this process.
+  FeModel(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M, const Eigen::Matrix3Xd& p_BoN_B)
+      : nodes(p_BoN_B), K_(K), M_(M) {}
+  /// K and M known by `operators` only.
+  FeModel(const ModelOperators& operators, const Eigen::Matrix3Xd& p_BoN_B) : nodes(p_BoN_B), operators_(&operators) {}
+
   const Eigen::Matrix3Xd& nodes;
+
+  /// Products with K and M (either way).
+  const SymmetricOperator& stiffness() const { return operators_ ? operators_->stiffness() : *K_; }
+  const SymmetricOperator& mass() const { return operators_ ? operators_->mass() : *M_; }
+  /// The number of rows of K (3 x the number of nodes if the model is valid: ValidateModel).
+  Eigen::Index num_dofs() const { return stiffness().rows(); }
+  /// Whether K and M are assembled here; K() and M() are those matrices (InternalError if not).
+  bool assembled() const { return operators_ == nullptr; }
+  const Eigen::SparseMatrix<double>& K() const;
+  const Eigen::SparseMatrix<double>& M() const;
+  /// The operators of a model that is not assembled here; null if it is.
+  const ModelOperators* operators() const { return operators_; }
+
+ private:
+  std::optional<SparseOperator> K_, M_;
+  const ModelOperators* operators_ = nullptr;
 };
 
 /// Throws InputError unless K and M are square, of size 3 x (number of nodes), and non-empty.
@@ -160,6 +187,11 @@ struct FreeFreeOptions {
 /// DOF - 6, a band with no elastic mode, a number of zero-frequency modes other than 6 (a
 /// disconnected part or a mechanism), and the eigensolver's own errors (prefixed).
 ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const Eigensolver& solver);
+/// The same from eigenpairs computed elsewhere (the distributed solve of `reduce`): `solution`
+/// holds the pairs the solver would have returned for `options` (the six rigid-body modes
+/// included, full length). Works on a model known by its products. Throws as above; with no
+/// elastic mode in the band, without naming the lowest one (that needs another solve).
+ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const EigenSolution& solution);
 
 /// Fixed-interface normal modes: the eigenmodes of the body with every support clamped and
 /// every interface held (node-set and rigid interfaces: their node DOF fixed; averaging
@@ -176,5 +208,12 @@ ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& opt
 /// that do not hold the body (a zero-frequency mode remains), a band with no modes.
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
                                       const EigenOptions& eigen, const Eigensolver& solver);
+/// The same from the held body's eigenpairs computed elsewhere (the distributed solve of
+/// `reduce`), for conditions that clamp whole node DOF (ClampedDofs; else InputError):
+/// `solution` holds the pairs of K_oo, M_oo that `eigen` asks for, with the modes full length
+/// and zero at the clamped DOF, and their residuals. Works on a model known by its products;
+/// no factorisation is made or kept.
+ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
+                                      const EigenOptions& eigen, const EigenSolution& solution);
 
 }  // namespace flexmbs::reduction

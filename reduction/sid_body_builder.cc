@@ -116,19 +116,27 @@ std::map<std::string, std::string> ReductionProvenance(const fem::BodySpec& body
 }
 
 sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& basis) {
-  const fem::Mesh& mesh = source.mesh;
+  return BuildReducedBody(source.mesh, FeModel{source.system.stiffness, source.system.mass, source.mesh.nodes},
+                          source.mass_matrix, source.sid, basis);
+}
+
+sid::ReducedBody BuildReducedBody(const fem::Mesh& mesh, const FeModel& model, fem::MassMatrixKind mass_matrix,
+                                  const SidSpec& sid_spec, const ReducedBasis& basis) {
   const Eigen::MatrixXd& Phi = basis.Phi;
   const Eigen::Index n = basis.num_modes();
   // The invariants need the consistent mass matrix even where the modes used a lumped one.
   std::optional<fem::SystemMatrices> consistent;
-  if (source.mass_matrix != fem::MassMatrixKind::kConsistent) {
+  std::optional<SparseOperator> consistent_mass;
+  if (model.assembled() && mass_matrix != fem::MassMatrixKind::kConsistent) {
     consistent = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
+    consistent_mass.emplace(consistent->mass);
   }
-  const Eigen::SparseMatrix<double>& M = consistent ? consistent->mass : source.system.mass;
-  const FeModel model{source.system.stiffness, source.system.mass, mesh.nodes};
+  const SymmetricOperator& M = consistent_mass        ? *consistent_mass
+                               : model.operators()    ? model.operators()->consistent_mass()
+                                                      : model.mass();
 
   sid::ReducedBody out;
-  const fem::MassProperties props = fem::MassPropertiesFromMassMatrix(M, mesh.nodes);
+  const fem::MassProperties props = MassPropertiesOf(M, mesh.nodes);
   out.mass = props.mass_kg;
   out.center_of_mass = props.p_BoCm_B;
   out.inertia_about_center_of_mass = props.I_Cm_B;
@@ -137,7 +145,9 @@ sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& b
   out.frequency_hz = basis.frequency_hz;
   out.relative_residuals = basis.relative_residuals;
 
-  InertiaInvariants inertia = ComputeInertiaInvariants(M, mesh.nodes, Phi);
+  InertiaInvariants inertia =
+      model.assembled() ? ComputeInertiaInvariants(consistent ? consistent->mass : model.M(), mesh.nodes, Phi)
+                        : ComputeInertiaInvariants(M, mesh.nodes, Phi);
   out.mdCM = std::move(inertia.mdCM);
   out.J = std::move(inertia.J);
   out.Ct = std::move(inertia.Ct);
@@ -147,7 +157,7 @@ sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& b
   out.Ge = std::move(inertia.Ge);
   out.Oe = std::move(inertia.Oe);
   out.Ke.m0 = basis.K_reduced;
-  ReducedDamping damping = DampingMatrix(source.sid.damping, model, basis);
+  ReducedDamping damping = DampingMatrix(sid_spec.damping, model, basis);
   out.De.m0 = std::move(damping.De);
   out.damping = std::move(damping.description);
   out.ksigma.m0 = Eigen::VectorXd::Zero(n);
@@ -155,11 +165,11 @@ sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& b
   out.node_positions = mesh.nodes;
   out.node_sets = mesh.node_sets;
   out.phi = Phi;
-  out.nodes = MarkerNodes(mesh, Phi, basis.held_by, source.sid.markers);
-  out.surfaces = ContactSurfaces(mesh, source.sid.contact_surfaces, Phi);
+  out.nodes = MarkerNodes(mesh, Phi, basis.held_by, sid_spec.markers);
+  out.surfaces = ContactSurfaces(mesh, sid_spec.contact_surfaces, Phi);
   out.visual_surface = VisualSurfaceOf(mesh);
 
-  if (source.sid.geometric_stiffening) {
+  if (sid_spec.geometric_stiffening) {
     std::vector<InterfaceSpec> loaded;
     for (const sid::Node& node : out.nodes) loaded.push_back(NodeInterface(node));
     StiffeningResult stiffening = ComputeGeometricStiffening(mesh, model, basis.held_by, Phi, loaded,

@@ -31,6 +31,12 @@ struct SidSource {
 /// caller (ReductionProvenance). Throws InputError for markers or contact surfaces the mesh
 /// cannot give (sid_nodes.h, contact_surface.h) and per-mode damping ratios of the wrong count.
 sid::ReducedBody BuildReducedBody(const SidSource& source, const ReducedBasis& basis);
+/// The same from a FeModel of `mesh`, assembled or known by its products only (the distributed
+/// path of `reduce`: the invariants then come from products with ModelOperators::
+/// consistent_mass(), the stiffening's static solves from ModelOperators::SolveFixed).
+/// `mass_matrix`: the kind of the model's M.
+sid::ReducedBody BuildReducedBody(const fem::Mesh& mesh, const FeModel& model, fem::MassMatrixKind mass_matrix,
+                                  const SidSpec& sid, const ReducedBasis& basis);
 
 /// The provenance of a body reduced from `body` (docs/sid.md): files and their SHA-256, mesh
 /// counts, materials, reduction method and settings, eigensolver, largest residual. Throws

@@ -111,16 +111,19 @@ ModeComponents SplitModeComponents(const Eigen::MatrixXd& Phi) {
   return S;
 }
 
-PositionMoments ComputePositionMoments(const Eigen::SparseMatrix<double>& M_s, const Eigen::Matrix3Xd& nodes,
-                                       const ModeComponents& S) {
-  const Index N = M_s.rows();
-  FLEXMBS_CHECK(nodes.cols() == N && S.rows() == N && S.cols() % 3 == 0,
-                "position moments: M_s, the nodes and the mode components disagree in size");
-  // The fields 1, x, y, z at the nodes (N x 4), and M_s times them.
-  RowMajorMatrix fields(N, 4);
+namespace {
+
+// The fields 1, x, y, z at the nodes (N x 4).
+RowMajorMatrix NodeFields(const Eigen::Matrix3Xd& nodes) {
+  RowMajorMatrix fields(nodes.cols(), 4);
   fields.col(0).setOnes();
   fields.rightCols<3>() = nodes.transpose();
-  const RowMajorMatrix M_fields = M_s * fields;
+  return fields;
+}
+
+// The position moments from the fields (NodeFields), M_s times them and the mode components.
+PositionMoments PositionMomentsFrom(const RowMajorMatrix& fields, const RowMajorMatrix& M_fields,
+                                    const ModeComponents& S) {
   const Eigen::Matrix4d field_products = fields.transpose() * M_fields;
   const MatrixXd field_mode_products = M_fields.transpose() * S;  // 4 x 3n
 
@@ -133,6 +136,17 @@ PositionMoments ComputePositionMoments(const Eigen::SparseMatrix<double>& M_s, c
   for (Index a = 0; a < 3; ++a) p.mode_integrals.row(a) = field_mode_products.block(0, a * n, 1, n);
   p.position_mode_products = field_mode_products.bottomRows(3);
   return p;
+}
+
+}  // namespace
+
+PositionMoments ComputePositionMoments(const Eigen::SparseMatrix<double>& M_s, const Eigen::Matrix3Xd& nodes,
+                                       const ModeComponents& S) {
+  const Index N = M_s.rows();
+  FLEXMBS_CHECK(nodes.cols() == N && S.rows() == N && S.cols() % 3 == 0,
+                "position moments: M_s, the nodes and the mode components disagree in size");
+  const RowMajorMatrix fields = NodeFields(nodes);
+  return PositionMomentsFrom(fields, M_s * fields, S);
 }
 
 Eigen::MatrixXd ComputeModeProducts(const Eigen::SparseMatrix<double>& M_s, const ModeComponents& S) {
@@ -230,6 +244,26 @@ InertiaInvariants ComputeInertiaInvariants(const Eigen::SparseMatrix<double>& M,
   const Eigen::SparseMatrix<double> M_s = ScalarMassMatrix(M);
   const ModeComponents S = SplitModeComponents(Phi);
   return InvariantsFromMoments(ComputePositionMoments(M_s, nodes, S), ComputeModeProducts(M_s, S));
+}
+
+InertiaInvariants ComputeInertiaInvariants(const SymmetricOperator& M, const Eigen::Matrix3Xd& nodes,
+                                           const Eigen::MatrixXd& Phi) {
+  const Index N = nodes.cols();
+  FLEXMBS_CHECK(M.rows() == 3 * N && Phi.rows() == M.rows(), "invariants: M, the nodes and the basis disagree in size");
+  // With M = M_s (x) I_3, M_s f for a nodal field f is M (f (x) e_x) at the x rows, and M_s S is
+  // M Phi read as mode components.
+  const RowMajorMatrix fields = NodeFields(nodes);
+  MatrixXd on_x = MatrixXd::Zero(3 * N, 4);
+  for (Index v = 0; v < N; ++v) on_x.row(3 * v) = fields.row(v);
+  const MatrixXd M_on_x = M.Times(on_x);
+  RowMajorMatrix M_fields(N, 4);
+  for (Index v = 0; v < N; ++v) M_fields.row(v) = M_on_x.row(3 * v);
+  const ModeComponents S = SplitModeComponents(Phi);
+  const ModeComponents M_S = SplitModeComponents(M.Times(Phi));
+  MatrixXd P = MatrixXd::Zero(S.cols(), S.cols());
+  P.triangularView<Eigen::Lower>() = S.transpose() * M_S;
+  P = P.selfadjointView<Eigen::Lower>();
+  return InvariantsFromMoments(PositionMomentsFrom(fields, M_fields, S), P);
 }
 
 }  // namespace flexmbs::reduction

@@ -31,6 +31,7 @@
 #include <array>
 
 #include "core/centrifugal.h"  // CentrifugalBasis, AngularVelocityProducts (Oe's columns)
+#include "reduction/model_operators.h"
 #include "sid/taylor.h"
 
 namespace flexmbs::reduction {
@@ -104,6 +105,11 @@ InertiaInvariants InvariantsFromMoments(const PositionMoments& position, const E
 /// product of two interpolated fields, the integral the one M's quadrature defines (with a
 /// lumped M: the integrals of the lumped mass distribution).
 InertiaInvariants ComputeInertiaInvariants(const Eigen::SparseMatrix<double>& M, const Eigen::Matrix3Xd& nodes,
+                                           const Eigen::MatrixXd& Phi);
+/// The same with M known by its products (ModelOperators: the distributed path of `reduce`):
+/// the position moments from M times the fields 1, x, y, z on the x DOF, the mode products from
+/// S^T (M Phi). Requires M = M_s (x) I_3 (not checked here). Agrees with the M_s form to round-off.
+InertiaInvariants ComputeInertiaInvariants(const SymmetricOperator& M, const Eigen::Matrix3Xd& nodes,
                                            const Eigen::MatrixXd& Phi);
 
 }  // namespace flexmbs::reduction

@@ -18,7 +18,8 @@ void AbsoluteValuesSeq(Mat A) {
   FLEXMBS_PETSC(MatSeqAIJRestoreArray(A, &values));
 }
 
-// |A|: a copy of the AIJ matrix A with the absolute values of its entries.
+}  // namespace
+
 Mat AbsoluteCopy(Mat A) {
   Mat out;
   FLEXMBS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &out));
@@ -34,6 +35,8 @@ Mat AbsoluteCopy(Mat A) {
   }
   return out;
 }
+
+namespace {
 
 // The norm of the distributed vector x, squared.
 double SquaredNorm(Vec x) {

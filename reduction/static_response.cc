@@ -54,23 +54,51 @@ std::array<Index, 6> DeterminateSupport(const Eigen::Matrix3Xd& nodes, std::stri
 // Inertia-relief static responses of a free body, M-orthogonal to the rigid modes.
 Eigen::MatrixXd InertiaReliefResponses(const FeModel& model, const Eigen::MatrixXd& F, std::string_view what) {
   const Eigen::MatrixXd R = MOrthonormalRigidModes(model);
-  const Eigen::MatrixXd MR = model.M * R;
+  const Eigen::MatrixXd MR = model.mass().Times(R);
   const Eigen::MatrixXd F_e = F - MR * (R.transpose() * F);
   const std::array<Index, 6> fixed = DeterminateSupport(model.nodes, what);
-  const FreeDofMap map(model.K.rows(), fixed);
-  const Eigen::SparseMatrix<double> K_ff = map.Restrict(model.K);
-  const Eigen::SparseMatrix<double> M_ff = map.Restrict(model.M);
-  ShiftedFactorization factor;
-  if (factor.Factorize(K_ff, M_ff, 0.0, ShiftedFactorization::Method::kSupernodalCholesky) !=
-          ShiftedFactorization::Status::kOk ||
-      HasZeroEnergyMode(factor, K_ff, M_ff)) {
-    throw InputError(fmt::format("{}: inertia relief: the free body's stiffness is singular beyond its six "
-                                 "rigid-body modes (a part of the mesh not connected to the rest, or a mechanism)",
-                                 what));
+  Eigen::MatrixXd X;
+  if (const ModelOperators* operators = model.operators()) {
+    // The free-free basis found exactly six zero-frequency modes, which the 3-2-1 support holds.
+    X = operators->SolveFixed(fixed, F_e);
+  } else {
+    const FreeDofMap map(model.num_dofs(), fixed);
+    const Eigen::SparseMatrix<double> K_ff = map.Restrict(model.K());
+    const Eigen::SparseMatrix<double> M_ff = map.Restrict(model.M());
+    ShiftedFactorization factor;
+    if (factor.Factorize(K_ff, M_ff, 0.0, ShiftedFactorization::Method::kSupernodalCholesky) !=
+            ShiftedFactorization::Status::kOk ||
+        HasZeroEnergyMode(factor, K_ff, M_ff)) {
+      throw InputError(fmt::format("{}: inertia relief: the free body's stiffness is singular beyond its six "
+                                   "rigid-body modes (a part of the mesh not connected to the rest, or a mechanism)",
+                                   what));
+    }
+    X = map.Expand(factor.Solve(map.RestrictVectors(F_e)));
   }
-  Eigen::MatrixXd X = map.Expand(factor.Solve(map.RestrictVectors(F_e)));
-  MOrthogonalizeAgainst(model.M, R, &X);
+  MOrthogonalizeAgainst(model.mass(), R, &X);
   return X;
+}
+
+// The static responses of a body known by its products (ModelOperators), held by whole clamped
+// DOF: X = G K_oo^-1 G^T F for the selection G.
+StaticResponses HeldResponses(const FeModel& model, const BoundaryConditions& held_by, const Eigen::MatrixXd& F) {
+  const std::optional<std::vector<int>> clamped = ClampedDofs(model.nodes, held_by);
+  FLEXMBS_CHECK(clamped.has_value(), "a body known by its products is held by whole clamped DOF only");
+  const std::vector<Index> fixed(clamped->begin(), clamped->end());
+  StaticResponses result;
+  result.carried.assign(static_cast<std::size_t>(F.cols()), true);
+  auto next = fixed.begin();
+  for (Index dof = 0; dof < F.rows(); ++dof) {
+    if (next != fixed.end() && *next == dof) {
+      ++next;
+      continue;
+    }
+    for (Index j = 0; j < F.cols(); ++j) {
+      if (F(dof, j) != 0.0) result.carried[static_cast<std::size_t>(j)] = false;
+    }
+  }
+  result.X = model.operators()->SolveFixed(fixed, F);
+  return result;
 }
 
 }  // namespace
@@ -78,19 +106,20 @@ Eigen::MatrixXd InertiaReliefResponses(const FeModel& model, const Eigen::Matrix
 StaticResponses SolveStaticResponses(const FeModel& model, const BoundaryConditions& held_by,
                                      const Eigen::MatrixXd& F, std::string_view what,
                                      const HeldFactorization* held) {
-  FLEXMBS_CHECK(F.rows() == model.K.rows(), "one load row per DOF");
+  FLEXMBS_CHECK(F.rows() == model.num_dofs(), "one load row per DOF");
   StaticResponses result;
   result.carried.assign(static_cast<std::size_t>(F.cols()), false);
   if (held_by.empty()) {
     result.X = InertiaReliefResponses(model, F, what);
     return result;
   }
+  if (!model.assembled()) return HeldResponses(model, held_by, F);
   std::shared_ptr<const HeldFactorization> own;
   if (held == nullptr) {
     own = FactorHeldBody(model, held_by, BuildInteriorProblem(model, held_by));
     held = own.get();
   }
-  FLEXMBS_CHECK(FactorizedFor(*held, held_by) && held->transform.num_dofs() == model.K.rows(),
+  FLEXMBS_CHECK(FactorizedFor(*held, held_by) && held->transform.num_dofs() == model.num_dofs(),
                 "SolveStaticResponses: the held factorisation belongs to other conditions or another model");
   const Eigen::SparseMatrix<double>& G = held->transform.G;
   const Eigen::MatrixXd rhs = Eigen::SparseMatrix<double>(G.transpose()) * F;

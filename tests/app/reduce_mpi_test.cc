@@ -106,7 +106,13 @@ void ExpectSplitAssembly(const nlohmann::json& report, Eigen::Index dofs) {
     EXPECT_LT(static_cast<double>(r.at("nonzeros").get<long long>()), kMaxShare * static_cast<double>(nonzeros));
     EXPECT_LT(static_cast<double>(r.at("elements").get<long long>()), kMaxShare * static_cast<double>(elements));
     EXPECT_GT(r.at("peak_rss_mb_after_solve").get<double>(), 0.0);
+    EXPECT_GE(r.at("peak_rss_mb").get<double>(), r.at("peak_rss_mb_after_solve").get<double>());
   }
+  // After the solve rank 0 used the distributed matrices: products, and one MUMPS factorisation
+  // for the geometric stiffening's static solves (on by default).
+  EXPECT_GT(report.at("mpi").at("products").at("columns").get<int>(), 0);
+  EXPECT_EQ(report.at("mpi").at("static_solves").at("factorizations").get<int>(), 1);
+  EXPECT_GE(report.at("mpi").at("static_solves").at("solves").get<int>(), 12);
   for (const char* stage : {"partition_scatter", "assembly", "factorisation_solve", "gather", "basis_rank0"}) {
     EXPECT_GE(report.at("mpi").at("seconds").at(stage).get<double>(), 0.0) << stage;
   }
