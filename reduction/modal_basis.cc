@@ -255,6 +255,26 @@ ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& opt
 
 namespace {
 
+// Checks a fixed-interface request (a valid model, some conditions, some modes) and returns its
+// description for errors: "fixed-interface modal basis held by <conditions>".
+std::string ValidateHeldRequest(const FeModel& model, const BoundaryConditions& conditions, const EigenOptions& eigen) {
+  const std::string what = "fixed-interface modal basis";
+  ValidateModel(model);
+  if (conditions.empty()) {
+    throw InputError(fmt::format("{}: no interface or support holds the body; use the free-free modal basis", what));
+  }
+  RequireSomeModes(eigen, what);
+  return fmt::format("{} held by {}", what, DescribeConditions(conditions));
+}
+
+// Throws InputError `held`: ... when no interior DOF is free or fewer than the modes asked for.
+void RequireFreeDofs(const std::string& held, Index n_o, const EigenOptions& eigen) {
+  if (n_o == 0) throw InputError(fmt::format("{}: no DOF is left free", held));
+  if (eigen.num_modes > n_o) {
+    throw InputError(fmt::format("{}: {} modes asked for, but only {} interior DOF are free", held, eigen.num_modes, n_o));
+  }
+}
+
 // The fixed-interface basis of the held body's eigenpairs `s`, Phi their modes on all DOF.
 ReducedBasis FixedInterfaceBasisFrom(const FeModel& model, const BoundaryConditions& conditions,
                                      const EigenSolution& s, Eigen::MatrixXd Phi, const EigensolverSummary& summary,
@@ -282,19 +302,9 @@ ReducedBasis FixedInterfaceBasisFrom(const FeModel& model, const BoundaryConditi
 
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
                                       const EigenOptions& eigen, const Eigensolver& solver) {
-  const std::string what = "fixed-interface modal basis";
-  ValidateModel(model);
-  if (conditions.empty()) {
-    throw InputError(fmt::format("{}: no interface or support holds the body; use the free-free modal basis", what));
-  }
-  RequireSomeModes(eigen, what);
+  const std::string held = ValidateHeldRequest(model, conditions, eigen);
   const InteriorProblem interior = BuildInteriorProblem(model, conditions);
-  const Index n_o = interior.K_oo.rows();
-  const std::string held = fmt::format("{} held by {}", what, DescribeConditions(conditions));
-  if (n_o == 0) throw InputError(fmt::format("{}: no DOF is left free", held));
-  if (eigen.num_modes > n_o) {
-    throw InputError(fmt::format("{}: {} modes asked for, but only {} interior DOF are free", held, eigen.num_modes, n_o));
-  }
+  RequireFreeDofs(held, interior.K_oo.rows(), eigen);
   // One factorisation of K_oo for the eigen-solve and the static solves after it, where the
   // eigensolver can use it; FactorHeldInterior then also checks that the conditions hold the body.
   const std::shared_ptr<const HeldFactorization> factor =
@@ -308,24 +318,14 @@ ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryCondit
 
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
                                       const EigenOptions& eigen, const EigenSolution& solution) {
-  const std::string what = "fixed-interface modal basis";
-  ValidateModel(model);
-  if (conditions.empty()) {
-    throw InputError(fmt::format("{}: no interface or support holds the body; use the free-free modal basis", what));
-  }
-  RequireSomeModes(eigen, what);
+  const std::string held = ValidateHeldRequest(model, conditions, eigen);
   const std::optional<std::vector<int>> clamped = ClampedDofs(model.nodes, conditions);
-  const std::string held = fmt::format("{} held by {}", what, DescribeConditions(conditions));
   if (!clamped) {
     throw InputError(fmt::format("{}: eigenpairs computed elsewhere need conditions that clamp whole node DOF (no "
                                  "averaging interface)", held));
   }
   const Index n = model.num_dofs();
-  const Index n_o = n - static_cast<Index>(clamped->size());
-  if (n_o == 0) throw InputError(fmt::format("{}: no DOF is left free", held));
-  if (eigen.num_modes > n_o) {
-    throw InputError(fmt::format("{}: {} modes asked for, but only {} interior DOF are free", held, eigen.num_modes, n_o));
-  }
+  RequireFreeDofs(held, n - static_cast<Index>(clamped->size()), eigen);
   if (solution.modes.rows() != n || solution.modes.cols() != solution.eigenvalues.size() ||
       (eigen.max_frequency_hz <= 0.0 && solution.eigenvalues.size() != eigen.num_modes)) {
     throw InputError(fmt::format("{}: the eigenpairs given have {} rows and {} modes for {} eigenvalues; the model has "
