@@ -260,8 +260,9 @@ def print_rows(rows, ref_key):
     by = {r["program"]: r for r in rows}
     ref = by.get("scipy", {}).get("frequencies_hz")
     ref_name = "scipy"
-    if not ref:  # SciPy did not finish: check against the spectra backend
-        ref, ref_name = by["spectra"]["frequencies_hz"], "spectra"
+    if not ref:  # SciPy did not finish or was skipped: check against the first flexmbs backend that ran
+        ref_name = next((p for p in SOLVERS if by.get(p, {}).get("frequencies_hz")), None)
+        ref = by[ref_name]["frequencies_hz"] if ref_name else None
     bound = by.get("bound", {}).get("seconds")
     for r in rows:
         p = r["program"]
@@ -276,7 +277,7 @@ def print_rows(rows, ref_key):
                 ccx_r = (f"{cx['seconds'] / r['wall_s']:.2f}" if cx.get("seconds") else
                          f">{cx['wall_s'] / r['wall_s']:.1f}" if cx.get("status") == "timeout" else "-")
         diff, check = "", ""
-        if r.get("frequencies_hz") and p != ref_name:
+        if ref and r.get("frequencies_hz") and p != ref_name:
             d = max_rel_diff(r["frequencies_hz"], ref)
             tol = a_tol["ccx"] if p == "ccx" else a_tol["flexmbs"]
             diff, check = f"{d:.1e}", ("ok" if d <= tol else "MISMATCH") + f" vs {ref_name}"
