@@ -23,9 +23,7 @@ Eigen::VectorXd GeneralizedForce(const MarkerKinematics& kinematics, const Eigen
                                  const Eigen::Vector3d& tau_W) {
   Eigen::Matrix<double, 6, 1> load;
   load << f_W, tau_W;
-  Eigen::VectorXd h = kinematics.jacobian.transpose() * load;
-  if (kinematics.load_stiffening.size() > 0) h += kinematics.load_stiffening * load;
-  return h;
+  return kinematics.jacobian.transpose() * load;
 }
 
 void PositionDerivative(const ConstVectorRef& x, const ConstVectorRef& u, Eigen::Ref<Eigen::VectorXd> xdot) {

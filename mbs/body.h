@@ -17,7 +17,7 @@ using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
 /// The pose and velocity of a marker frame M on a body, and how they depend on the body's
 /// velocities u: [v_WM_W; w_WM_W] = jacobian * u, and the part of the marker's acceleration
 /// that does not depend on u̇: [a_WM_W; alpha_WM_W] = jacobian * u̇ + bias. A load [f_W; tau_W]
-/// at the marker's origin has the generalised force (jacobian^T + load_stiffening) [f_W; tau_W].
+/// at the marker's origin has the generalised force jacobian^T [f_W; tau_W].
 struct MarkerKinematics {
   Eigen::Vector3d p_WM_W = Eigen::Vector3d::Zero();      ///< position [m]
   Eigen::Matrix3d R_WM = Eigen::Matrix3d::Identity();    ///< orientation
@@ -25,10 +25,6 @@ struct MarkerKinematics {
   Eigen::Vector3d w_WM_W = Eigen::Vector3d::Zero();      ///< angular velocity [rad/s]
   Eigen::Matrix<double, 6, Eigen::Dynamic> jacobian;     ///< 6 x n_u
   Eigen::Matrix<double, 6, 1> bias = Eigen::Matrix<double, 6, 1>::Zero();  ///< [m/s^2; rad/s^2]
-  /// n_u x 6, or empty (0 x 0) for none: the part of a load's generalised force that is not
-  /// the virtual work of the marker's motion, the geometric stiffening of a flexible body by a
-  /// load at one of its nodes (FlexibleBody; docs/sid.md, nodes) [the units of jacobian^T].
-  Eigen::Matrix<double, Eigen::Dynamic, 6> load_stiffening;
 };
 
 /// One body. Implementations are immutable after construction; all state is passed in.
@@ -77,13 +73,13 @@ class Body {
   virtual MarkerKinematics Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const = 0;
 
   /// The generalised force [N, N m, N m/q] of a force f_W [N] and torque tau_W [N m] acting at
-  /// marker `marker`: (jacobian^T + load_stiffening) [f_W; tau_W] (MarkerKinematics).
+  /// marker `marker`: jacobian^T [f_W; tau_W] (MarkerKinematics).
   Eigen::VectorXd MarkerLoad(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
                              const Eigen::Vector3d& tau_W) const;
 };
 
 /// The generalised force (size n_u) [N, N m, N m/q] of a force f_W [N] at the origin of a
-/// marker with `kinematics` and a torque tau_W [N m]: (jacobian^T + load_stiffening) [f_W; tau_W].
+/// marker with `kinematics` and a torque tau_W [N m]: jacobian^T [f_W; tau_W].
 Eigen::VectorXd GeneralizedForce(const MarkerKinematics& kinematics, const Eigen::Vector3d& f_W,
                                  const Eigen::Vector3d& tau_W);
 

@@ -340,16 +340,18 @@ MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const
   }
   const NodeFrame& node = nodes_[static_cast<std::size_t>(marker)];
   const VectorXd q = x.tail(n), qdot = u.tail(n);
-  // With stiffening on, the node's second-order position u2 = 1/2 sum_j q_j phi1_j q (its
-  // Jacobian Phi + sum_j q_j phi1_j: SID's phi(q)), so that every force at the node, joint
-  // reactions included, does the stiffening work.
-  Eigen::Matrix3Xd Phi_q = node.Phi, Phi_rate = Eigen::Matrix3Xd::Zero(3, n);
-  for (std::size_t j = 0; j < node.phi1.size(); ++j) {
-    Phi_q += q(static_cast<Index>(j)) * node.phi1[j];
-    Phi_rate += qdot(static_cast<Index>(j)) * node.phi1[j];
-  }
+  // With stiffening on, the node's second-order position u2 = 1/2 sum_j q_j phi1_j q and rotation
+  // theta2 = 1/2 sum_j q_j psi1_j q (their Jacobians SID's phi(q), psi(q)), so that every force
+  // and moment at the node, joint reactions included, does the stiffening work.
+  const auto at_q = [&](const std::vector<Eigen::Matrix3Xd>& blocks, const VectorXd& weights, Eigen::Matrix3Xd sum) {
+    for (std::size_t j = 0; j < blocks.size(); ++j) sum += weights(static_cast<Index>(j)) * blocks[j];
+    return sum;
+  };
+  const Eigen::Matrix3Xd zero = Eigen::Matrix3Xd::Zero(3, n);
+  const Eigen::Matrix3Xd Phi_q = at_q(node.phi1, q, node.Phi), Phi_rate = at_q(node.phi1, qdot, zero);
+  const Eigen::Matrix3Xd Psi_q = at_q(node.psi1, q, node.Psi), Psi_rate = at_q(node.psi1, qdot, zero);
   const Vector3d s = node.o0 + 0.5 * (node.Phi + Phi_q) * q;
-  const Vector3d theta = node.Psi * q, theta_dot = node.Psi * qdot;
+  const Vector3d theta = 0.5 * (node.Psi + Psi_q) * q, theta_dot = Psi_q * qdot;
   const RotationCoefficients k = Coefficients(theta.norm());
   const Matrix3d Theta = Skew(theta), Theta2 = Theta * Theta;
   const Matrix3d T = Matrix3d::Identity() + k.a * Theta + k.b * Theta2;
@@ -366,33 +368,10 @@ MarkerKinematics FlexibleBody::Marker(int marker, const ConstVectorRef& x, const
   out.w_WM_W = R * (w + angular_rate);
   out.jacobian.block<3, 3>(0, 3) = -R * Skew(s);
   out.jacobian.block(0, 6, 3, n) = R * Phi_q;
-  out.jacobian.block(3, 6, 3, n) = R * T * node.Psi;
+  out.jacobian.block(3, 6, 3, n) = R * T * Psi_q;
   out.bias.head<3>() = R * (w.cross(w.cross(s)) + 2.0 * w.cross(elastic_velocity) + Phi_rate * qdot);
-  out.bias.tail<3>() = R * (w.cross(angular_rate) + T_dot_theta_dot);
-  out.load_stiffening = LoadStiffening(node, x);
+  out.bias.tail<3>() = R * (w.cross(angular_rate) + T_dot_theta_dot + T * (Psi_rate * qdot));
   return out;
-}
-
-Eigen::Matrix<double, Eigen::Dynamic, 6> FlexibleBody::LoadStiffening(const NodeFrame& node,
-                                                                      const ConstVectorRef& x) const {
-  Eigen::Matrix<double, Eigen::Dynamic, 6> out;
-  if (node.psi1.empty()) return out;
-  out = Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(6 + n_, 6);
-  for (std::size_t j = 0; j < node.psi1.size(); ++j) {
-    out.bottomRightCorner(n_, 3) += x(7 + static_cast<Index>(j)) * node.psi1[j].transpose();
-  }
-  out.bottomRightCorner(n_, 3) *= RotationFromEulerParameters(x.segment<4>(3)).transpose();
-  return out;
-}
-
-VectorXd FlexibleBody::NodeLoadStiffening(int marker, const ConstVectorRef& x, const Vector3d& f_W,
-                                          const Vector3d& tau_W) const {
-  FLEXMBS_CHECK(marker >= 0 && marker <= static_cast<int>(nodes_.size()), "marker index from FindMarker");
-  VectorXd h = VectorXd::Zero(6 + n_);
-  if (marker == static_cast<int>(nodes_.size())) return h;
-  const Eigen::Matrix<double, Eigen::Dynamic, 6> A = LoadStiffening(nodes_[static_cast<std::size_t>(marker)], x);
-  if (A.size() > 0) h = A * (Eigen::Matrix<double, 6, 1>() << f_W, tau_W).finished();
-  return h;
 }
 
 }  // namespace flexmbs::mbs

@@ -26,25 +26,26 @@
 //
 // Markers: the SID nodes, in their order, then the body frame itself, named "origin". A node K
 // with p_BoK_B(q) = s = o0 + Phi_K q (+ u2_K with stiffening on, below) and small rotation
-// theta = Psi_K q (Psi_K = psi.m0) has the frame
+// theta = Psi_K q (+ theta2_K, below; Psi_K = psi.m0) has the frame
 //
 //   p_WK_W = p_WBo_W + R s,   R_WK = R exp(theta~) AP0,
 //
 // the exponential map making R_WK a rotation for any q (exp(theta~) = I + theta~ + O(theta^2),
 // SID's AP(q) to first order), and velocities exactly the derivatives of that pose:
 //
-//   v_WK_W = v + R (w~ s + Phi_K qdot),   w_WK_W = R (w + T(theta) Psi_K qdot),
+//   v_WK_W = v + R (w~ s + Phi_K(q) qdot),   w_WK_W = R (w + T(theta) Psi_K(q) qdot),
 //
 // T(theta) = I + (1 - cos t)/t^2 theta~ + (t - sin t)/t^3 theta~^2 (t = |theta|), the left
 // Jacobian of SO(3) (the angular velocity of exp(theta~) in its fixed frame). A moment at the
-// node thus does the work of T^T Psi_K^T R^T tau, SID's psi^T M to first order in theta. With
-// stiffening on, the node's translational stiffening blocks (phi.m1[j] = -[K0F_a(:, j)]_a, unit
-// nodal forces) are the node's second-order displacement u2_K = 1/2 sum_j q_j phi1_j q (the
-// stiffening field of mbs/stiffening_inertia.h at the node; a symmetric form as K0F_a is):
-// s gains u2_K and Phi_K becomes Phi_K + sum_j q_j phi1_j (SID's phi(q)) in the velocity and the
-// Jacobian, so every force at the node, joint reactions included, does the stiffening work
-// -K0F(f_B) q through J^T f. The rotational blocks (psi.m1, unit moments) are the marker's
-// load_stiffening (NodeLoadStiffening): applied moments stiffen, reaction moments do not.
+// node thus does the work of Psi_K(q)^T T^T R^T tau, SID's psi(q)^T M to first order in theta.
+// With stiffening on, the node's stiffening blocks (phi.m1[j] = -[K0F_a(:, j)]_a for unit nodal
+// forces, psi.m1[j] = -[K0M_a(:, j)]_a for unit moments) are the node's second-order
+// displacement and rotation, u2_K = 1/2 sum_j q_j phi1_j q and theta2_K = 1/2 sum_j q_j psi1_j q
+// (the stiffening field of mbs/stiffening_inertia.h at the node; symmetric forms as K0F_a and
+// K0M_a are): s and theta gain them, and Phi_K(q) = Phi_K + sum_j q_j phi1_j, Psi_K(q) = Psi_K +
+// sum_j q_j psi1_j (SID's phi(q), psi(q)) in the velocities and the Jacobian, so every force and
+// moment at the node, joint reactions included, does the stiffening work -K0F(f_B) q -
+// K0M(T^T tau_B) q through J^T [f; tau].
 
 #include <Eigen/Core>
 #include <optional>
@@ -108,22 +109,13 @@ class FlexibleBody final : public Body {
 
   /// Node markers by their SID names (indices 0 .. nodes - 1), the body frame by kOriginMarker.
   int FindMarker(std::string_view name) const override;
-  /// The marker's frame (file comment); load_stiffening: NodeLoadStiffening as a matrix, empty
-  /// for the "origin" marker and for nodes without stiffening blocks or with stiffening off.
+  /// The marker's frame (file comment).
   MarkerKinematics Marker(int marker, const ConstVectorRef& x, const ConstVectorRef& u) const override;
 
   /// P = m v + R (w~ mdCM + Ct^T qdot), L = p x P + R (mdCM~ R^T v + J w + Cr^T qdot): the
   /// first two block rows of M_kin u (Schwertassek & Wallrapp 1999, ch. 6), with R dJ w added to
   /// L when stiffening is on (the stiffening field's inertia change).
   Momentum ComputeMomentum(const ConstVectorRef& x, const ConstVectorRef& u) const;
-
-  /// The moment's stiffening part of the generalised force of a force f_W [N] and moment tau_W
-  /// [N m] at node marker `marker`: [0; 0; (sum_j q_j psi1_j)^T tau_B] with tau_B = R^T tau_W
-  /// (docs/sid.md, nodes: -K0M(tau_B) q), part of MarkerLoad and MultibodySystem::AddMarkerLoad;
-  /// the force's, -K0F(f_B) q, is in the marker's Jacobian (file comment). Zero with stiffening
-  /// off, for the "origin" marker and for nodes without stiffening blocks.
-  Eigen::VectorXd NodeLoadStiffening(int marker, const ConstVectorRef& x, const Eigen::Vector3d& f_W,
-                                     const Eigen::Vector3d& tau_W) const;
 
   /// The SID data as given.
   const sid::ReducedBody& data() const { return data_; }
@@ -147,9 +139,6 @@ class FlexibleBody final : public Body {
   };
   /// The kinematic blocks at q.
   Blocks Evaluate(const Eigen::VectorXd& q) const;
-  /// The marker's load_stiffening (n_u x 6: zero force columns, the moments' psi1 part) at x,
-  /// or empty.
-  Eigen::Matrix<double, Eigen::Dynamic, 6> LoadStiffening(const NodeFrame& node, const ConstVectorRef& x) const;
   /// M_kin u, plus dJ w in the rotational row, split as [translation (W); rotation (B); elastic].
   Eigen::VectorXd Momenta(const ConstVectorRef& x, const ConstVectorRef& u) const;
 

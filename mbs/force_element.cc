@@ -42,35 +42,27 @@ RelativeMotion Relative(const MarkerKinematics& I, const MarkerKinematics& J) {
           R_IW * (J.w_WM_W - I.w_WM_W)};
 }
 
-/// One end of a two-point element: its marker, the marker's jacobian (6 x n_u of its body) and the
-/// load map (jacobian^T + load_stiffening, n_u x 6), premultiplied by the end's share of the
-/// relative motion and of the load.
+/// One end of a two-point element: its marker and the marker's jacobian (6 x n_u of its body)
+/// premultiplied by the end's share of the relative motion (and so of the load).
 struct CouplingEnd {
   const MarkerRef* marker;
   Eigen::MatrixXd motion;  ///< 6 x n_u
-  Eigen::MatrixXd load;    ///< n_u x 6
 };
 
-CouplingEnd End(const MarkerRef& marker, const MarkerKinematics& kinematics, const Eigen::Matrix<double, 6, 6>& share) {
-  Eigen::MatrixXd load = kinematics.jacobian.transpose();
-  if (kinematics.load_stiffening.size() > 0) load += kinematics.load_stiffening;
-  return {&marker, share * kinematics.jacobian, load * share.transpose()};
-}
-
-/// Adds -(P_j - P_i Gamma^T) K (E_j - Gamma E_i) to `out` (num_velocities() square), the
+/// Adds -(E_j - Gamma E_i)^T K (E_j - Gamma E_i) to `out` (num_velocities() square), the
 /// derivative of the generalised forces of a load L_j on marker j and -Gamma^T L_j on marker i
-/// (both at their origins) when dL_j = -K (E_j - Gamma E_i) du (E the markers' jacobians, P
-/// their load maps). Bodies' blocks only; nothing for the ground.
+/// (both at their origins) when dL_j = -K (E_j - Gamma E_i) du (E the markers' jacobians, which
+/// map the load too). Bodies' blocks only; nothing for the ground.
 void AddCoupling(const MultibodySystem& system, const MarkerRef& i, const MarkerKinematics& I, const MarkerRef& j,
                  const MarkerKinematics& J, const Eigen::Matrix<double, 6, 6>& Gamma,
                  const Eigen::Matrix<double, 6, 6>& K, Eigen::Ref<Eigen::MatrixXd> out) {
-  const std::array<CouplingEnd, 2> ends{End(i, I, -Gamma), End(j, J, Eigen::Matrix<double, 6, 6>::Identity())};
+  const std::array<CouplingEnd, 2> ends{CouplingEnd{&i, -Gamma * I.jacobian}, CouplingEnd{&j, J.jacobian}};
   for (const CouplingEnd& row : ends) {
     if (row.marker->is_ground()) continue;
     for (const CouplingEnd& column : ends) {
       if (column.marker->is_ground()) continue;
       out.block(system.velocity_offset(row.marker->body), system.velocity_offset(column.marker->body),
-                row.load.rows(), column.motion.cols()) -= row.load * K * column.motion;
+                row.motion.cols(), column.motion.cols()) -= row.motion.transpose() * K * column.motion;
     }
   }
 }

@@ -17,6 +17,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -332,22 +333,26 @@ TEST_P(FlexibleBodyTest, NodeMarkerIsAtItsDeformedFeNode) {
   EXPECT_EQ(body_->FindMarker("nowhere"), -1);
 }
 
-// For every marker: J u is the returned velocity, the pose's central difference along
-// xdot(x, u) is J u, and the velocity's along (xdot, u̇) is J u̇ + bias. Two states: elastic node
-// rotations all below 0.5 rad (power series of the rotation coefficients) and some above (closed
-// forms).
+// For every marker, with stiffening off and on (the nodes' second-order motion): J u is the
+// returned velocity, the pose's central difference along xdot(x, u) is J u, and the velocity's
+// along (xdot, u̇) is J u̇ + bias. Two states: elastic node rotations all below 0.5 rad (power
+// series of the rotation coefficients) and some above (closed forms).
 TEST_P(FlexibleBodyTest, MarkerJacobianAndBiasAreTheDerivativesOfThePose) {
   std::mt19937 rng(81);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (const auto& [deformation, large_rotations] : {std::pair{kDeformation, false}, std::pair{0.2, true}}) {
+  const FlexibleBody stiff("beam", RestrictModes(fe_->body, keep_), true);
+  const FlexibleBody* plain = body_.get();
+  using Run = std::tuple<double, bool, const FlexibleBody*>;
+  for (const auto& [deformation, large_rotations, body] :
+       {Run{kDeformation, false, plain}, Run{0.2, true, plain}, Run{kDeformation, false, &stiff}, Run{0.2, true, &stiff}}) {
     const State s = RandomState(82, deformation);
     const VectorXd udot = 100.0 * VectorXd::NullaryExpr(6 + n(), [&] { return uniform(rng); });
     VectorXd xdot(7 + n());
     PositionDerivative(s.x, s.u, xdot);
     double largest_rotation = 0.0;
-    for (int m = 0; m < body_->FindMarker("origin") + 1; ++m) {
-      const MarkerKinematics K = body_->Marker(m, s.x, s.u);
-      if (m < body_->FindMarker("origin")) {
+    for (int m = 0; m < body->FindMarker("origin") + 1; ++m) {
+      const MarkerKinematics K = body->Marker(m, s.x, s.u);
+      if (m < body->FindMarker("origin")) {
         largest_rotation = std::max(largest_rotation, (fe_->body.nodes[static_cast<std::size_t>(m)].psi.m0(Eigen::all, keep_) * s.x.tail(n())).norm());
       }
       Eigen::Matrix<double, 6, 1> velocity;
@@ -355,19 +360,19 @@ TEST_P(FlexibleBodyTest, MarkerJacobianAndBiasAreTheDerivativesOfThePose) {
       EXPECT_LT(RelativeError(K.jacobian * s.u, velocity), kRoundOff) << "marker " << m;
       EXPECT_LT((K.R_WM.transpose() * K.R_WM - Matrix3d::Identity()).norm(), kRoundOff) << "marker " << m;
 
-      const MarkerKinematics plus = body_->Marker(m, s.x + kTimeStep * xdot, s.u);
-      const MarkerKinematics minus = body_->Marker(m, s.x - kTimeStep * xdot, s.u);
+      const MarkerKinematics plus = body->Marker(m, s.x + kTimeStep * xdot, s.u);
+      const MarkerKinematics minus = body->Marker(m, s.x - kTimeStep * xdot, s.u);
       Eigen::Matrix<double, 6, 1> pose_rate;
       pose_rate << (plus.p_WM_W - minus.p_WM_W) / (2.0 * kTimeStep),
           Axial(plus.R_WM * minus.R_WM.transpose()) / (2.0 * kTimeStep);
-      EXPECT_LT(RelativeError(pose_rate, velocity), kDifferenceTolerance) << "marker " << m << ", deformation " << deformation;
+      EXPECT_LT(RelativeError(pose_rate, velocity), kDifferenceTolerance) << "marker " << m << ", deformation " << deformation << ", stiffening " << body->geometric_stiffening();
 
-      const MarkerKinematics ahead = body_->Marker(m, s.x + kTimeStep * xdot, s.u + kTimeStep * udot);
-      const MarkerKinematics behind = body_->Marker(m, s.x - kTimeStep * xdot, s.u - kTimeStep * udot);
+      const MarkerKinematics ahead = body->Marker(m, s.x + kTimeStep * xdot, s.u + kTimeStep * udot);
+      const MarkerKinematics behind = body->Marker(m, s.x - kTimeStep * xdot, s.u - kTimeStep * udot);
       Eigen::Matrix<double, 6, 1> acceleration;
       acceleration << (ahead.v_WM_W - behind.v_WM_W) / (2.0 * kTimeStep), (ahead.w_WM_W - behind.w_WM_W) / (2.0 * kTimeStep);
       EXPECT_LT(RelativeError(K.jacobian * udot + K.bias, acceleration), kDifferenceTolerance)
-          << "marker " << m << ", deformation " << deformation;
+          << "marker " << m << ", deformation " << deformation << ", stiffening " << body->geometric_stiffening();
     }
     EXPECT_EQ(largest_rotation > 0.5, large_rotations) << "largest elastic node rotation " << largest_rotation << " rad";
   }
@@ -436,28 +441,79 @@ TEST_P(FlexibleBodyTest, GeometricStiffeningAddsTheK0TermsAndTheirRotationalPart
   EXPECT_NEAR(stiff.PotentialEnergy(s.x, kGravity), potential, kRoundOff * std::abs(potential));
 }
 
-// The nodes' stiffening blocks give -K0F(f_B) q - K0M(tau_B) q, K0F_a(i, j) = -phi.m1[j](a, i):
-// a symmetric matrix times q (K0 = Phi^T K_G Phi), zero with stiffening off.
-TEST_P(FlexibleBodyTest, NodeLoadStiffeningIsASymmetricMatrixTimesQ) {
-  const FlexibleBody stiff("beam", RestrictModes(fe_->body, keep_), true);
+// With stiffening on, a node's position and rotation gain the second-order parts SID's K0
+// matrices of unit nodal loads imply (docs/sid.md, nodes: phi.m1[j](a, i) = -K0F_a(i, j), psi.m1
+// likewise with K0M_a): s = o0 + Phi q - 1/2 [q^T K0F_a q]_a, theta = Psi q - 1/2 [q^T K0M_a q]_a,
+// R_WK = R exp(theta~) AP0; K0F_a, K0M_a are built here from the blocks, transposed.
+TEST_P(FlexibleBodyTest, StiffenedNodeMovesBySecondOrderFieldOfTheK0Matrices) {
+  const sid::ReducedBody data = RestrictModes(fe_->body, keep_);
+  const FlexibleBody stiff("beam", data, true);
   const State s = RandomState(101);
-  const Vector3d f_W(30.0, -20.0, 50.0), tau_W(2.0, 1.0, -3.0);
+  const VectorXd q = s.x.tail(n());
+  // -1/2 [q^T K0_a q]_a of a node's order-1 blocks (zero for a node without them).
+  const auto second_order = [&](const std::vector<MatrixXd>& blocks) {
+    Vector3d out = Vector3d::Zero();
+    if (blocks.empty()) return out;
+    for (Index a = 0; a < 3; ++a) {
+      MatrixXd K0(n(), n());
+      for (Index j = 0; j < n(); ++j) K0.col(j) = -blocks[static_cast<std::size_t>(j)].row(a).transpose();
+      out(a) = -0.5 * q.dot(K0 * q);
+    }
+    return out;
+  };
+  int stiffened_nodes = 0;
+  for (const sid::Node& node : data.nodes) {
+    const Vector3d u2 = second_order(node.phi.m1), theta2 = second_order(node.psi.m1);
+    if (u2.norm() > 0.0 && theta2.norm() > 0.0) ++stiffened_nodes;
+    const MarkerKinematics plain = body_->Marker(body_->FindMarker(node.name), s.x, s.u);
+    const MarkerKinematics K = stiff.Marker(stiff.FindMarker(node.name), s.x, s.u);
+    EXPECT_LT(RelativeError(K.p_WM_W, plain.p_WM_W + Rotation(s) * u2), kRoundOff) << node.name;
+    const Vector3d theta = node.psi.m0 * q + theta2;
+    const Matrix3d expected = Rotation(s) * Eigen::AngleAxisd(theta.norm(), theta.normalized()).toRotationMatrix() * node.AP.m0;
+    EXPECT_LT((K.R_WM - expected).norm(), kRoundOff) << node.name;
+  }
+  EXPECT_GT(stiffened_nodes, 0);
+}
+
+// The generalised force of a load at a node is J^T [f; tau]; its derivative in q at q = 0, with
+// stiffening on less off, is the load's geometric stiffness -K0F(f_B) - K0M(tau_B): symmetric and
+// nonzero (both parts). Central differences of a function of q whose second derivative is
+// O(|Phi|^2 |load|): step 1e-4 of a unit q, truncation ~1e-8 of the term.
+TEST_P(FlexibleBodyTest, NodeLoadStiffnessIsTheSymmetricK0OfTheLoad) {
+  const FlexibleBody stiff("beam", RestrictModes(fe_->body, keep_), true);
+  const State s = RandomState(102);
   const int mid = stiff.FindMarker("mid");
-  EXPECT_EQ(body_->NodeLoadStiffening(mid, s.x, f_W, tau_W).norm(), 0.0);
-  const auto stiffening_matrix = [&](const VectorXd& x) {
+  const Vector3d f_W(30.0, -20.0, 50.0), tau_W(2.0, 1.0, -3.0);
+  constexpr double kStep = 1e-4, kDifferenceError = 1e-6;
+  const auto stiffness = [&](const Vector3d& f, const Vector3d& tau) {
     MatrixXd A(n(), n());
     for (Index j = 0; j < n(); ++j) {
-      VectorXd x_j = x;
-      x_j.tail(n()) = VectorXd::Unit(n(), j);
-      A.col(j) = stiff.NodeLoadStiffening(mid, x_j, f_W, tau_W).tail(n());
+      VectorXd plus = s.x, minus = s.x;
+      plus.tail(n()) = kStep * VectorXd::Unit(n(), j);
+      minus.tail(n()) = -kStep * VectorXd::Unit(n(), j);
+      const auto stiffening = [&](const VectorXd& x) {
+        return VectorXd(stiff.MarkerLoad(mid, x, f, tau) - body_->MarkerLoad(mid, x, f, tau));
+      };
+      A.col(j) = (stiffening(plus) - stiffening(minus)).tail(n()) / (2.0 * kStep);
     }
     return A;
   };
-  const MatrixXd A = stiffening_matrix(s.x);
-  ASSERT_GT(A.norm(), 0.0);
-  EXPECT_LT((A - A.transpose()).norm() / A.norm(), kRoundOff);
-  EXPECT_LT(RelativeError(stiff.NodeLoadStiffening(mid, s.x, f_W, tau_W).tail(n()), A * s.x.tail(n())), kRoundOff);
-  EXPECT_EQ(stiff.NodeLoadStiffening(stiff.FindMarker("origin"), s.x, f_W, tau_W).norm(), 0.0);
+  const MatrixXd A = stiffness(f_W, tau_W), A_force = stiffness(f_W, Vector3d::Zero());
+  const MatrixXd A_moment = stiffness(Vector3d::Zero(), tau_W);
+  ASSERT_GT(A_force.norm(), 0.0);
+  ASSERT_GT(A_moment.norm(), 0.0);
+  EXPECT_LT((A - A.transpose()).norm() / A.norm(), kDifferenceError);
+  EXPECT_LT((A_moment - A_moment.transpose()).norm() / A_moment.norm(), kDifferenceError);
+
+  const sid::Node& node = fe_->body.nodes[static_cast<std::size_t>(mid)];
+  const Vector3d f_B = Rotation(s).transpose() * f_W, tau_B = Rotation(s).transpose() * tau_W;
+  MatrixXd expected = MatrixXd::Zero(n(), n());
+  for (Index j = 0; j < n(); ++j) {
+    const std::size_t column = static_cast<std::size_t>(keep_[static_cast<std::size_t>(j)]);
+    const Matrix3Xd phi1 = node.phi.m1[column](Eigen::all, keep_), psi1 = node.psi.m1[column](Eigen::all, keep_);
+    expected.col(j) = (phi1.transpose() * f_B + psi1.transpose() * tau_B);
+  }
+  EXPECT_LT(RelativeError(A, expected), kDifferenceError);
 }
 
 INSTANTIATE_TEST_SUITE_P(Beams, FlexibleBodyTest,
