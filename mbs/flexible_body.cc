@@ -257,7 +257,7 @@ bool FlexibleBody::AddAccelerationDependentForces(const ConstVectorRef& x, const
                                                   const ConstVectorRef& u_dot, Eigen::Ref<VectorXd> h) const {
   if (!stiffening_) return false;
   const Vector3d a_B = RotationFromEulerParameters(x.segment<4>(3)).transpose() * u_dot.head<3>();
-  stiffening_->AddAccelerationForces(stiffening_->At(x.tail(n_)), a_B, u_dot.segment<3>(3), h.tail(n_));
+  stiffening_->AddAccelerationForces(x.tail(n_), a_B, u_dot.segment<3>(3), h.tail(n_));
   return true;
 }
 

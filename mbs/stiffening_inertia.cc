@@ -30,12 +30,8 @@ StiffeningInertia::Moments StiffeningInertia::At(const VectorXd& q) const {
   const Index n = q.size();
   Moments m;
   m.dCt.resize(n, 3);
-  m.dCr.resize(n, 3);
   m.K0w_q.resize(n, 6);
-  for (Index a = 0; a < 3; ++a) {
-    m.dCt.col(a) = K0t_[static_cast<std::size_t>(a)] * q;
-    m.dCr.col(a) = K0r_[static_cast<std::size_t>(a)] * q;
-  }
+  for (Index a = 0; a < 3; ++a) m.dCt.col(a) = K0t_[static_cast<std::size_t>(a)] * q;
   for (Index l = 0; l < 6; ++l) m.K0w_q.col(l) = K0w_[static_cast<std::size_t>(l)] * q;
   m.dc = 0.5 * m.dCt.transpose() * q;
   m.dJ = InertiaOfProducts(m.K0w_q.transpose() * q);
@@ -50,9 +46,11 @@ void StiffeningInertia::AddStateForces(const Moments& m, const VectorXd& qdot, c
   h.tail(qdot.size()) += m.dCt * g_B - m.K0w_q * AngularVelocityProducts(w);
 }
 
-void StiffeningInertia::AddAccelerationForces(const Moments& m, const Vector3d& a_B, const Vector3d& alpha,
+void StiffeningInertia::AddAccelerationForces(const VectorXd& q, const Vector3d& a_B, const Vector3d& alpha,
                                               Eigen::Ref<VectorXd> h_e) const {
-  h_e -= m.dCt * a_B + m.dCr * alpha;
+  for (std::size_t a = 0; a < 3; ++a) {
+    h_e.noalias() -= a_B(static_cast<Index>(a)) * (K0t_[a] * q) + alpha(static_cast<Index>(a)) * (K0r_[a] * q);
+  }
 }
 
 double StiffeningInertia::PotentialEnergy(const Moments& m, const Matrix3d& R, const Vector3d& g_W) const {

@@ -45,15 +45,15 @@ class StiffeningInertia {
   /// The matrices (n x n each, symmetric as every geometric stiffness) of a body with n modes.
   explicit StiffeningInertia(const sid::GeometricStiffening& K0);
 
-  /// The field's moments at q.
+  /// The field's moments at q that the state-dependent terms need (dCr = [K0r_a q] only enters
+  /// the acceleration terms, which form it themselves).
   struct Moments {
     Eigen::Vector3d dc;     ///< int u2 dm [kg m]
     Eigen::MatrixX3d dCt;   ///< n x 3: [K0t_a q]
-    Eigen::MatrixX3d dCr;   ///< n x 3: [K0r_a q]
     Eigen::Matrix3d dJ;     ///< second-order change of the inertia tensor about Bo [kg m^2]
     Eigen::MatrixXd K0w_q;  ///< n x 6: [K0w_l q]
   };
-  /// The moments at q.
+  /// The moments at q: 9 products of an n x n matrix with q.
   Moments At(const Eigen::VectorXd& q) const;
 
   /// The state-dependent terms added to h: rotation dc x g_B - (dJ' w + w x dJ w); elastic
@@ -61,9 +61,10 @@ class StiffeningInertia {
   void AddStateForces(const Moments& m, const Eigen::VectorXd& qdot, const Eigen::Vector3d& w,
                       const Eigen::Vector3d& g_B, Eigen::Ref<Eigen::VectorXd> h) const;
 
-  /// The elastic row's acceleration terms -(dCt a_B + dCr alpha) added to h_e (n): a_B = R^T v'
-  /// [m/s^2], alpha = w' [rad/s^2].
-  void AddAccelerationForces(const Moments& m, const Eigen::Vector3d& a_B, const Eigen::Vector3d& alpha,
+  /// The elastic row's acceleration terms -(dCt a_B + dCr alpha) = -sum_a (a_B,a K0t_a +
+  /// alpha_a K0r_a) q added to h_e (n) at q: a_B = R^T v' [m/s^2], alpha = w' [rad/s^2]. Six
+  /// products with q (the moments of At are not needed).
+  void AddAccelerationForces(const Eigen::VectorXd& q, const Eigen::Vector3d& a_B, const Eigen::Vector3d& alpha,
                              Eigen::Ref<Eigen::VectorXd> h_e) const;
 
   /// -g_W . R dc [J], the field's potential in gravity.
