@@ -12,8 +12,9 @@ void AddMeshCommand(CLI::App& app);
 /// body as its `reduction` section says, and write the reduced body file.
 void AddReduceCommand(CLI::App& app);
 
-/// Registers `flexmbs compare A.sid.h5 B.sid.h5 [--json]`: frequency errors, MAC matrix and
-/// effective modal mass of two bases of one body.
+/// Registers `flexmbs compare A.sid.h5 B.sid.h5|body.yaml [--json] [--modes N]`: frequency
+/// errors, MAC matrix and effective modal mass of two bases of one body, or of a reduced body's
+/// system modes against its full FE model.
 void AddCompareCommand(CLI::App& app);
 
 /// Registers `flexmbs info FILE [--json]`: a summary of a flexmbs file (a reduced body .sid.h5),
