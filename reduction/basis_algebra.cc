@@ -21,6 +21,18 @@ Eigen::MatrixXd CholeskyQrStep(const SymmetricOperator& M, Eigen::MatrixXd* X) {
   return U_inv;
 }
 
+// V with each column's sign chosen so that its entry of largest magnitude is positive: a Ritz
+// vector then keeps the sign of the basis vector it mostly is, not the one LAPACK's round-off
+// happened to give.
+Eigen::MatrixXd WithLargestEntryPositive(Eigen::MatrixXd V) {
+  for (Eigen::Index j = 0; j < V.cols(); ++j) {
+    Eigen::Index largest = 0;
+    V.col(j).cwiseAbs().maxCoeff(&largest);
+    if (V(largest, j) < 0.0) V.col(j) *= -1.0;
+  }
+  return V;
+}
+
 }  // namespace
 
 Eigen::MatrixXd Symmetrized(const Eigen::MatrixXd& A) { return 0.5 * (A + A.transpose()); }
@@ -48,8 +60,9 @@ RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, 
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(Kr);
   FLEXMBS_CHECK(eigen.info() == Eigen::Success, "Rayleigh-Ritz: reduced eigenproblem failed");
   ritz.values = eigen.eigenvalues();
-  ritz.vectors = Q * eigen.eigenvectors();
-  ritz.transform = T * eigen.eigenvectors();
+  const Eigen::MatrixXd V = WithLargestEntryPositive(eigen.eigenvectors());
+  ritz.vectors = Q * V;
+  ritz.transform = T * V;
   return ritz;
 }
 

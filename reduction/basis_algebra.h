@@ -18,6 +18,8 @@ struct RitzResult {
 };
 /// B must have independent columns (checked: InternalError otherwise). Columns are scaled to
 /// unit M-norm first, then orthonormalised by two Cholesky-QR passes in the M inner product.
+/// Each Ritz vector's sign makes its largest coordinate in that orthonormal basis positive, so a
+/// vector that is mostly one column of B keeps that column's sign, whatever the round-off.
 RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, const Eigen::MatrixXd& B);
 /// The same with K and M held here (SparseOperator).
 RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
