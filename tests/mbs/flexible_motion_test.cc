@@ -98,10 +98,11 @@ TEST(FreeFloatingFlexibleBody, KeepsMomentumAndEnergyOverAHundredThousandSteps) 
   struct Case {
     const char* name;
     const testing::FeReducedBody& (*fe)();
-    double end_time;  ///< [s]: about 1e5 steps at the tolerance (measured)
+    double end_time;  ///< [s]: about 1.1e5 steps at the tolerance (measured), a margin for the
+                      ///< step count's dependence on the round-off of the basis
   };
-  for (const Case& c : {Case{"Craig-Bampton", &testing::CraigBamptonBeam, 0.9},
-                        Case{"free-free", &testing::FreeFreeBeam, 4.2}}) {
+  for (const Case& c : {Case{"Craig-Bampton", &testing::CraigBamptonBeam, 1.0},
+                        Case{"free-free", &testing::FreeFreeBeam, 4.6}}) {
     const Drift run = FloatFreely(c.fe(), c.end_time);
     std::cout << c.name << ": " << run.steps << " steps, drift P " << run.P_drift << ", L " << run.L_drift << ", E "
               << run.E_drift << "\n";
