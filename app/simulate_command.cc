@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string_view>
 
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -43,8 +44,10 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
     layout.joints.push_back({system.joint(k).name(), std::string(mbs::JointTypeName(system.joint(k).type()))});
   }
   const mbs::OdeOptions& ode = scene.options.integrator;
-  const std::string jacobian =
-      ode.method == mbs::OdeMethod::kImplicit ? fmt::format(", jacobian {}", mbs::OdeJacobianName(ode.jacobian)) : "";
+  const std::string jacobian = ode.method == mbs::OdeMethod::kImplicit
+                                   ? fmt::format(", jacobian {}, newton {}", mbs::OdeJacobianName(ode.jacobian),
+                                                 mbs::OdeNewtonName(ode.newton))
+                                   : "";
   layout.provenance = {{"scene_file", scene.file.string()},
                        {"scene_sha256", Sha256OfFile(scene.file)},
                        {"integrator", fmt::format("{}, rtol {:g}, atol {:g}{}", mbs::OdeMethodName(ode.method),
@@ -82,10 +85,16 @@ mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::Vector
   return sample;
 }
 
+/// "sparse" or "dense": how an implicit run solved its Newton systems (auto picks by size).
+std::string_view NewtonUsed(const mbs::OdeStatistics& statistics) {
+  return mbs::OdeNewtonName(statistics.sparse_newton ? mbs::OdeNewton::kSparse : mbs::OdeNewton::kDense);
+}
+
 void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::SimulationStatistics& stats,
             double energy_start, double energy_end) {
   const double simulated = scene.options.end_time - scene.options.start_time;
   const double real_time_factor = stats.wall_seconds / simulated;
+  const bool implicit = scene.options.integrator.method == mbs::OdeMethod::kImplicit;
   if (options.json) {
     nlohmann::json j;
     j["output"] = options.output;
@@ -96,6 +105,11 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
     j["steps"] = stats.integrator.steps;
     j["rhs_evaluations"] = stats.integrator.rhs_evaluations;
     j["error_test_failures"] = stats.integrator.error_test_failures;
+    if (implicit) {
+      j["newton"] = NewtonUsed(stats.integrator);
+      j["newton_iterations"] = stats.integrator.newton_iterations;
+      j["newton_setups"] = stats.integrator.newton_setups;
+    }
     j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
     nlohmann::json dropped = nlohmann::json::array();
     const mbs::ConstraintRedundancy& redundancy = stats.initial_conditions.redundancy;
@@ -122,6 +136,10 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
   }
   fmt::print("integration     {} steps, {} function evaluations, {} error-test failures\n", stats.integrator.steps,
              stats.integrator.rhs_evaluations, stats.integrator.error_test_failures);
+  if (implicit) {
+    fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,
+               stats.integrator.newton_setups, NewtonUsed(stats.integrator));
+  }
   fmt::print("energy          {:.9g} J -> {:.9g} J\n", energy_start, energy_end);
   fmt::print("time            {:.3f} s for {:g} s simulated (real-time factor {:.3g})\n", stats.wall_seconds, simulated,
              real_time_factor);

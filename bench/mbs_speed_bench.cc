@@ -8,13 +8,25 @@
 // calls: the bodies' mass matrices, the forces h, the constraints, the accelerations (the whole
 // constrained solve), the derivative (one rhs), the projection after a step, a difference-quotient
 // Jacobian (state size x rhs, formed here as ARKODE does), the model Jacobian (mbs/system_jacobian.h,
-// what the implicit runs use) and the dense LU of I - gamma h J. Then both integrators, adaptive (rtol 1e-6, atol 1e-9), run for up to --budget seconds of wall time
+// what the dense Newton uses), Eigen's dense LU of I - gamma h J, ARKODE's dense Newton as it runs
+// (a SUNLinSol_Dense setup and one solve), and the sparse Newton's parts (mbs/kkt_newton_solver.h):
+// its evaluation, the factorisation of its augmented matrix, one solve; "modelled" rates put the
+// sparse run's counts and these times together for either Newton. Then the integrators, adaptive (rtol 1e-6, atol 1e-9): explicit, implicit with
+// the dense Newton and implicit with the sparse Newton, each for up to --budget seconds of wall time
 // or --end-time of simulated time: steps per second, real-time factor, and the integrator's own
 // overhead = wall - rhs evaluations x rhs - steps x projection. Ratios are against the first case
-// (the peer in the same run, B = 1 and the smallest n by default).
+// (the peer in the same run, B = 1 and the smallest n by default); "sparse / dense" is the ratio of
+// the two implicit runs' steps per second.
 //
 // Usage: bench_mbs_speed [--modes 5,10,20,50,100] [--bodies 1,2,5,10,20,50] [--budget 1.5]
 //                        [--end-time 0.05] [--implicit-max-state 1200]
+// (--implicit-max-state limits the dense Newton and the difference-quotient Jacobian; the sparse
+// Newton runs at every size.)
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <chrono>
@@ -32,6 +44,7 @@
 #include "mbs/constraint_projection.h"
 #include "mbs/flexible_body.h"
 #include "mbs/joint.h"
+#include "mbs/kkt_newton_solver.h"
 #include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
 #include "mbs/system_jacobian.h"
@@ -50,7 +63,7 @@ struct Settings {
   std::vector<int> bodies{1, 2, 5, 10, 20, 50};
   double budget = 1.5;              // [s] of wall time per integrator run
   double end_time = 0.05;           // [s] simulated
-  Index implicit_max_state = 1200;  // larger states: no implicit run, no Jacobian formed
+  Index implicit_max_state = 1200;  // larger states: no dense Newton run, no dense Jacobian formed
 };
 
 /// "5,10,20" -> {5, 10, 20}.
@@ -131,10 +144,46 @@ std::unique_ptr<MultibodySystem> Chain(const flexmbs::sid::ReducedBody& body, in
 struct Parts {
   double mass_matrices = 0, forces = 0, constraints = 0, accelerations = 0, rhs = 0, projection = 0;
   double jacobian = -1, model_jacobian = -1, lu = -1;  // -1: not measured (state too large)
+  // ARKODE's dense Newton as it runs (SUNLinSol_Dense): a setup (the saved J copied back,
+  // A = I - gamma J, SUNDIALS' own LU), one solve.
+  double dense_setup = -1, dense_solve = -1;
+  double sparse_evaluate = 0, sparse_factorize = 0, sparse_solve = 0;   // the sparse Newton's parts
 };
 
-/// The time per call of each MultibodySystem part at state y; the Jacobian and its LU only for
-/// states up to implicit_max_state.
+/// gamma = h a_ii [s] of the Newton matrices timed here: the ESDIRK's a_ii (1/4) at a step of 1e-4 s.
+constexpr double kBenchGamma = 0.25e-4;
+
+/// SUNLinSol_Dense on a saved Jacobian J, as ARKODE's dense Newton holds it, and a right-hand side.
+struct ArkodeDenseNewton {
+  SUNContext context = nullptr;
+  N_Vector x = nullptr, b = nullptr;
+  SUNMatrix saved = nullptr, A = nullptr;
+  SUNLinearSolver solver = nullptr;
+  ArkodeDenseNewton(const Eigen::MatrixXd& J, const VectorXd& r) {
+    const auto n = static_cast<sunindextype>(J.rows());
+    SUNContext_Create(nullptr, &context);
+    x = N_VNew_Serial(n, context);
+    b = N_VNew_Serial(n, context);
+    Eigen::Map<VectorXd>(N_VGetArrayPointer(b), J.rows()) = r;
+    saved = SUNDenseMatrix(n, n, context);
+    A = SUNDenseMatrix(n, n, context);
+    Eigen::Map<Eigen::MatrixXd>(SUNDenseMatrix_Data(saved), J.rows(), J.cols()) = J;
+    solver = SUNLinSol_Dense(x, A, context);
+  }
+  ~ArkodeDenseNewton() {
+    SUNLinSolFree(solver);
+    SUNMatDestroy(A);
+    SUNMatDestroy(saved);
+    N_VDestroy(b);
+    N_VDestroy(x);
+    SUNContext_Free(&context);
+  }
+  ArkodeDenseNewton(const ArkodeDenseNewton&) = delete;
+  ArkodeDenseNewton& operator=(const ArkodeDenseNewton&) = delete;
+};
+
+/// The time per call of each MultibodySystem part at state y; the dense Jacobians and the LU only
+/// for states up to implicit_max_state.
 Parts MeasureParts(const MultibodySystem& system, const VectorXd& y, Index implicit_max_state) {
   Parts p;
   VectorXd u_dot(system.num_velocities()), lambda(system.num_constraints()), y_dot(y.size());
@@ -149,6 +198,14 @@ Parts MeasureParts(const MultibodySystem& system, const VectorXd& y, Index impli
     VectorXd moved = y;
     flexmbs::mbs::ProjectPositions(system, 0.0, moved, {});
     flexmbs::mbs::ProjectVelocities(system, 0.0, moved);
+  });
+  flexmbs::mbs::KktNewtonSolver sparse(system);
+  VectorXd r = VectorXd::Random(y.size());
+  p.sparse_evaluate = SecondsPerCall([&] { sparse.Evaluate(0.0, y); });
+  p.sparse_factorize = SecondsPerCall([&] { sparse.Factorize(kBenchGamma); });
+  p.sparse_solve = SecondsPerCall([&] {
+    VectorXd x = r;
+    sparse.Solve(x);
   });
   if (y.size() > implicit_max_state) return p;
   Eigen::MatrixXd J(y.size(), y.size());
@@ -166,8 +223,15 @@ Parts MeasureParts(const MultibodySystem& system, const VectorXd& y, Index impli
   p.jacobian = SecondsPerCall(form_jacobian);
   Eigen::MatrixXd model(y.size(), y.size());
   p.model_jacobian = SecondsPerCall([&] { flexmbs::mbs::SystemJacobian(system, 0.0, y, model); });
-  const Eigen::MatrixXd newton = Eigen::MatrixXd::Identity(y.size(), y.size()) - 0.25e-4 * J;
+  const Eigen::MatrixXd newton = Eigen::MatrixXd::Identity(y.size(), y.size()) - kBenchGamma * J;
+  ArkodeDenseNewton dense(J, r);
   p.lu = SecondsPerCall([&] { Eigen::PartialPivLU<Eigen::MatrixXd> lu(newton); });
+  p.dense_setup = SecondsPerCall([&] {
+    SUNMatCopy(dense.saved, dense.A);
+    SUNMatScaleAddI(-kBenchGamma, dense.A);
+    SUNLinSolSetup(dense.solver, dense.A);
+  });
+  p.dense_solve = SecondsPerCall([&] { SUNLinSolSolve(dense.solver, dense.A, dense.x, dense.b, 0.0); });
   return p;
 }
 
@@ -178,13 +242,15 @@ struct BudgetSpent {};
 struct Run {
   double simulated = 0, wall = 0;
   flexmbs::mbs::OdeStatistics statistics;
+  flexmbs::mbs::KktNewtonTimes sparse_times;  // the sparse Newton's parts in the run
   bool failed = false;
 };
 
-/// Integrates the system from y0 with `method` (adaptive, default tolerances) and the projection
-/// after every step, until settings.end_time or settings.budget of wall time.
+/// Integrates the system from y0 with `method` (adaptive, default tolerances; the implicit one
+/// with the model Jacobian and `newton`) and the projection after every step, until
+/// settings.end_time or settings.budget of wall time.
 Run Integrate(MultibodySystem& system, const VectorXd& y0, flexmbs::mbs::OdeMethod method,
-              const Settings& settings) {
+              flexmbs::mbs::OdeNewton newton, const Settings& settings) {
   const double start = Now();
   flexmbs::mbs::OdeProblem problem;
   problem.size = system.state_size();
@@ -198,12 +264,15 @@ Run Integrate(MultibodySystem& system, const VectorXd& y0, flexmbs::mbs::OdeMeth
     flexmbs::mbs::ProjectVelocities(system, t, y);
     last_step_time = t;
   };
-  // The implicit method's Newton matrix from the model (Simulate's default).
+  // The implicit method's Newton matrix from the model (Simulate's default), dense or sparse.
   problem.jacobian = [&](double t, Eigen::Ref<const VectorXd> y, Eigen::Ref<Eigen::MatrixXd> dfdy) {
     flexmbs::mbs::SystemJacobian(system, t, y, dfdy);
   };
+  const auto sparse = std::make_shared<flexmbs::mbs::KktNewtonSolver>(system);
+  problem.newton_solver = sparse;
   flexmbs::mbs::OdeOptions options;
   options.method = method;
+  options.newton = newton;
   flexmbs::mbs::OdeIntegrator integrator(std::move(problem), options, 0.0, y0);
   Run run;
   try {
@@ -211,14 +280,29 @@ Run Integrate(MultibodySystem& system, const VectorXd& y0, flexmbs::mbs::OdeMeth
   } catch (const BudgetSpent&) {
     // Stopped by the budget: the steps so far count.
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "  %s run failed: %s\n",
-                 std::string(flexmbs::mbs::OdeMethodName(method)).c_str(), error.what());
+    std::fprintf(stderr, "  %s run (newton %s) failed: %s\n", std::string(flexmbs::mbs::OdeMethodName(method)).c_str(),
+                 std::string(flexmbs::mbs::OdeNewtonName(newton)).c_str(), error.what());
     run.failed = true;
   }
   run.wall = Now() - start;
   run.statistics = integrator.statistics();
+  run.sparse_times = sparse->times();
   run.simulated = last_step_time;
   return run;
+}
+
+/// Seconds per step of an implicit run with its counts (rhs, Newton iterations, Jacobians, setups
+/// per step) and the per-call times of `parts`, for the sparse or the dense Newton: the rate a run
+/// would reach in those counts, comparable where a measured run is too short (its start-up steps).
+double ModelledSecondsPerStep(const flexmbs::mbs::OdeStatistics& s, const Parts& parts, bool sparse) {
+  const double steps = static_cast<double>(s.steps);
+  const double jacobian = sparse ? parts.sparse_evaluate : parts.model_jacobian;
+  const double setup = sparse ? parts.sparse_factorize : parts.dense_setup;
+  const double solve = sparse ? parts.sparse_solve : parts.dense_solve;
+  return (static_cast<double>(s.rhs_evaluations) * parts.rhs + steps * parts.projection +
+          static_cast<double>(s.jacobian_evaluations) * jacobian + static_cast<double>(s.newton_setups) * setup +
+          static_cast<double>(s.newton_iterations) * solve) /
+         steps;
 }
 
 /// One line per run: steps/s (and its ratio to the peer's), RTF, mean step, rhs per step, and the
@@ -233,12 +317,21 @@ void PrintRun(const char* name, const Run& run, const Parts& parts, double peer_
   const double projection_time = steps * parts.projection;
   const double overhead = run.wall - rhs_time - projection_time;
   std::printf(
-      "  %-8s %8.0f steps/s (%.3g x peer)  RTF %.3g  h %.3g s  rhs/step %.1f  Jacobians %ld  "
-      "wall: rhs %.0f %%, projection %.0f %%, integrator %.0f %%\n",
+      "  %-8s %8.0f steps/s (%.3g x peer)  RTF %.3g  h %.3g s  rhs/step %.1f  Newton/step %.2f  Jacobians %ld  "
+      "setups %ld  wall: rhs %.0f %%, projection %.0f %%, integrator %.0f %%\n",
       name, steps / run.wall, steps / run.wall / peer_steps_per_second, run.simulated / run.wall,
       run.simulated / steps, static_cast<double>(run.statistics.rhs_evaluations) / steps,
-      run.statistics.jacobian_evaluations, 100.0 * rhs_time / run.wall,
+      static_cast<double>(run.statistics.newton_iterations) / steps, run.statistics.jacobian_evaluations,
+      run.statistics.newton_setups, 100.0 * rhs_time / run.wall,
       100.0 * projection_time / run.wall, 100.0 * overhead / run.wall);
+  const flexmbs::mbs::KktNewtonTimes& t = run.sparse_times;
+  if (run.statistics.sparse_newton && t.solves > 0) {
+    std::printf("           sparse Newton in the run: evaluate %ld x %.3g us, factorize %ld x %.3g us, solve %ld x %.3g us: "
+                "%.0f %% of the wall\n",
+                t.evaluations, 1e6 * t.evaluate / static_cast<double>(std::max(t.evaluations, 1L)), t.factorizations,
+                1e6 * t.factorize / static_cast<double>(std::max(t.factorizations, 1L)), t.solves,
+                1e6 * t.solve / static_cast<double>(t.solves), 100.0 * (t.evaluate + t.factorize + t.solve) / run.wall);
+  }
 }
 
 }  // namespace
@@ -251,7 +344,7 @@ int main(int argc, char** argv) {
               static_cast<long>(link.basis.frequency_hz.size()), link.basis.frequency_hz(0),
               link.basis.frequency_hz(link.basis.frequency_hz.size() - 1));
   Parts peer;
-  double peer_explicit = 0, peer_implicit = 0;
+  double peer_explicit = 0, peer_implicit = 0, peer_sparse = 0;
   bool have_peer = false;
   for (const int n : settings.modes) {
     const flexmbs::sid::ReducedBody body = flexmbs::validation::FirstModes(link.body, n);
@@ -290,22 +383,51 @@ int main(int argc, char** argv) {
                     parts.model_jacobian / peer.model_jacobian, 1e6 * parts.lu, parts.lu / peer.lu);
       }
       std::printf("\n");
-      const Run explicit_run = Integrate(*system, y0, flexmbs::mbs::OdeMethod::kExplicit, settings);
+      // The Newton systems' costs: a setup with a fresh Jacobian, a refactorisation (gamma
+      // changed), one solve; dense = model Jacobian + LU, LU, LU solve.
+      std::printf("  Newton [us]: sparse evaluate %.3g, factorize %.3g, solve %.3g (augmented %ld x %ld)",
+                  1e6 * parts.sparse_evaluate, 1e6 * parts.sparse_factorize, 1e6 * parts.sparse_solve,
+                  static_cast<long>(system->num_velocities() + system->num_constraints()),
+                  static_cast<long>(system->num_velocities() + system->num_constraints()));
+      if (parts.lu > 0) {
+        std::printf("; dense (ARKODE) model Jacobian %.3g, setup %.3g, solve %.3g; dense / sparse: Jacobian + setup "
+                    "%.3g, setup %.3g, solve %.3g",
+                    1e6 * parts.model_jacobian, 1e6 * parts.dense_setup, 1e6 * parts.dense_solve,
+                    (parts.model_jacobian + parts.dense_setup) / (parts.sparse_evaluate + parts.sparse_factorize),
+                    parts.dense_setup / parts.sparse_factorize, parts.dense_solve / parts.sparse_solve);
+      }
+      std::printf("\n");
+      const Run explicit_run =
+          Integrate(*system, y0, flexmbs::mbs::OdeMethod::kExplicit, flexmbs::mbs::OdeNewton::kDense, settings);
       if (!have_peer && !explicit_run.failed)
         peer_explicit = static_cast<double>(explicit_run.statistics.steps) / explicit_run.wall;
       PrintRun("explicit", explicit_run, parts, peer_explicit);
+      double dense_rate = 0.0;
       if (system->state_size() <= settings.implicit_max_state) {
-        const Run implicit_run =
-            Integrate(*system, y0, flexmbs::mbs::OdeMethod::kImplicit, settings);
+        const Run implicit_run = Integrate(*system, y0, flexmbs::mbs::OdeMethod::kImplicit,
+                                           flexmbs::mbs::OdeNewton::kDense, settings);
         if (!have_peer && !implicit_run.failed)
           peer_implicit = static_cast<double>(implicit_run.statistics.steps) / implicit_run.wall;
-        PrintRun("implicit", implicit_run, parts, peer_implicit);
+        PrintRun("dense", implicit_run, parts, peer_implicit);
+        if (!implicit_run.failed) dense_rate = static_cast<double>(implicit_run.statistics.steps) / implicit_run.wall;
       } else {
-        std::printf(
-            "  implicit skipped (state > %ld: a DQ Jacobian of %ld rhs and a dense LU per "
-            "refresh)\n",
-            static_cast<long>(settings.implicit_max_state),
-            static_cast<long>(system->state_size()));
+        std::printf("  dense Newton skipped (state > %ld: a dense LU of the state per setup)\n",
+                    static_cast<long>(settings.implicit_max_state));
+      }
+      const Run sparse_run = Integrate(*system, y0, flexmbs::mbs::OdeMethod::kImplicit,
+                                       flexmbs::mbs::OdeNewton::kSparse, settings);
+      if (!have_peer && !sparse_run.failed)
+        peer_sparse = static_cast<double>(sparse_run.statistics.steps) / sparse_run.wall;
+      PrintRun("sparse", sparse_run, parts, peer_sparse);
+      if (dense_rate > 0.0 && !sparse_run.failed && sparse_run.statistics.steps > 0) {
+        std::printf("  sparse / dense Newton: %.3g x the steps per second\n",
+                    static_cast<double>(sparse_run.statistics.steps) / sparse_run.wall / dense_rate);
+      }
+      if (parts.lu > 0 && !sparse_run.failed && sparse_run.statistics.steps > 0) {
+        const double sparse_model = 1.0 / ModelledSecondsPerStep(sparse_run.statistics, parts, true);
+        const double dense_model = 1.0 / ModelledSecondsPerStep(sparse_run.statistics, parts, false);
+        std::printf("  modelled at the sparse run's counts: sparse %.3g, dense %.3g steps/s: sparse / dense %.3g\n",
+                    sparse_model, dense_model, sparse_model / dense_model);
       }
       have_peer = true;
       std::fflush(stdout);

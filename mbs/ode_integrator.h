@@ -15,11 +15,28 @@ namespace flexmbs::mbs {
 /// The methods.
 enum class OdeMethod {
   kExplicit,  ///< Dormand-Prince 5(4), ERKStep (ARKODE_DORMAND_PRINCE_7_4_5)
-  kImplicit,  ///< L-stable ESDIRK order 4 (ARKODE_ARK436L2SA_DIRK_6_3_4), Newton, dense LU
+  kImplicit,  ///< L-stable ESDIRK order 4 (ARKODE_ARK436L2SA_DIRK_6_3_4), Newton (OdeNewton)
 };
 
 /// "explicit" / "implicit".
 std::string_view OdeMethodName(OdeMethod method);
+
+/// A solver of the implicit method's Newton systems (I - gamma df/dy) d = r that forms and
+/// factorises that matrix itself, from structure the problem knows (the multibody system's sparse
+/// augmented system, mbs/kkt_newton_solver.h), instead of the dense LU of a dense df/dy. ARKODE
+/// drives it as its dense direct solver: Evaluate where it would evaluate the Jacobian (the first
+/// step, every 51 steps, after a Newton convergence failure), Factorize at each setup (here: every
+/// change of gamma), Solve at every Newton iteration. Each may throw (as OdeProblem's callbacks).
+class OdeNewtonSolver {
+ public:
+  virtual ~OdeNewtonSolver() = default;
+  /// Evaluates and keeps df/dy (or the pieces it is made of) at (t, y).
+  virtual void Evaluate(double t, Eigen::Ref<const Eigen::VectorXd> y) = 0;
+  /// Factorises I - gamma df/dy with the kept Jacobian; gamma = h a_ii [s] > 0.
+  virtual void Factorize(double gamma) = 0;
+  /// Overwrites r (size of the state) with (I - gamma df/dy)^-1 r of the last Factorize.
+  virtual void Solve(Eigen::Ref<Eigen::VectorXd> r) = 0;
+};
 
 /// The problem: y' = f(t, y), optional events g_k(t, y) (a root is an event), optional
 /// projection of y after each accepted step (constraint manifolds), optional Jacobian df/dy.
@@ -42,6 +59,8 @@ struct OdeProblem {
   std::function<void(double t, Eigen::Ref<const Eigen::VectorXd> y,
                      Eigen::Ref<Eigen::MatrixXd> dfdy)>
       jacobian;
+  /// Implicit method only, may be null: the problem's own Newton solver (OdeNewton::kSparse).
+  std::shared_ptr<OdeNewtonSolver> newton_solver;
 };
 
 /// Where the implicit method's df/dy comes from.
@@ -53,10 +72,27 @@ enum class OdeJacobian {
 /// "model" or "difference_quotients" (the scene's `simulation.jacobian` values).
 std::string_view OdeJacobianName(OdeJacobian jacobian);
 
+/// How the implicit method solves its Newton systems.
+enum class OdeNewton {
+  kAuto,    ///< kSparse where it is faster: a problem with a newton_solver, the model Jacobian and
+            ///< size >= kSparseNewtonFromSize; kDense otherwise
+  kDense,   ///< dense LU of I - gamma df/dy (SUNLinSol_Dense), df/dy per OdeJacobian
+  kSparse,  ///< OdeProblem::newton_solver (as a SUNDIALS direct linear solver)
+};
+
+/// "auto", "dense" or "sparse" (the scene's `simulation.newton` values).
+std::string_view OdeNewtonName(OdeNewton newton);
+
+/// The state size from which OdeNewton::kAuto takes the problem's newton_solver: measured on the
+/// flexible chain of bench_mbs_speed (bench/README.md, "Sparse Newton"), where the sparse
+/// augmented solve of mbs/kkt_newton_solver.h overtakes the dense LU.
+inline constexpr Eigen::Index kSparseNewtonFromSize = 40;
+
 /// Settings.
 struct OdeOptions {
   OdeMethod method = OdeMethod::kExplicit;
   OdeJacobian jacobian = OdeJacobian::kModel;  ///< implicit only
+  OdeNewton newton = OdeNewton::kAuto;         ///< implicit only
   double relative_tolerance = 1e-6;
   double absolute_tolerance = 1e-9;
   double initial_step = 0.0;  ///< [s], 0: chosen by ARKODE (also after Reset)
@@ -74,6 +110,8 @@ struct OdeStatistics {
   long error_test_failures = 0;
   long newton_iterations = 0;     ///< implicit only
   long jacobian_evaluations = 0;  ///< implicit only
+  long newton_setups = 0;         ///< implicit only: factorisations of I - gamma df/dy
+  bool sparse_newton = false;     ///< implicit only: the Newton systems went to OdeProblem::newton_solver
 };
 
 /// Why Advance returned.
@@ -83,7 +121,8 @@ enum class OdeStop { kReachedTime, kEvent };
 class OdeIntegrator {
  public:
   /// Starts at (t0, y0). Throws InputError (one line) for bad options (non-positive
-  /// tolerances, negative steps, ...).
+  /// tolerances, negative steps, OdeNewton::kSparse without a newton_solver or with difference
+  /// quotients, ...).
   OdeIntegrator(OdeProblem problem, const OdeOptions& options, double t0,
                 const Eigen::VectorXd& y0);
   ~OdeIntegrator();

@@ -121,7 +121,7 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
 
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
-                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "redundant_pivot"});
+                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot"});
   SimulationOptions options;
   options.end_time = node.Required("end_time").AsDouble();
   if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
@@ -146,6 +146,17 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
       options.integrator.jacobian = OdeJacobian::kDifferenceQuotients;
     } else if (name != "model") {
       jacobian.Fail(fmt::format("'{}' must be one of: model, difference_quotients", name));
+    }
+  }
+  if (node.Has("newton")) {
+    const YamlNode newton = node.Required("newton");
+    const std::string name = newton.AsString();
+    if (name == "dense") {
+      options.integrator.newton = OdeNewton::kDense;
+    } else if (name == "sparse") {
+      options.integrator.newton = OdeNewton::kSparse;
+    } else if (name != "auto") {
+      newton.Fail(fmt::format("'{}' must be one of: auto, dense, sparse", name));
     }
   }
   auto positive = [&](std::string_view key, double* value) {

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "core/error.h"
 #include "mbs/constraint_solver.h"
+#include "mbs/kkt_newton_solver.h"
 #include "mbs/simulation_error.h"
 #include "mbs/system_jacobian.h"
 
@@ -51,6 +53,28 @@ std::vector<double> OutputTimes(const SimulationOptions& options) {
   return times;
 }
 
+/// The implicit method's sparse Newton solve (kkt_newton_solver.h) for Simulate: a SimulationError
+/// of the model's own evaluation is already explained (as from the other callbacks).
+class SimulationNewtonSolver final : public OdeNewtonSolver {
+ public:
+  SimulationNewtonSolver(const MultibodySystem& system, bool& model_failed)
+      : solver_(system), model_failed_(model_failed) {}
+  void Evaluate(double t, Eigen::Ref<const Eigen::VectorXd> y) override {
+    try {
+      solver_.Evaluate(t, y);
+    } catch (const SimulationError&) {
+      model_failed_ = true;
+      throw;
+    }
+  }
+  void Factorize(double gamma) override { solver_.Factorize(gamma); }
+  void Solve(Eigen::Ref<Eigen::VectorXd> r) override { solver_.Solve(r); }
+
+ private:
+  KktNewtonSolver solver_;
+  bool& model_failed_;
+};
+
 }  // namespace
 
 SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
@@ -90,6 +114,9 @@ SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& 
       throw;
     }
   };
+  if (options.integrator.method == OdeMethod::kImplicit) {
+    problem.newton_solver = std::make_shared<SimulationNewtonSolver>(system, model_failed);
+  }
   problem.project = [&](double t, Eigen::Ref<Eigen::VectorXd> y) {
     try {
       const ProjectionResult result = ProjectPositions(system, t, y, options.projection);

@@ -49,7 +49,9 @@ struct SimulationStatistics {
 /// order; MultibodySystem::ConstraintLoad turns them into loads).
 using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda)>;
 
-/// Integrates `system` from y0 at options.start_time to options.end_time. Sets the system's
+/// Integrates `system` from y0 at options.start_time to options.end_time; the implicit method
+/// solves its Newton systems as options.integrator.newton says, sparse by KktNewtonSolver
+/// (mbs/kkt_newton_solver.h), dense with the model Jacobian (SystemJacobian). Sets the system's
 /// constraint settings from the options and its dropped (redundant) constraint rows from the
 /// initial state (MakeConsistent). Throws InputError for bad options or inconsistent initial
 /// conditions, SimulationError (with the time) when the integration fails; a failure near a

@@ -17,21 +17,6 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-/// L(e) (4 x 3): de/dt = 1/2 e (x) (0, w_B) = L(e) w_B (EulerParameterRate, linear in w_B). The
-/// same L moves e by a rotation increment: e (x) exp(dtheta / 2) = e + L(e) dtheta + O(dtheta^2).
-Eigen::Matrix<double, 4, 3> RateByAngularVelocity(const Eigen::Vector4d& e) {
-  Eigen::Matrix<double, 4, 3> L;
-  for (int k = 0; k < 3; ++k) L.col(k) = EulerParameterRate(e, Eigen::Vector3d::Unit(k));
-  return L;
-}
-
-/// d/de of 1/2 e (x) (0, w_B) (4 x 4; linear in e).
-Eigen::Matrix4d RateByEulerParameters(const Eigen::Vector3d& w_B) {
-  Eigen::Matrix4d D;
-  for (int i = 0; i < 4; ++i) D.col(i) = EulerParameterRate(Eigen::Vector4d::Unit(i), w_B);
-  return D;
-}
-
 /// The x' rows (exact): p' = v, e' = L(e) w_B, q' = qdot.
 void SetPositionRows(const MultibodySystem& system, const ConstVectorRef& y, Eigen::Ref<MatrixXd> dfdy) {
   const Index nx = system.num_positions();
@@ -81,6 +66,18 @@ void SetRigidVelocityColumnsByDifferences(const MultibodySystem& system, double 
 }
 
 }  // namespace
+
+Eigen::Matrix<double, 4, 3> RateByAngularVelocity(const Eigen::Vector4d& e) {
+  Eigen::Matrix<double, 4, 3> L;
+  for (int k = 0; k < 3; ++k) L.col(k) = EulerParameterRate(e, Eigen::Vector3d::Unit(k));
+  return L;
+}
+
+Eigen::Matrix4d RateByEulerParameters(const Eigen::Vector3d& w_B) {
+  Eigen::Matrix4d D;
+  for (int i = 0; i < 4; ++i) D.col(i) = EulerParameterRate(Eigen::Vector4d::Unit(i), w_B);
+  return D;
+}
 
 void SystemJacobian(const MultibodySystem& system, double t, const ConstVectorRef& y, Eigen::Ref<MatrixXd> dfdy) {
   const Index nx = system.num_positions(), nu = system.num_velocities(), m = system.num_constraints();

@@ -27,6 +27,14 @@
 
 namespace flexmbs::mbs {
 
+/// L(e) (4 x 3): de/dt = 1/2 e (x) (0, w_B) = L(e) w_B (EulerParameterRate, linear in w_B). The
+/// same L moves e by a rotation increment: e (x) exp(dtheta / 2) = e + L(e) dtheta + O(dtheta^2).
+Eigen::Matrix<double, 4, 3> RateByAngularVelocity(const Eigen::Vector4d& e);
+
+/// d/de of 1/2 e (x) (0, w_B) (4 x 4, linear in e): 1/2 the right product by (0, w_B), skew, with
+/// square -|w_B|^2 / 4 I.
+Eigen::Matrix4d RateByEulerParameters(const Eigen::Vector3d& w_B);
+
 /// Fills dfdy (state_size() x state_size()) at (t, y) as in the file comment: 1 + 6 B
 /// evaluations of the accelerations (B bodies) and one more factorisation of M and S. Throws
 /// SimulationError as MultibodySystem::Accelerations does.

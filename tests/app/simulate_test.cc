@@ -238,28 +238,38 @@ TEST_F(SimulateTest, FailedIntegrationStopsWithTheTimeAndKeepsItsResults) {
   EXPECT_LT(time(time.size() - 1), 1.0);
 }
 
-// The implicit method's Jacobian (model or difference quotients) is in the results' provenance,
-// and both give the pendulum's swing alike.
-TEST_F(SimulateTest, ImplicitRunRecordsItsJacobian) {
+// The implicit method's Jacobian (model or difference quotients) and Newton solve are in the
+// results' provenance, the report says which solve ran (auto: dense for this small pendulum), and
+// all give the pendulum's swing alike.
+TEST_F(SimulateTest, ImplicitRunRecordsItsJacobianAndNewtonSolve) {
+  struct Run {
+    std::string jacobian, newton, newton_used;
+  };
   std::vector<double> tip_z;
-  for (const std::string jacobian : {"model", "difference_quotients"}) {
+  for (const Run& r : {Run{"model", "auto", "dense"}, Run{"difference_quotients", "auto", "dense"},
+                       Run{"model", "sparse", "sparse"}}) {
     std::string scene = kPendulum;
     scene.replace(scene.find("simulation: {"), std::string("simulation: {").size(),
-                  "simulation: {method: implicit, jacobian: " + jacobian + ", ");
-    const Outcome run = Simulate(scene);
+                  "simulation: {method: implicit, jacobian: " + r.jacobian + ", newton: " + r.newton + ", ");
+    const Outcome run = Simulate(scene, {"--json"});
     ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    EXPECT_EQ(report["newton"], r.newton_used) << r.jacobian << ", " << r.newton;
+    EXPECT_GT(report["newton_iterations"].get<long>(), 0);
+    EXPECT_GT(report["newton_setups"].get<long>(), 0);
     const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
     const flexmbs::h5::Group provenance = file.root().OpenGroup("provenance");
     const std::vector<std::string> keys = provenance.ReadStrings("keys"), values = provenance.ReadStrings("values");
     const auto key = std::find(keys.begin(), keys.end(), "integrator");
     ASSERT_NE(key, keys.end());
     EXPECT_EQ(values[static_cast<std::size_t>(key - keys.begin())],
-              "implicit, rtol 1e-10, atol 1e-12, jacobian " + jacobian);
+              "implicit, rtol 1e-10, atol 1e-12, jacobian " + r.jacobian + ", newton " + r.newton);
     const Eigen::MatrixXd tip = file.root().OpenGroup("bodies").OpenGroup("rod").OpenGroup("markers").ReadMatrix("tip");
     tip_z.push_back(tip(tip.rows() - 1, 2));
   }
-  // Both runs meet the same tolerances: the tip's end height agrees to their size.
+  // All runs meet the same tolerances: the tip's end height agrees to their size.
   EXPECT_NEAR(tip_z[0], tip_z[1], 1e-7);
+  EXPECT_NEAR(tip_z[0], tip_z[2], 1e-7);
 }
 
 // Bad scenes: one line naming the scene file and item, exit 2, no results file.
