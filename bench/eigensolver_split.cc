@@ -106,9 +106,7 @@ int main(int argc, char** argv) {
   options.num_modes = modes;
   const auto solver = flexmbs::reduction::MakeEigensolver("spectra");
   const flexmbs::reduction::EigenSolution s = solver->Solve(K, M, options);
-  const char* check = s.missed_mode_check == flexmbs::reduction::MissedModeCheck::kSturmCount        ? "sturm"
-                      : s.missed_mode_check == flexmbs::reduction::MissedModeCheck::kDeflatedLanczos ? "deflated_lanczos"
-                                                                                                      : "none";
+  const std::string check(flexmbs::reduction::MissedModeCheckName(s.missed_mode_check));
   std::printf(
       "{\"free_dofs\": %ld, \"modes\": %ld, \"seconds\": %.6f, \"factorization_seconds\": %.6f, "
       "\"sturm_seconds\": %.6f, \"krylov_seconds\": %.6f, \"factorizations\": %d, \"operator_applications\": %d, "
@@ -116,6 +114,6 @@ int main(int argc, char** argv) {
       "\"lowest_hz\": %.10g, \"highest_hz\": %.10g}\n",
       n_free, static_cast<long>(s.eigenvalues.size()), s.seconds, s.factorization_seconds, s.sturm_seconds,
       s.krylov_seconds, s.factorizations, s.operator_applications, s.krylov_runs, s.restarts, s.refinement_steps,
-      check, flexmbs::reduction::FrequenciesHz(s)(0), flexmbs::reduction::FrequenciesHz(s)(s.eigenvalues.size() - 1));
+      check.c_str(), flexmbs::reduction::FrequenciesHz(s)(0), flexmbs::reduction::FrequenciesHz(s)(s.eigenvalues.size() - 1));
   return 0;
 }

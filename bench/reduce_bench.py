@@ -163,7 +163,7 @@ def run_flexmbs(a, body, solver, out_dir, tag):
             "mesh_s": j["seconds"]["mesh"], "assembly_s": j["seconds"]["assembly"],
             "peak_rss_mb": sum(rank_rss) if rank_rss else r["peak_rss_mb"], "rank_rss_mb": rank_rss,
             "frequencies_hz": normal, "modes": j["modes"], "dofs": j["dofs"], "petsc": petsc_log(log),
-            "mpi": j.get("mpi")}
+            "mpi": j.get("mpi"), "eigensolver": j["seconds"].get("eigensolver")}
 
 
 def run_scipy(a, prefix, fixed_file):

@@ -35,6 +35,8 @@ std::string_view MissedModeCheckName(MissedModeCheck check) {
       return "sturm_count";
     case MissedModeCheck::kDeflatedLanczos:
       return "deflated_lanczos";
+    case MissedModeCheck::kBlockKrylov:
+      return "block_krylov";
     case MissedModeCheck::kAuto:
       return "auto";
   }

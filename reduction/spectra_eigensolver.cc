@@ -15,6 +15,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "reduction/block_krylov_check.h"
 #include "reduction/shifted_factorization.h"
 
 namespace flexmbs::reduction {
@@ -46,6 +47,8 @@ constexpr double kAutoSturmMaxFlops = 5e9;
 constexpr Index kInitialBandNev = 20;
 // Pairs sought by a deflated verification run.
 constexpr Index kVerificationNev = 4;
+// Seed of the block check's random vectors (plus the run number).
+constexpr unsigned kBlockCheckSeed = 0xb10c0000u;
 // Problems that need nev >= DOF - 1 cannot use Lanczos; they are solved densely up to this size.
 constexpr Index kMaxDenseDofs = 4000;
 
@@ -391,7 +394,7 @@ EigenSolution SpectraEigensolver::SolveWith(const SparseMatrix& K, const SparseM
   MissedModeCheck check = options.check_missed_modes;
   if (check == MissedModeCheck::kAuto) {
     check = factor.FactorFlops() <= kAutoSturmMaxFlops ? MissedModeCheck::kSturmCount
-                                                        : MissedModeCheck::kDeflatedLanczos;
+                                                        : MissedModeCheck::kBlockKrylov;
   }
   solution.missed_mode_check = check;
 
@@ -424,31 +427,42 @@ EigenSolution SpectraEigensolver::SolveWith(const SparseMatrix& K, const SparseM
     double cut = std::numeric_limits<double>::quiet_NaN();  // where the missed-mode check is made
     Index cut_count = -1;                                     // Sturm count at `cut`
     bool verifying = false;  // the last run was a deflated verification run below `cut`
+    bool block_undecided = false;  // the block check could not decide: the Lanczos check does
+    Eigen::MatrixXd missed(n, 0);  // pairs below the cut the block check found, to add next
     Index below_cut_before = 0;
     for (int run = 0;; ++run) {
       if (run == kMaxKrylovRuns) {
         throw InputError(fmt::format("eigenproblem: modes still missing after {} Lanczos runs; raise "
                                      "max_iterations or tolerance", kMaxKrylovRuns));
       }
-      nev = std::min(nev, n - basis.cols() - 1);
-      if (nev < 1) {
-        dense = true;  // the Krylov bases exhausted the model: it is small, solve it densely
-        break;
+      Eigen::MatrixXd new_vectors;
+      if (missed.cols() > 0) {
+        new_vectors.swap(missed);
+        missed.resize(n, 0);
+      } else {
+        nev = std::min(nev, n - basis.cols() - 1);
+        if (nev < 1) {
+          dense = true;  // the Krylov bases exhausted the model: it is small, solve it densely
+          break;
+        }
+        const auto krylov_start = std::chrono::steady_clock::now();
+        KrylovRun krylov = RunLanczos(factor, M, basis, nev, options, static_cast<unsigned>(run), &solves);
+        ++solution.krylov_runs;
+        solution.restarts += krylov.restarts;
+        if (krylov.vectors.cols() == 0) {
+          throw InputError(fmt::format("eigenproblem: Lanczos did not converge within max_iterations = {} "
+                                       "restarts (tolerance {:g}); raise max_iterations", options.max_iterations,
+                                       options.tolerance));
+        }
+        new_vectors.swap(krylov.vectors);
+        solution.krylov_seconds += Seconds(krylov_start);
       }
-      const auto krylov_start = std::chrono::steady_clock::now();
-      const KrylovRun krylov = RunLanczos(factor, M, basis, nev, options, static_cast<unsigned>(run), &solves);
-      ++solution.krylov_runs;
-      solution.restarts += krylov.restarts;
-      if (krylov.vectors.cols() == 0) {
-        throw InputError(fmt::format("eigenproblem: Lanczos did not converge within max_iterations = {} "
-                                     "restarts (tolerance {:g}); raise max_iterations", options.max_iterations,
-                                     options.tolerance));
-      }
-      Eigen::MatrixXd extended(n, basis.cols() + krylov.vectors.cols());
-      extended << basis, krylov.vectors;
+      const auto ritz_start = std::chrono::steady_clock::now();
+      Eigen::MatrixXd extended(n, basis.cols() + new_vectors.cols());
+      extended << basis, new_vectors;
       ritz = RayleighRitz(K, M, extended);
       basis = ritz.vectors;
-      solution.krylov_seconds += Seconds(krylov_start);
+      solution.krylov_seconds += Seconds(ritz_start);
       CheckNotSingular(ritz.values, sigma, automatic, lambda_scale);
       const Index found = ritz.values.size();
 
@@ -518,6 +532,24 @@ EigenSolution SpectraEigensolver::SolveWith(const SparseMatrix& K, const SparseM
         if (below_cut == cut_count) break;
         nev = cut_count - below_cut + GuardPairs(cut_count - below_cut);  // missed modes: deflated run
         continue;
+      }
+      if (check == MissedModeCheck::kBlockKrylov && !block_undecided) {
+        // Block Lanczos from random vectors, deflated against everything found.
+        const auto check_start = std::chrono::steady_clock::now();
+        BlockCheckOptions block;
+        block.tolerance = options.tolerance;
+        block.seed = kBlockCheckSeed + static_cast<unsigned>(run);
+        BlockCheckResult result = CheckForMissedModes(factor, M, basis, cut, block);
+        solves += static_cast<int>(result.columns);
+        ++solution.krylov_runs;
+        solution.krylov_seconds += Seconds(check_start);
+        if (result.verdict == BlockCheckVerdict::kNoneMissed) break;
+        if (result.verdict == BlockCheckVerdict::kMissed) {
+          missed.swap(result.missed_vectors);  // added by the next pass; then checked again
+          continue;
+        }
+        block_undecided = true;
+        solution.missed_mode_check = MissedModeCheck::kDeflatedLanczos;
       }
       // kDeflatedLanczos: one more run, deflated against everything found, from a new start.
       verifying = true;

@@ -9,8 +9,10 @@ namespace flexmbs::reduction {
 /// The serial backend "spectra": implicitly restarted Lanczos (Spectra 1.0) in shift-invert
 /// mode, (K - sigma M)^{-1} M, M inner product, with a CHOLMOD factorisation of K - sigma M
 /// (supernodal Cholesky when positive definite, else simplicial LDL^T). Missed modes are found
-/// again by a deflated Lanczos run after a Sturm count; every pair is then Rayleigh-Ritz
-/// refined and checked. Problems too small for Lanczos (nev >= DOF - 1) are solved densely.
+/// again by a deflated Lanczos run after a Sturm count, or by the block Krylov check
+/// (reduction/block_krylov_check.h), which returns them itself; every pair is then
+/// Rayleigh-Ritz refined and checked. Problems too small for Lanczos (nev >= DOF - 1) are
+/// solved densely.
 /// SolveFactorized uses the caller's Cholesky factorisation of K - sigma M as its shift-invert
 /// operator instead of making one (UsesGivenFactorization() is true).
 std::unique_ptr<Eigensolver> MakeSpectraEigensolver();

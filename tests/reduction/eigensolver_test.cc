@@ -186,10 +186,12 @@ class SpectraEigensolverWith : public ::testing::TestWithParam<MissedModeCheck> 
 };
 
 INSTANTIATE_TEST_SUITE_P(Checks, SpectraEigensolverWith,
-                         ::testing::Values(MissedModeCheck::kSturmCount, MissedModeCheck::kDeflatedLanczos),
+                         ::testing::Values(MissedModeCheck::kSturmCount, MissedModeCheck::kDeflatedLanczos,
+                                           MissedModeCheck::kBlockKrylov),
                          [](const ::testing::TestParamInfo<MissedModeCheck>& param) {
-                           return param.param == MissedModeCheck::kSturmCount ? std::string("SturmCount")
-                                                                              : std::string("DeflatedLanczos");
+                           return param.param == MissedModeCheck::kSturmCount        ? std::string("SturmCount")
+                                  : param.param == MissedModeCheck::kDeflatedLanczos ? std::string("DeflatedLanczos")
+                                                                                     : std::string("BlockKrylov");
                          });
 
 TEST_P(SpectraEigensolverWith, ClampedCantileverMatchesDenseSolver) {

@@ -1,0 +1,264 @@
+#include "reduction/block_krylov_check.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "core/error.h"
+#include "reduction/shifted_factorization.h"
+
+namespace flexmbs::reduction {
+namespace {
+
+using Index = Eigen::Index;
+using Matrix = Eigen::MatrixXd;
+
+// A new Krylov direction whose M-norm after orthogonalisation is below this fraction of the
+// largest column of T Q_k is taken as already in the space (the space is invariant in it):
+// six orders above the round-off that two Gram-Schmidt passes leave.
+constexpr double kRankTolerance = 1e-10;
+// The hidden-component bound is evaluated at lambda - sigma = (cut - sigma) 2^(-g/4),
+// g = 0 .. kBoundGridPoints - 1 (down to 2.4e-4 of the distance from the shift to the cut).
+// It falls towards the shift like (lambda - sigma)^(steps); its largest value was at the cut in
+// every case measured.
+constexpr int kBoundGridPoints = 49;
+
+// Removes the span of the M-orthonormal X from W (two passes); adds the squared M-norms of
+// the removed parts, per column, to `removed`.
+void Deflate(const Matrix& X, const Matrix& MX, Matrix& W, Eigen::RowVectorXd& removed) {
+  if (X.cols() == 0) return;
+  for (int pass = 0; pass < 2; ++pass) {
+    const Matrix c = MX.transpose() * W;
+    W -= X * c;
+    removed += c.colwise().squaredNorm();
+  }
+}
+
+// W = Q B with Q M-orthonormal (r columns), from the eigen-decomposition of the Gram matrix.
+// `removed`: the squared M-norms, per column, of what orthogonalisation took out of W, so that
+// reference = the largest M-norm W had before; directions of M-norm <= kRankTolerance *
+// reference are dropped (r < W.cols()).
+struct MOrthonormalized {
+  Matrix Q;
+  Matrix MQ;
+  Matrix B;  // r x W.cols()
+};
+MOrthonormalized MOrthonormalize(const Eigen::SparseMatrix<double>& M, const Matrix& W,
+                                 const Eigen::RowVectorXd& removed) {
+  const Matrix MW = M * W;
+  Matrix G = W.transpose() * MW;
+  G = 0.5 * (G + G.transpose()).eval();
+  const double reference_squared = (removed + G.diagonal().transpose().cwiseMax(0.0)).maxCoeff();
+  Eigen::SelfAdjointEigenSolver<Matrix> gram(G);
+  const Eigen::VectorXd& g = gram.eigenvalues();  // ascending
+  const double floor = kRankTolerance * kRankTolerance * reference_squared;
+  Index first = 0;
+  while (first < g.size() && !(g(first) > floor)) ++first;
+  const Index r = g.size() - first;
+  const Matrix U = gram.eigenvectors().rightCols(r);
+  const Eigen::VectorXd root = g.tail(r).cwiseSqrt();
+  const Matrix scale = U * root.cwiseInverse().asDiagonal();
+  return {W * scale, MW * scale, root.asDiagonal() * U.transpose()};
+}
+
+}  // namespace
+
+DeflatedBlockLanczos::DeflatedBlockLanczos(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
+                                           const Matrix& found, Matrix start)
+    : factor_(factor), M_(M), X_(found), start_(std::move(start)) {
+  FLEXMBS_CHECK(factor.ok() && factor.rows() == M.rows() && found.rows() == M.rows() && start_.rows() == M.rows(),
+                "DeflatedBlockLanczos: factorisation, M, found modes and start block must be of one size");
+  MX_ = M * X_;
+  Eigen::RowVectorXd removed = Eigen::RowVectorXd::Zero(start_.cols());
+  Deflate(X_, MX_, start_, removed);
+  MOrthonormalized first = MOrthonormalize(M, start_, removed);
+  start_coordinates_ = std::move(first.B);
+  blocks_.push_back(std::move(first.Q));
+  m_blocks_.push_back(std::move(first.MQ));
+  next_coupling_ = Matrix(blocks_.back().cols(), 0);
+}
+
+bool DeflatedBlockLanczos::Extend() {
+  const Index w = blocks_.back().cols();
+  if (w == 0) return false;
+  const Index n = M_.rows();
+  const Index d_old = ritz_values_.size();
+  const Index d = d_old + w;
+
+  Matrix W(n, w);
+  factor_.Solve(m_blocks_.back().data(), W.data(), w);  // T Q_k before deflation
+  columns_solved_ += w;
+  // Two passes of block classical Gram-Schmidt against the found modes (the deflation) and the
+  // Krylov blocks; the coefficients along the blocks are the new block column of H.
+  Matrix coefficients = Matrix::Zero(d, w);
+  Eigen::RowVectorXd removed = Eigen::RowVectorXd::Zero(w);  // squared M-norms taken out
+  for (int pass = 0; pass < 2; ++pass) {
+    Deflate(X_, MX_, W, removed);
+    Index offset = 0;
+    for (std::size_t j = 0; j < blocks_.size(); ++j) {
+      const Matrix c = m_blocks_[j].transpose() * W;
+      W -= blocks_[j] * c;
+      coefficients.middleRows(offset, c.rows()) += c;
+      removed += c.colwise().squaredNorm();
+      offset += c.rows();
+    }
+  }
+  MOrthonormalized next = MOrthonormalize(M_, W, removed);
+
+  Matrix H = Matrix::Zero(d, d);
+  H.topLeftCorner(d_old, d_old) = H_;
+  H.middleCols(d_old, w) = coefficients;
+  if (d_old > 0) H.block(d_old, d_old - next_coupling_.cols(), w, next_coupling_.cols()) = next_coupling_;
+  H_ = std::move(H);
+  next_coupling_ = std::move(next.B);
+  blocks_.push_back(std::move(next.Q));
+  m_blocks_.push_back(std::move(next.MQ));
+
+  const Matrix symmetric = 0.5 * (H_ + H_.transpose());
+  Eigen::SelfAdjointEigenSolver<Matrix> ritz(symmetric);
+  ritz_values_ = ritz.eigenvalues().reverse();
+  ritz_coordinates_ = ritz.eigenvectors().rowwise().reverse();
+  return true;
+}
+
+Eigen::VectorXd DeflatedBlockLanczos::RitzResiduals() const {
+  const Index d = ritz_values_.size();
+  if (d == 0 || next_coupling_.rows() == 0) return Eigen::VectorXd::Zero(d);
+  const Index last = blocks_[blocks_.size() - 2].cols();
+  return (next_coupling_ * ritz_coordinates_.bottomRows(last)).colwise().norm().transpose();
+}
+
+Matrix DeflatedBlockLanczos::RitzVectors(const std::vector<Index>& which) const {
+  Matrix S(ritz_values_.size(), static_cast<Index>(which.size()));
+  for (std::size_t j = 0; j < which.size(); ++j) S.col(static_cast<Index>(j)) = ritz_coordinates_.col(which[j]);
+  Matrix Y = Matrix::Zero(M_.rows(), S.cols());
+  Index offset = 0;
+  for (std::size_t b = 0; b + 1 < blocks_.size(); ++b) {
+    Y += blocks_[b] * S.middleRows(offset, blocks_[b].cols());
+    offset += blocks_[b].cols();
+  }
+  return Y;
+}
+
+double DeflatedBlockLanczos::HiddenComponentBound(double mu) const {
+  const Index d = ritz_values_.size();
+  if (d == 0 || next_coupling_.rows() == 0) return 0.0;
+  const Index first = blocks_.front().cols();
+  const Index last = blocks_[blocks_.size() - 2].cols();
+  // B E^T S (mu - Theta)^{-1} S^T E_0 R_0, with H = S Theta S^T.
+  const Matrix G = next_coupling_ * ritz_coordinates_.bottomRows(last);
+  const Matrix C = ritz_coordinates_.topRows(first).transpose() * start_coordinates_;
+  Eigen::VectorXd inverse(d);
+  for (Index j = 0; j < d; ++j) {
+    if (mu == ritz_values_(j)) return std::numeric_limits<double>::infinity();
+    inverse(j) = 1.0 / (mu - ritz_values_(j));
+  }
+  const Matrix F = G * inverse.asDiagonal() * C;
+  return Eigen::JacobiSVD<Matrix>(F).singularValues()(0);
+}
+
+double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, std::uint64_t seed) {
+  const Index n = M.rows();
+  const Index k_max = std::min<Index>(steps, n);
+  FLEXMBS_CHECK(k_max >= 1, "ScaledMassFloorEstimate: no Lanczos step");
+  const Eigen::VectorXd scale = M.diagonal().cwiseSqrt().cwiseInverse();
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  Matrix V(n, k_max);
+  Eigen::VectorXd v(n);
+  for (Index i = 0; i < n; ++i) v(i) = normal(rng);
+  V.col(0) = v.normalized();
+  Matrix H = Matrix::Zero(k_max, k_max);
+  Index k = 0;
+  for (; k < k_max; ++k) {
+    Eigen::VectorXd w = scale.cwiseProduct(M * scale.cwiseProduct(V.col(k)));
+    for (int pass = 0; pass < 2; ++pass) {
+      const Eigen::VectorXd c = V.leftCols(k + 1).transpose() * w;
+      w -= V.leftCols(k + 1) * c;
+      H.col(k).head(k + 1) += c;
+    }
+    const double beta = w.norm();
+    if (k + 1 == k_max || !(beta > kRankTolerance * H(k, k))) break;
+    H(k + 1, k) = beta;
+    V.col(k + 1) = w / beta;
+  }
+  const Index size = k + 1;
+  const Matrix T = H.topLeftCorner(size, size);
+  const double lowest = Eigen::SelfAdjointEigenSolver<Matrix>(0.5 * (T + T.transpose()), Eigen::EigenvaluesOnly)
+                            .eigenvalues()(0);
+  return 0.5 * lowest;
+}
+
+BlockCheckResult CheckForMissedModes(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
+                                     const Matrix& found, double cut, const BlockCheckOptions& options) {
+  const Index n = M.rows();
+  const double sigma = factor.sigma();
+  FLEXMBS_CHECK(cut > sigma, "CheckForMissedModes: the cut must lie above the shift");
+  FLEXMBS_CHECK(options.block_size >= 1 && options.max_steps >= 1 && options.failure_probability > 0.0 &&
+                    options.tolerance > 0.0 && options.scale_steps >= 1,
+                "CheckForMissedModes: bad options");
+  const double mu_cut = 1.0 / (cut - sigma);
+  BlockCheckResult result;
+  const Index p = std::min(options.block_size, n - found.cols());
+  if (p <= 0) {  // nothing outside span(found)
+    result.verdict = BlockCheckVerdict::kNoneMissed;
+    result.failure_probability = 0.0;
+    return result;
+  }
+  result.component_scale = std::sqrt(ScaledMassFloorEstimate(M, options.scale_steps, options.seed ^ 0x5ca1e));
+
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal;
+  const Eigen::VectorXd scale = M.diagonal().cwiseSqrt().cwiseInverse();
+  Matrix start(n, p);
+  for (Index j = 0; j < p; ++j) {
+    for (Index i = 0; i < n; ++i) start(i, j) = scale(i) * normal(rng);
+  }
+  DeflatedBlockLanczos lanczos(factor, M, found, std::move(start));
+
+  for (int step = 0; step < options.max_steps; ++step) {
+    const bool extended = lanczos.Extend();
+    result.steps = lanczos.steps();
+    result.columns = lanczos.columns_solved();
+    const Eigen::VectorXd& mu = lanczos.ritz_values();
+    const Index below = (mu.array() > mu_cut).count();
+    if (below > 0) {
+      // Interlacing: at least `below` eigenvalues of the deflated problem lie below the cut.
+      const Eigen::VectorXd residuals = lanczos.RitzResiduals();
+      bool converged = true;
+      for (Index j = 0; j < below; ++j) converged = converged && residuals(j) <= options.tolerance * mu(j);
+      if (converged) {
+        std::vector<Index> which(static_cast<std::size_t>(below));
+        for (Index j = 0; j < below; ++j) which[static_cast<std::size_t>(j)] = j;
+        result.verdict = BlockCheckVerdict::kMissed;
+        result.missed_vectors = lanczos.RitzVectors(which);
+        result.missed_values = (sigma + mu.head(below).array().inverse()).matrix();
+        return result;
+      }
+      if (!extended) break;
+      continue;
+    }
+    double bound = 0.0;
+    for (int g = 0; g < kBoundGridPoints; ++g) {
+      bound = std::max(bound, lanczos.HiddenComponentBound(mu_cut * std::exp2(0.25 * g)));
+    }
+    result.hidden_component_bound = bound;
+    const double half_p = 0.5 * static_cast<double>(p);
+    const double x = bound * bound / (result.component_scale * result.component_scale);
+    result.failure_probability =
+        x > 0.0 ? std::min(1.0, std::exp(half_p * std::log(0.5 * x) - std::lgamma(half_p + 1.0))) : 0.0;
+    if (result.failure_probability <= options.failure_probability) {
+      result.verdict = BlockCheckVerdict::kNoneMissed;
+      return result;
+    }
+    if (!extended) break;
+  }
+  result.verdict = BlockCheckVerdict::kUndecided;
+  return result;
+}
+
+}  // namespace flexmbs::reduction
