@@ -1,7 +1,6 @@
 #include "reduction/distributed_model.h"
 
-#include <fmt/format.h>
-#include <petscksp.h>
+#include <petscmat.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -160,10 +159,12 @@ struct DistributedModel::State {
 
   std::unique_ptr<RowScatter> K_scatter, M_scatter, consistent_scatter;
 
+  // The eigen-solve's factorisation of K (null: none).
+  Mat K_factor = nullptr;
   // The factorisation for static solves: K without the rows `excluded` (K itself if none).
   std::optional<std::vector<PetscInt>> excluded;
-  Mat K_ff = nullptr;  // owned if a submatrix
-  KSP ksp = nullptr;
+  Mat K_ff = nullptr;    // owned if a submatrix
+  Mat factor = nullptr;  // MUMPS Cholesky factor of K_ff: owned, or K_factor
   std::unique_ptr<RowScatter> ff_scatter;
   std::vector<int> ff_rows;  // rank 0: the mesh DOF of each row of K_ff
 
@@ -219,19 +220,16 @@ struct DistributedModel::State {
     if (excluded && *excluded == rows_out) return;
     DestroyFactor();
     K_ff = rows_out.empty() ? K : Submatrix(K, 1, rows_out);
-    FLEXMBS_PETSC(MatSetOption(K_ff, MAT_SPD, PETSC_TRUE));
-    PC pc;
-    FLEXMBS_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp));
-    FLEXMBS_PETSC(KSPSetOptionsPrefix(ksp, "flexmbs_static_"));
-    FLEXMBS_PETSC(KSPSetOperators(ksp, K_ff, K_ff));
-    FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
-    FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
-    FLEXMBS_PETSC(PCSetType(pc, PCCHOLESKY));
-    FLEXMBS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    FLEXMBS_PETSC(KSPSetUp(ksp));
+    if (rows_out.empty() && K_factor != nullptr) {
+      factor = K_factor;  // the eigen-solve's
+    } else {
+      factor = MumpsCholesky(K_ff, MumpsFactorization::kPositiveDefinite, "flexmbs_static_");
+      ++stats.factorizations;
+      FLEXMBS_CHECK(FactoredPositiveDefinite(factor),
+                    "static solve: MUMPS Cholesky of K_ff failed: K_ff is not positive definite");
+    }
     ff_scatter = std::make_unique<RowScatter>(K_ff);
     excluded = rows_out;
-    ++stats.factorizations;
     if (rank == 0) {
       ff_rows.clear();
       auto next = rows_out.begin();
@@ -254,11 +252,7 @@ struct DistributedModel::State {
     const std::vector<int>& dofs = rank == 0 ? ff_rows : none;
     for (Index j = 0; j < columns; ++j) {
       ff_scatter->Send(F, j, dofs);
-      FLEXMBS_PETSC(KSPSolve(ksp, ff_scatter->input, ff_scatter->output));
-      KSPConvergedReason reason;
-      FLEXMBS_PETSC(KSPGetConvergedReason(ksp, &reason));
-      FLEXMBS_CHECK(reason >= 0, fmt::format("static solve: MUMPS Cholesky of K_ff failed (KSP reason {}): K_ff is not "
-                                             "positive definite", static_cast<int>(reason)));
+      FLEXMBS_PETSC(MatSolve(factor, ff_scatter->input, ff_scatter->output));
       ff_scatter->Receive(rank == 0 ? &X : nullptr, j, dofs);
     }
     stats.static_solves += static_cast<int>(columns);
@@ -267,7 +261,8 @@ struct DistributedModel::State {
 
   void DestroyFactor() {
     ff_scatter.reset();
-    if (ksp != nullptr) KSPDestroy(&ksp);
+    if (factor != nullptr && factor != K_factor) MatDestroy(&factor);
+    factor = nullptr;
     if (K_ff != nullptr && K_ff != K) MatDestroy(&K_ff);
     K_ff = nullptr;
     excluded.reset();
@@ -315,9 +310,10 @@ Eigen::VectorXd DistributedOperator::Diagonal() const {
 
 DistributedModel::DistributedModel(Mat K, Mat M, bool scalar_mass, fem::MeshPart part, fem::MassMatrixKind mass_kind,
                                    std::vector<int> mesh_node, std::vector<int> clamped, Eigen::VectorXd K_diagonal,
-                                   Eigen::VectorXd M_diagonal)
+                                   Eigen::VectorXd M_diagonal, Mat K_factor)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
+  s.K_factor = K_factor;
   PetscMPIInt rank = 0;
   FLEXMBS_PETSC(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   s.rank = rank;
@@ -367,6 +363,7 @@ DistributedModel::~DistributedModel() {
     }
   }
   s.DestroyFactor();
+  if (s.K_factor != nullptr) MatDestroy(&s.K_factor);
   s.K_scatter.reset();
   s.M_scatter.reset();
   s.consistent_scatter.reset();

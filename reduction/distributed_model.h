@@ -31,8 +31,10 @@ double PeakRssMb();
 struct DistributedModelStats {
   int product_columns = 0;            ///< columns multiplied by K, M, |K| or |M|
   double product_seconds = 0.0;       ///< rank 0's wall time in those products [s]
-  int factorizations = 0;             ///< MUMPS Cholesky factorisations of K_ff for static solves
-  int static_solves = 0;              ///< right-hand sides solved with them
+  /// MUMPS Cholesky factorisations of K_ff made for static solves (a given one of the eigen-solve
+  /// is counted there, not here)
+  int factorizations = 0;
+  int static_solves = 0;              ///< right-hand sides solved
   double static_solve_seconds = 0.0;  ///< rank 0's wall time in factorisations and solves [s]
   /// Per rank (on rank 0 only; filled by Finish): its peak resident set size so far [MB].
   std::vector<double> peak_rss_mb;
@@ -46,19 +48,23 @@ struct DistributedModelStats {
 ///    (N x N, M = M_s (x) I_3: 1/9 of M's entries), whose products give the whole M's.
 /// Static solves factorise K_ff (K_oo itself, or a copy with the extra fixed DOF removed) by
 /// MUMPS Cholesky, distributed, once per set of fixed DOF; the factor is kept for the next
-/// solve with the same DOF. A consistent mass for a lumped body is assembled, distributed, when
-/// first asked for. Rank 0 calls the ModelOperators methods; every other rank calls Serve(),
-/// which carries out rank 0's requests until rank 0 calls Finish() or destroys the model.
+/// solve with the same DOF. Given the eigen-solve's factorisation of K (a held body's, at
+/// sigma = 0), the solves with K itself use it instead. A consistent mass for a lumped body is
+/// assembled, distributed, when first asked for. Rank 0 calls the ModelOperators methods; every
+/// other rank calls Serve(), which carries out rank 0's requests until rank 0 calls Finish() or
+/// destroys the model.
 class DistributedModel final : public ModelOperators {
  public:
   /// On every rank; takes K and M (PETSc matrices, as above) and destroys them at the end.
   /// `scalar_mass`: M is M_s. `part`: this rank's elements, for a consistent mass if
   /// `mass_kind` is lumped. On rank 0 only: `mesh_node` (per partition node, its mesh node),
   /// `clamped` (the removed DOF, partition numbering, ascending), and the diagonals of the
-  /// whole K and M in the mesh's numbering.
+  /// whole K and M in the mesh's numbering. `K_factor` (on every rank, or null on every rank):
+  /// a MUMPS Cholesky factorisation of this K (SolveDistributedEigenproblem's `K_factor`), taken
+  /// and destroyed at the end like K and M.
   DistributedModel(_p_Mat* K, _p_Mat* M, bool scalar_mass, fem::MeshPart part, fem::MassMatrixKind mass_kind,
                    std::vector<int> mesh_node, std::vector<int> clamped, Eigen::VectorXd K_diagonal,
-                   Eigen::VectorXd M_diagonal);
+                   Eigen::VectorXd M_diagonal, _p_Mat* K_factor = nullptr);
   /// Collective: rank 0 ends the other ranks' Serve (if Finish has not), then every rank
   /// destroys its matrices and factors.
   ~DistributedModel() override;

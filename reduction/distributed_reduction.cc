@@ -148,6 +148,8 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
   EigenSolution solution;
   Eigen::VectorXd K_diagonal, M_diagonal;
   double gather_seconds = 0.0;
+  // A held body kept for static solves: the eigen-solve's factorisation of K_oo serves them.
+  Mat K_factor = nullptr;
   try {
     if (keep) {
       // What the products after the solve need of the whole matrices: their diagonals and,
@@ -160,8 +162,10 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
       K = RemoveClamped(K, clamped);
       M = RemoveClamped(M, clamped);
     }
-    solution = SolveDistributedEigenproblem(K, M, {}, options, ModesOn::kRankZero, &gather_seconds);
+    solution = SolveDistributedEigenproblem(K, M, {}, options, ModesOn::kRankZero, &gather_seconds,
+                                            keep && !clamped.empty() ? &K_factor : nullptr);
   } catch (...) {
+    if (K_factor != nullptr) MatDestroy(&K_factor);
     MatDestroy(&K);
     MatDestroy(&M);
     if (M_s != nullptr) MatDestroy(&M_s);
@@ -175,7 +179,7 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
     const bool lumped = mass_kind != fem::MassMatrixKind::kConsistent;
     *keep = std::make_unique<DistributedModel>(K, M, M_s != nullptr, lumped ? std::move(part) : fem::MeshPart{},
                                                mass_kind, old_node, clamped, std::move(K_diagonal),
-                                               std::move(M_diagonal));
+                                               std::move(M_diagonal), K_factor);
   } else {
     FLEXMBS_PETSC(MatDestroy(&K));
     FLEXMBS_PETSC(MatDestroy(&M));

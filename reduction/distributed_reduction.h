@@ -48,7 +48,9 @@ struct DistributedSolveStats {
 /// With `keep`, the distributed matrices are not destroyed after the solve but handed, as a
 /// DistributedModel, to `*keep` on every rank (the held body's K_oo and the whole body's M_s,
 /// or the free body's K and M), so that rank 0 can finish the basis and the SID data with
-/// products and static solves while no rank holds K and M whole.
+/// products and static solves while no rank holds K and M whole. For a held body's lowest modes
+/// the eigen-solve then shifts by 0 and its MUMPS factorisation of K_oo goes to the model too
+/// (SolveDistributedEigenproblem's `K_factor`), where it serves the static solves.
 EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
                                     const std::vector<int>& clamped_dofs, const EigenOptions& options,
                                     DistributedSolveStats* stats, std::unique_ptr<DistributedModel>* keep = nullptr);

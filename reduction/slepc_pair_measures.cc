@@ -71,15 +71,19 @@ Eigen::VectorXd GatherVector(Vec x, ModesOn modes_on) {
 }
 
 // Fills residuals, round-off floors and the M-orthonormality error of the pairs (lambda, x),
-// x distributed: the products with K, M, |K| and |M| run where the rows are.
+// x distributed: the products with K, M, |K| and |M| run where the rows are. One copy with
+// absolute values at a time (|K| with the products with K and M, then |M|), keeping |K| |x_j|:
+// they are made while a kept factorisation of K lives (SolveDistributedEigenproblem).
 void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* solution) {
   const Eigen::VectorXd& lambda = solution->eigenvalues;
   const auto n = static_cast<Eigen::Index>(x.size());
-  Mat abs_K = AbsoluteCopy(K), abs_M = AbsoluteCopy(M);
-  Vec kx, mx, abs_x, abs_kx, abs_mx;
+  Vec kx, mx, abs_x, abs_mx;
+  Vec* abs_kx = nullptr;
   FLEXMBS_PETSC(MatCreateVecs(K, &abs_x, &kx));
-  for (Vec* v : {&mx, &abs_kx, &abs_mx}) FLEXMBS_PETSC(VecDuplicate(kx, v));
+  for (Vec* v : {&mx, &abs_mx}) FLEXMBS_PETSC(VecDuplicate(kx, v));
+  FLEXMBS_PETSC(VecDuplicateVecs(kx, static_cast<PetscInt>(n), &abs_kx));
   Eigen::MatrixXd sums(4, n), gram(n, n);
+  Mat abs_A = AbsoluteCopy(K);
   for (Eigen::Index j = 0; j < n; ++j) {
     const Vec xj = x[static_cast<std::size_t>(j)];
     FLEXMBS_PETSC(MatMult(K, xj, kx));
@@ -87,18 +91,24 @@ void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* soluti
     FLEXMBS_PETSC(VecMDot(mx, static_cast<PetscInt>(n), x.data(), gram.col(j).data()));
     FLEXMBS_PETSC(VecCopy(xj, abs_x));
     FLEXMBS_PETSC(VecAbs(abs_x));
-    FLEXMBS_PETSC(MatMult(abs_K, abs_x, abs_kx));
-    FLEXMBS_PETSC(MatMult(abs_M, abs_x, abs_mx));
+    FLEXMBS_PETSC(MatMult(abs_A, abs_x, abs_kx[j]));
     sums(0, j) = SquaredNorm(kx);
     sums(1, j) = SquaredNorm(mx);
     FLEXMBS_PETSC(VecAXPY(kx, -lambda(j), mx));
     sums(2, j) = SquaredNorm(kx);
-    FLEXMBS_PETSC(VecAXPY(abs_kx, std::abs(lambda(j)), abs_mx));
-    sums(3, j) = SquaredNorm(abs_kx);
   }
-  for (Vec* v : {&kx, &mx, &abs_x, &abs_kx, &abs_mx}) FLEXMBS_PETSC(VecDestroy(v));
-  FLEXMBS_PETSC(MatDestroy(&abs_K));
-  FLEXMBS_PETSC(MatDestroy(&abs_M));
+  FLEXMBS_PETSC(MatDestroy(&abs_A));
+  abs_A = AbsoluteCopy(M);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    FLEXMBS_PETSC(VecCopy(x[static_cast<std::size_t>(j)], abs_x));
+    FLEXMBS_PETSC(VecAbs(abs_x));
+    FLEXMBS_PETSC(MatMult(abs_A, abs_x, abs_mx));
+    FLEXMBS_PETSC(VecAXPY(abs_kx[j], std::abs(lambda(j)), abs_mx));
+    sums(3, j) = SquaredNorm(abs_kx[j]);
+  }
+  FLEXMBS_PETSC(MatDestroy(&abs_A));
+  FLEXMBS_PETSC(VecDestroyVecs(static_cast<PetscInt>(n), &abs_kx));
+  for (Vec* v : {&kx, &mx, &abs_x, &abs_mx}) FLEXMBS_PETSC(VecDestroy(v));
   PetscScalar trace_k = 0.0, trace_m = 0.0;
   FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
   FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
@@ -109,5 +119,34 @@ void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* soluti
   solution->orthonormality_error = (gram - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff();
 }
 
+Mat MumpsCholesky(Mat A, MumpsFactorization kind, const char* prefix) {
+  const bool positive_definite = kind == MumpsFactorization::kPositiveDefinite;
+  FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+  FLEXMBS_PETSC(MatSetOption(A, MAT_SPD, positive_definite ? PETSC_TRUE : PETSC_FALSE));
+  Mat factor;
+  FLEXMBS_PETSC(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &factor));
+  FLEXMBS_PETSC(MatSetOptionsPrefix(factor, prefix));
+  if (!positive_definite) {
+    // Without ICNTL(13) = 1 (the root node on ScaLAPACK) MUMPS does not report the inertia on
+    // more than one rank; ICNTL(31) = 1 discards the factors (only the inertia is wanted).
+    FLEXMBS_PETSC(MatMumpsSetIcntl(factor, 13, 1));
+    FLEXMBS_PETSC(MatMumpsSetIcntl(factor, 31, 1));
+  }
+  MatFactorInfo info;
+  FLEXMBS_PETSC(MatFactorInfoInitialize(&info));
+  // MUMPS orders the matrix itself (PETSc's "external" ordering: no permutation given).
+  FLEXMBS_PETSC(MatCholeskyFactorSymbolic(factor, A, nullptr, &info));
+  FLEXMBS_PETSC(MatCholeskyFactorNumeric(factor, A, &info));
+  return factor;
+}
+
+bool FactoredPositiveDefinite(Mat factor) {
+  MatFactorError error = MAT_FACTOR_NOERROR;
+  FLEXMBS_PETSC(MatFactorGetError(factor, &error));
+  if (error != MAT_FACTOR_NOERROR) return false;
+  PetscInt negative = 0;
+  FLEXMBS_PETSC(MatMumpsGetInfog(factor, 12, &negative));
+  return negative == 0;
+}
 
 }  // namespace flexmbs::reduction

@@ -15,14 +15,14 @@
 namespace flexmbs::reduction {
 namespace {
 
-// Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, `nev`
-// pairs (not a band). Purification (one more solve per pair, removing components in M's null
+// Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, the `nev`
+// pairs nearest sigma. Purification (one more solve per pair, removing components in M's null
 // space) only where fixed DOF make M singular: with M positive definite the shift-inverted
-// operator has no such components to remove. For the lowest modes the ST factorises `shifted`
-// (K - sigma M, owned by the caller, who refactorises it for the Sturm count) instead of a copy
-// of its own; a band (spectrum slicing, `shifted` null) moves its shifts itself. MUMPS gets
-// ICNTL(13) = 1 before its analysis: without it (the root node on ScaLAPACK) it does not report
-// the inertia on more than one rank (the ST prefixes its factor's options).
+// operator has no such components to remove. The ST factorises `shifted` (K - sigma M, owned by
+// the caller, who refactorises it for the Sturm count) instead of a copy of its own, or,
+// `shifted` null at sigma = 0, K itself (no copy: SLEPc's ST_MATMODE_COPY uses K when the shift
+// is 0). MUMPS gets ICNTL(13) = 1 before its analysis: without it (the root node on ScaLAPACK)
+// it does not report the inertia on more than one rank (the ST prefixes its factor's options).
 void Configure(EPS eps, Mat K, Mat M, Mat shifted, double sigma, const EigenOptions& options, PetscInt nev,
                bool singular_mass) {
   ST st;
@@ -34,16 +34,9 @@ void Configure(EPS eps, Mat K, Mat M, Mat shifted, double sigma, const EigenOpti
   FLEXMBS_PETSC(EPSSetTolerances(eps, options.tolerance, options.max_iterations));
   FLEXMBS_PETSC(EPSSetPurify(eps, singular_mass ? PETSC_TRUE : PETSC_FALSE));
   FLEXMBS_PETSC(PetscOptionsSetValue(nullptr, "-st_mat_mumps_icntl_13", "1"));
-  if (options.max_frequency_hz > 0.0) {
-    // Spectrum slicing: every eigenvalue in [sigma, lambda_max], counted by the inertia of the
-    // MUMPS factorisations.
-    FLEXMBS_PETSC(EPSSetInterval(eps, sigma, ShiftFromHz(options.max_frequency_hz)));
-    FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
-  } else {
-    FLEXMBS_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
-    FLEXMBS_PETSC(EPSSetTarget(eps, sigma));
-    FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-  }
+  FLEXMBS_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  FLEXMBS_PETSC(EPSSetTarget(eps, sigma));
+  FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
   FLEXMBS_PETSC(EPSGetST(eps, &st));
   FLEXMBS_PETSC(STSetType(st, STSINVERT));
   if (shifted) {
@@ -124,6 +117,22 @@ struct OwnedVectors {
   }
 };
 
+// A matrix destroyed with its owner unless released (also when an exception passes).
+struct OwnedMat {
+  Mat A = nullptr;
+  OwnedMat() = default;
+  OwnedMat(const OwnedMat&) = delete;
+  OwnedMat& operator=(const OwnedMat&) = delete;
+  ~OwnedMat() {
+    if (A != nullptr) MatDestroy(&A);
+  }
+  Mat Release() {
+    const Mat out = A;
+    A = nullptr;
+    return out;
+  }
+};
+
 // Whether A and B (AIJ, same layout) store the same sparsity pattern on every rank. Collective.
 bool SamePattern(Mat A, Mat B) {
   const auto same_seq = [](Mat X, Mat Y) {
@@ -159,19 +168,26 @@ bool SamePattern(Mat A, Mat B) {
   return same != 0;
 }
 
+// K - sigma M as a new matrix (the caller destroys it), on the union of the patterns of K and M
+// (`same_pattern`: SamePattern(K, M)). Flagged symmetric, not positive definite, so that MUMPS
+// factorises it as a general symmetric matrix (SYM = 2: LDL^T with pivoting, the inertia known).
+Mat ShiftedCopy(Mat K, Mat M, double sigma, bool same_pattern) {
+  Mat A;
+  FLEXMBS_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &A));
+  // Where M has entries K has not, A gets the union of the patterns (so M's is a subset).
+  FLEXMBS_PETSC(MatAXPY(A, -sigma, M, same_pattern ? SAME_NONZERO_PATTERN : DIFFERENT_NONZERO_PATTERN));
+  FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+  FLEXMBS_PETSC(MatSetOption(A, MAT_SPD, PETSC_FALSE));
+  return A;
+}
+
 // K - sigma M, owned: the matrix the shift-invert factorises, then moved to K - cut M in place
-// (same sparsity) for the Sturm count. Not flagged positive definite, so that MUMPS factorises
-// it as a general symmetric matrix (SYM = 2: LDL^T with pivoting), which stays valid for the
-// indefinite K - cut M in the same instance.
+// (same sparsity) for the Sturm count. Not flagged positive definite (ShiftedCopy), which keeps
+// the factorisation valid for the indefinite K - cut M in the same MUMPS instance.
 class ShiftedMatrix {
  public:
-  ShiftedMatrix(Mat K, Mat M, double sigma) : M_(M), sigma_(sigma), same_pattern_(SamePattern(K, M)) {
-    FLEXMBS_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &A_));
-    // Where M has entries K has not, A gets the union of the patterns (so M's is a subset).
-    FLEXMBS_PETSC(MatAXPY(A_, -sigma, M, same_pattern_ ? SAME_NONZERO_PATTERN : DIFFERENT_NONZERO_PATTERN));
-    FLEXMBS_PETSC(MatSetOption(A_, MAT_SYMMETRIC, PETSC_TRUE));
-    FLEXMBS_PETSC(MatSetOption(A_, MAT_SPD, PETSC_FALSE));
-  }
+  ShiftedMatrix(Mat K, Mat M, double sigma)
+      : M_(M), sigma_(sigma), same_pattern_(SamePattern(K, M)), A_(ShiftedCopy(K, M, sigma, same_pattern_)) {}
   ShiftedMatrix(const ShiftedMatrix&) = delete;
   ShiftedMatrix& operator=(const ShiftedMatrix&) = delete;
   ~ShiftedMatrix() { MatDestroy(&A_); }
@@ -184,19 +200,14 @@ class ShiftedMatrix {
   }
 
  private:
-  Mat A_ = nullptr;
   Mat M_;
   double sigma_;
   bool same_pattern_;
+  Mat A_ = nullptr;
 };
 
-// The number of eigenvalues of K phi = lambda M phi below `cut`: the negative inertia of
-// K - cut M (Sylvester; M positive semi-definite, fixed DOF have K = 1, M = 0 and count as
-// positive), from the LDL^T factorisation of the shift-invert's own MUMPS instance. `shifted`
-// (which the ST of `eps` factorised) becomes K - cut M and is refactorised numerically: MUMPS
-// keeps its analysis (ordering, symbolic factorisation), which the same sparsity allows. The
-// ST's factor is then that of K - cut M: call after the pairs are extracted.
-PetscInt EigenvaluesBelow(EPS eps, ShiftedMatrix* shifted, double cut) {
+// The factored matrix of the shift-and-invert's MUMPS instance (after EPSSetUp).
+Mat ShiftInvertFactor(EPS eps) {
   ST st;
   KSP ksp;
   PC pc;
@@ -205,12 +216,38 @@ PetscInt EigenvaluesBelow(EPS eps, ShiftedMatrix* shifted, double cut) {
   FLEXMBS_PETSC(STGetKSP(st, &ksp));
   FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
   FLEXMBS_PETSC(PCFactorGetMatrix(pc, &factor));
+  return factor;
+}
+
+// The number of eigenvalues of K phi = lambda M phi below `cut`: the negative inertia of
+// K - cut M (Sylvester; M positive semi-definite, fixed DOF have K = 1, M = 0 and count as
+// positive), from the LDL^T factorisation of the shift-invert's own MUMPS instance. `shifted`
+// (which the ST of `eps` factorised) becomes K - cut M and is refactorised numerically: MUMPS
+// keeps its analysis (ordering, symbolic factorisation), which the same sparsity allows. The
+// ST's factor is then that of K - cut M: call after the pairs are extracted.
+PetscInt EigenvaluesBelow(EPS eps, ShiftedMatrix* shifted, double cut) {
+  const Mat factor = ShiftInvertFactor(eps);
   shifted->MoveShift(cut);
   MatFactorInfo info;
   FLEXMBS_PETSC(MatFactorInfoInitialize(&info));
   FLEXMBS_PETSC(MatCholeskyFactorNumeric(factor, shifted->get(), &info));
   PetscInt negative = 0;  // zero and positive counts would need null-pivot detection (ICNTL(24))
   FLEXMBS_PETSC(MatGetInertia(factor, &negative, nullptr, nullptr));
+  return negative;
+}
+
+// The number of eigenvalues of K phi = lambda M phi below `cut` as above, from a MUMPS instance
+// of its own that keeps no factors (MumpsFactorization::kInertiaOnly): for when the shift-invert's
+// factorisation of K stays (it is kept for static solves). K - cut M is formed and freed here.
+PetscInt EigenvaluesBelow(Mat K, Mat M, double cut) {
+  OwnedMat shifted, factor;
+  shifted.A = ShiftedCopy(K, M, cut, SamePattern(K, M));
+  factor.A = MumpsCholesky(shifted.A, MumpsFactorization::kInertiaOnly, "flexmbs_sturm_");
+  MatFactorError error = MAT_FACTOR_NOERROR;
+  FLEXMBS_PETSC(MatFactorGetError(factor.A, &error));
+  FLEXMBS_CHECK(error == MAT_FACTOR_NOERROR, "Sturm count: MUMPS failed to factorise K - cut M");
+  PetscInt negative = 0;
+  FLEXMBS_PETSC(MatGetInertia(factor.A, &negative, nullptr, nullptr));
   return negative;
 }
 
@@ -287,31 +324,16 @@ double SecondsSince(std::chrono::steady_clock::time_point* since) {
   return seconds;
 }
 
-// Solves with the shift-invert factorisations so far (KSPPREONLY: one per right-hand side),
-// eigenvector purifications included; with a band, those of spectrum slicing's inner solver.
-int OperatorApplications(EPS eps, bool band) {
+// Solves with the shift-invert factorisation so far (KSPPREONLY: one per right-hand side),
+// eigenvector purifications included.
+int OperatorApplications(EPS eps) {
   ST st;
   KSP ksp;
-  if (band) {
-    FLEXMBS_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));
-  } else {
-    FLEXMBS_PETSC(EPSGetST(eps, &st));
-    FLEXMBS_PETSC(STGetKSP(st, &ksp));
-  }
+  FLEXMBS_PETSC(EPSGetST(eps, &st));
+  FLEXMBS_PETSC(STGetKSP(st, &ksp));
   PetscInt solves = 0;
   FLEXMBS_PETSC(KSPGetTotalIterations(ksp, &solves));
   return static_cast<int>(solves);
-}
-
-// The factorisations spectrum slicing made: one per shift whose inertia it computed.
-int SlicingFactorizations(EPS eps) {
-  PetscInt shifts = 0;
-  PetscReal* values = nullptr;
-  PetscInt* inertias = nullptr;
-  FLEXMBS_PETSC(EPSKrylovSchurGetInertias(eps, &shifts, &values, &inertias));
-  FLEXMBS_PETSC(PetscFree(values));
-  FLEXMBS_PETSC(PetscFree(inertias));
-  return static_cast<int>(shifts);
 }
 
 // Copies this rank's block of rows of the full matrix A into a new PETSc AIJ matrix.
@@ -399,75 +421,110 @@ int SlepcSession::Size() {
 
 EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>& fixed_dofs,
                                            const EigenOptions& options, ModesOn modes_on,
-                                           double* gather_seconds) {
+                                           double* gather_seconds, Mat* K_factor) {
   const auto start = std::chrono::steady_clock::now();
   RemoveFixedDofs(K, M, fixed_dofs);
+  PetscScalar trace_k = 0.0, trace_m = 0.0;
+  FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
+  FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
+  // A held body for a caller that keeps the factorisation: K itself at sigma = 0, factorised as
+  // positive definite, later serves the caller's static solves.
+  const bool keep = K_factor != nullptr && (!options.shift_hz || *options.shift_hz == 0.0);
+  if (K_factor) *K_factor = nullptr;
   EigenSolution solution;
   solution.backend = "slepc";
-  if (options.shift_hz) {
+  if (keep) {
+    solution.shift = 0.0;
+  } else if (options.shift_hz) {
     solution.shift = ShiftFromHz(*options.shift_hz);
   } else {
-    PetscScalar trace_k = 0.0, trace_m = 0.0;
-    FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
-    FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
     solution.shift = -1e-6 * trace_k / trace_m;
   }
+  // A band: its size, the number of eigenvalues below its upper end, is counted first (the inertia
+  // of K - top M); then the lowest `wanted` modes are found as for num_modes, and when that is the
+  // whole band, the count at its end is their Sturm check. (Not SLEPc's spectrum slicing: it ran
+  // Krylov-Schur at the band's upper end, and the modes near zero, a free body's rigid modes, came
+  // out with errors of about tolerance x top: residuals up to 6e-6 of their shift's scale.)
   const bool band = options.max_frequency_hz > 0.0;
-  // Lowest modes: exactly the wanted pairs; the Ritz values beyond them locate the gap where the
-  // Sturm cut goes (see RitzLowerBounds).
-  PetscInt nev = band ? 0 : options.num_modes;
+  const double top = band ? ShiftFromHz(options.max_frequency_hz) : 0.0;
+  PetscInt wanted = options.num_modes;
+  PetscInt band_count = -1;  // the eigenvalues below `top` when the whole band is wanted
+  if (band) {
+    auto phase = std::chrono::steady_clock::now();
+    const PetscInt in_band = EigenvaluesBelow(K, M, top);
+    ++solution.factorizations;
+    solution.sturm_seconds += SecondsSince(&phase);
+    if (in_band == 0) throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+    wanted = options.num_modes > 0 ? std::min<PetscInt>(options.num_modes, in_band) : in_band;
+    if (wanted == in_band) band_count = in_band;
+  }
+  // Exactly the wanted pairs; the Ritz values beyond them locate the gap where the Sturm cut goes
+  // (see RitzLowerBounds).
+  PetscInt nev = wanted;
   OwnedVectors x;
+  bool not_positive_definite = false;
+  OwnedMat held_factor;  // kept: the factor of K (sigma = 0)
   for (int attempt = 0;; ++attempt) {
     x.Clear();
     auto phase = std::chrono::steady_clock::now();
     std::optional<ShiftedMatrix> shifted;
-    if (!band) shifted.emplace(K, M, solution.shift);
+    if (!keep) shifted.emplace(K, M, solution.shift);
+    // At sigma = 0 the ST factorises K itself: as positive definite (MUMPS SYM = 1, no pivoting).
+    if (keep) FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_TRUE));
     RitzLowerBounds ritz;
     OwnedEps eps;
     Configure(eps.eps, K, M, shifted ? shifted->get() : nullptr, solution.shift, options, nev, !fixed_dofs.empty());
-    if (!band) {
-      FLEXMBS_PETSC(EPSGetST(eps.eps, &ritz.st));
-      FLEXMBS_PETSC(EPSSetTrackAll(eps.eps, PETSC_TRUE));  // error estimates of every Ritz value
-      FLEXMBS_PETSC(EPSMonitorSet(eps.eps, RecordRitzLowerBounds, &ritz, nullptr));
-    }
-    FLEXMBS_PETSC(EPSSetUp(eps.eps));  // K - sigma M factorised (with a band: also at the band's ends)
+    FLEXMBS_PETSC(EPSGetST(eps.eps, &ritz.st));
+    FLEXMBS_PETSC(EPSSetTrackAll(eps.eps, PETSC_TRUE));  // error estimates of every Ritz value
+    FLEXMBS_PETSC(EPSMonitorSet(eps.eps, RecordRitzLowerBounds, &ritz, nullptr));
+    FLEXMBS_PETSC(EPSSetUp(eps.eps));  // K - sigma M factorised
     solution.factorization_seconds += SecondsSince(&phase);
+    if (keep && !FactoredPositiveDefinite(ShiftInvertFactor(eps.eps))) {
+      ++solution.factorizations;
+      not_positive_definite = true;
+      break;
+    }
     FLEXMBS_PETSC(EPSSolve(eps.eps));
     PetscInt converged = 0, iterations = 0;
     FLEXMBS_PETSC(EPSGetConverged(eps.eps, &converged));
     FLEXMBS_PETSC(EPSGetIterationNumber(eps.eps, &iterations));
     ++solution.krylov_runs;
     solution.restarts += static_cast<int>(iterations);
-    solution.factorizations += band ? SlicingFactorizations(eps.eps) : 1;
-    if (band && converged == 0) {
-      throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+    ++solution.factorizations;
+    if (converged < nev) {
+      throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations", converged, nev,
+                                   iterations));
     }
-    if (!band && converged < options.num_modes) {
-      throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations",
-                                   converged, options.num_modes, iterations));
-    }
-    ExtractPairs(eps.eps, K, M, band ? options.num_modes : 0, &solution, &x.v);
-    solution.operator_applications += OperatorApplications(eps.eps, band);
+    ExtractPairs(eps.eps, K, M, 0, &solution, &x.v);
+    solution.operator_applications += OperatorApplications(eps.eps);
     solution.krylov_seconds += SecondsSince(&phase);
-    if (band) {
-      // Spectrum slicing counts the interval's eigenvalues by the inertia itself.
-      solution.checked_cut = ShiftFromHz(options.max_frequency_hz);
+    if (keep && !(solution.eigenvalues(0) > kZeroEigenvalue * trace_k / trace_m)) {
+      not_positive_definite = true;  // singular to round-off: not held
       break;
     }
-    // Sturm check: every eigenvalue below the cut after the wanted ones must have been found.
-    const double cut =
-        SturmCutAfter(ValuesForTheCut(solution.eigenvalues, ritz.lambda), options.num_modes, solution.shift);
-    FLEXMBS_CHECK(cut > solution.eigenvalues(options.num_modes - 1), "Sturm cut below the last wanted mode");
+    // Sturm check: every eigenvalue below the cut after the wanted ones must have been found. The
+    // whole band's cut is its end, counted before the run.
+    double cut = top;
+    PetscInt count = band_count;
+    if (band_count < 0) {
+      cut = SturmCutAfter(ValuesForTheCut(solution.eigenvalues, ritz.lambda), wanted, solution.shift);
+      FLEXMBS_CHECK(cut > solution.eigenvalues(wanted - 1), "Sturm cut below the last wanted mode");
+      count = keep ? EigenvaluesBelow(K, M, cut) : EigenvaluesBelow(eps.eps, &*shifted, cut);
+      ++solution.factorizations;
+      solution.sturm_seconds += SecondsSince(&phase);
+    }
     const auto found = static_cast<PetscInt>((solution.eigenvalues.array() < cut).count());
-    const PetscInt count = EigenvaluesBelow(eps.eps, &*shifted, cut);
-    ++solution.factorizations;
-    solution.sturm_seconds += SecondsSince(&phase);
     solution.sturm_count = static_cast<int>(count);
     solution.sturm_cut = cut;
     solution.checked_cut = cut;
     if (count == found) {
-      solution.eigenvalues.conservativeResize(options.num_modes);
-      x.Truncate(static_cast<std::size_t>(options.num_modes));
+      solution.eigenvalues.conservativeResize(wanted);
+      x.Truncate(static_cast<std::size_t>(wanted));
+      if (keep) {
+        // The factor of K outlives the EPS, which resets its solver at the end of this scope.
+        held_factor.A = ShiftInvertFactor(eps.eps);
+        FLEXMBS_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(held_factor.A)));
+      }
       break;
     }
     if (count < found || attempt > 0) {
@@ -476,6 +533,21 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     }
     // SLEPc missed modes: once more, every mode below the cut converged and GuardPairs more.
     nev = count + static_cast<PetscInt>(GuardPairs(count));
+  }
+  if (not_positive_definite) {
+    // K is not positive definite (a body the conditions do not hold): the usual negative shift,
+    // no factorisation kept; this attempt's work counted.
+    x.Clear();
+    FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_FALSE));
+    EigenSolution again = SolveDistributedEigenproblem(K, M, fixed_dofs, options, modes_on, gather_seconds);
+    again.factorizations += solution.factorizations;
+    again.factorization_seconds += solution.factorization_seconds;
+    again.operator_applications += solution.operator_applications;
+    again.krylov_runs += solution.krylov_runs;
+    again.restarts += solution.restarts;
+    again.krylov_seconds += solution.krylov_seconds;
+    again.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return again;
   }
   MeasurePairs(K, M, x.v, &solution);
   const auto gather_start = std::chrono::steady_clock::now();
@@ -498,6 +570,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
                                  kResidualFloorFactor, solution.residual_floors(worst)));
   }
   solution.missed_mode_check = MissedModeCheck::kSturmCount;
+  if (keep) *K_factor = held_factor.Release();
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;
 }
