@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "fem/petsc_check.h"
+#include "reduction/blas_threads.h"
 #include "reduction/slepc_pair_measures.h"
 
 namespace flexmbs::reduction {
@@ -400,6 +401,7 @@ SlepcSession::SlepcSession() {
   if (!initialized) {
     FLEXMBS_PETSC(SlepcInitializeNoArguments());
     owns_ = true;
+    ShareBlasThreadsAmongRanks();
   }
 }
 

@@ -3,10 +3,14 @@
 #include <gtest/gtest.h>
 #include <petscmat.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "fem/assembly.h"
 #include "fem/distributed_assembly.h"
+#include "reduction/blas_threads.h"
 #include "reduction/dof_constraints.h"
 #include "reduction/eigensolver.h"
 #include "reduction/slepc_solver.h"
@@ -51,6 +55,21 @@ void ExpectSameModes(const EigenSolution& a, const EigenSolution& b,
         << what << " mode " << j;
   }
   EXPECT_LT(testing::LargestPrincipalAngleSine(M, a.modes, b.modes), kBackendAgreement) << what;
+}
+
+// The session shares the node's cores among the ranks' BLAS threads (this test's ranks all run
+// on one node): one thread each for two ranks on two cores, not two each.
+TEST(SlepcSession, RanksOnANodeShareItsCoresForBlas) {
+  if (BlasThreads() == 0) GTEST_SKIP() << "the BLAS has no thread control";
+  if (std::getenv("OPENBLAS_NUM_THREADS") != nullptr || std::getenv("OMP_NUM_THREADS") != nullptr) {
+    GTEST_SKIP() << "the user chose the BLAS threads";
+  }
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (SlepcSession::Size() == 1) {
+    EXPECT_GE(BlasThreads(), 1);  // left as the BLAS started
+  } else {
+    EXPECT_EQ(BlasThreads(), std::max(1, cores / SlepcSession::Size()));
+  }
 }
 
 TEST(SlepcBackend, AgreesWithSpectraOnAClampedBody) {
