@@ -418,10 +418,10 @@ def print_details(case):
             krylov = g.get("BVOrthogonalizeV", (0, 0.0))[0]  # one per Krylov-Schur step
             eps = g.get("EPSSolve", (0, 0.0))[1]
             print(f"   {LABEL[s]}: MUMPS Cholesky {fac:.2f} s, {solves} solves ({krylov} Krylov-Schur steps, "
-                  f"{solves - krylov} eigenvector purifications) {solve_s:.2f} s "
-                  f"({1e3 * solve_s / max(solves, 1):.0f} ms each), EPSSolve {eps:.2f} s, outside EPSSolve "
-                  f"{r['seconds'] - eps:.2f} s (the purifications, done lazily by EPSGetEigenvector, "
-                  f"~{(solves - krylov) * solve_s / max(solves, 1):.2f} s of it); mesh+assembly "
+                  f"{solves - krylov} others: the SID step's static solves, purifications only for a singular M) "
+                  f"{solve_s:.2f} s ({1e3 * solve_s / max(solves, 1):.0f} ms each), EPSSolve {eps:.2f} s, outside "
+                  f"EPSSolve {r['seconds'] - eps:.2f} s (the Sturm count and the basis; the other solves, "
+                  f"~{(solves - krylov) * solve_s / max(solves, 1):.2f} s, come after it in the SID step); mesh+assembly "
                   f"{r['mesh_s'] + r['assembly_s']:.2f} s")
         if r and r.get("mpi"):
             m, ranks = r["mpi"]["seconds"], r["mpi"]["ranks"]

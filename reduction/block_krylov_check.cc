@@ -29,10 +29,11 @@ constexpr int kBoundGridPoints = 49;
 
 // Removes the span of the M-orthonormal X from W (two passes); adds the squared M-norms of
 // the removed parts, per column, to `removed`.
-void Deflate(const Matrix& X, const Matrix& MX, Matrix& W, Eigen::RowVectorXd& removed) {
+void Deflate(const BlockKrylovSpace& space, const Matrix& X, const Matrix& MX, Matrix& W,
+             Eigen::RowVectorXd& removed) {
   if (X.cols() == 0) return;
   for (int pass = 0; pass < 2; ++pass) {
-    const Matrix c = MX.transpose() * W;
+    const Matrix c = space.Sum(MX.transpose() * W);
     W -= X * c;
     removed += c.colwise().squaredNorm();
   }
@@ -47,10 +48,9 @@ struct MOrthonormalized {
   Matrix MQ;
   Matrix B;  // r x W.cols()
 };
-MOrthonormalized MOrthonormalize(const Eigen::SparseMatrix<double>& M, const Matrix& W,
-                                 const Eigen::RowVectorXd& removed) {
-  const Matrix MW = M * W;
-  Matrix G = W.transpose() * MW;
+MOrthonormalized MOrthonormalize(const BlockKrylovSpace& space, const Matrix& W, const Eigen::RowVectorXd& removed) {
+  const Matrix MW = space.Mass(W);
+  Matrix G = space.Sum(W.transpose() * MW);
   G = 0.5 * (G + G.transpose()).eval();
   const double reference_squared = (removed + G.diagonal().transpose().cwiseMax(0.0)).maxCoeff();
   Eigen::SelfAdjointEigenSolver<Matrix> gram(G);
@@ -67,15 +67,29 @@ MOrthonormalized MOrthonormalize(const Eigen::SparseMatrix<double>& M, const Mat
 
 }  // namespace
 
-DeflatedBlockLanczos::DeflatedBlockLanczos(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
-                                           const Matrix& found, Matrix start)
-    : factor_(factor), M_(M), X_(found), start_(std::move(start)) {
-  FLEXMBS_CHECK(factor.ok() && factor.rows() == M.rows() && found.rows() == M.rows() && start_.rows() == M.rows(),
-                "DeflatedBlockLanczos: factorisation, M, found modes and start block must be of one size");
-  MX_ = M * X_;
+FactorizationSpace::FactorizationSpace(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M)
+    : factor_(factor), M_(M) {
+  FLEXMBS_CHECK(factor.ok() && factor.rows() == M.rows(),
+                "FactorizationSpace: the factorisation and M must be of one size");
+}
+
+double FactorizationSpace::sigma() const { return factor_.sigma(); }
+
+Matrix FactorizationSpace::ShiftInvert(const Matrix& B) const {
+  Matrix X(B.rows(), B.cols());
+  factor_.Solve(B.data(), X.data(), B.cols());
+  return X;
+}
+
+DeflatedBlockLanczos::DeflatedBlockLanczos(const BlockKrylovSpace& space, const Matrix& found, Matrix start)
+    : space_(space), X_(found), start_(std::move(start)) {
+  const Index n = space.local_rows();
+  FLEXMBS_CHECK(found.rows() == n && start_.rows() == n,
+                "DeflatedBlockLanczos: the found modes and the start block must have the space's rows");
+  MX_ = space.Mass(X_);
   Eigen::RowVectorXd removed = Eigen::RowVectorXd::Zero(start_.cols());
-  Deflate(X_, MX_, start_, removed);
-  MOrthonormalized first = MOrthonormalize(M, start_, removed);
+  Deflate(space, X_, MX_, start_, removed);
+  MOrthonormalized first = MOrthonormalize(space, start_, removed);
   start_coordinates_ = std::move(first.B);
   blocks_.push_back(std::move(first.Q));
   m_blocks_.push_back(std::move(first.MQ));
@@ -85,29 +99,27 @@ DeflatedBlockLanczos::DeflatedBlockLanczos(const ShiftedFactorization& factor, c
 bool DeflatedBlockLanczos::Extend() {
   const Index w = blocks_.back().cols();
   if (w == 0) return false;
-  const Index n = M_.rows();
   const Index d_old = ritz_values_.size();
   const Index d = d_old + w;
 
-  Matrix W(n, w);
-  factor_.Solve(m_blocks_.back().data(), W.data(), w);  // T Q_k before deflation
+  Matrix W = space_.ShiftInvert(m_blocks_.back());  // T Q_k before deflation
   columns_solved_ += w;
   // Two passes of block classical Gram-Schmidt against the found modes (the deflation) and the
   // Krylov blocks; the coefficients along the blocks are the new block column of H.
   Matrix coefficients = Matrix::Zero(d, w);
   Eigen::RowVectorXd removed = Eigen::RowVectorXd::Zero(w);  // squared M-norms taken out
   for (int pass = 0; pass < 2; ++pass) {
-    Deflate(X_, MX_, W, removed);
+    Deflate(space_, X_, MX_, W, removed);
     Index offset = 0;
     for (std::size_t j = 0; j < blocks_.size(); ++j) {
-      const Matrix c = m_blocks_[j].transpose() * W;
+      const Matrix c = space_.Sum(m_blocks_[j].transpose() * W);
       W -= blocks_[j] * c;
       coefficients.middleRows(offset, c.rows()) += c;
       removed += c.colwise().squaredNorm();
       offset += c.rows();
     }
   }
-  MOrthonormalized next = MOrthonormalize(M_, W, removed);
+  MOrthonormalized next = MOrthonormalize(space_, W, removed);
 
   Matrix H = Matrix::Zero(d, d);
   H.topLeftCorner(d_old, d_old) = H_;
@@ -135,7 +147,7 @@ Eigen::VectorXd DeflatedBlockLanczos::RitzResiduals() const {
 Matrix DeflatedBlockLanczos::RitzVectors(const std::vector<Index>& which) const {
   Matrix S(ritz_values_.size(), static_cast<Index>(which.size()));
   for (std::size_t j = 0; j < which.size(); ++j) S.col(static_cast<Index>(j)) = ritz_coordinates_.col(which[j]);
-  Matrix Y = Matrix::Zero(M_.rows(), S.cols());
+  Matrix Y = Matrix::Zero(space_.local_rows(), S.cols());
   Index offset = 0;
   for (std::size_t b = 0; b + 1 < blocks_.size(); ++b) {
     Y += blocks_[b] * S.middleRows(offset, blocks_[b].cols());
@@ -161,27 +173,28 @@ double DeflatedBlockLanczos::HiddenComponentBound(double mu) const {
   return Eigen::JacobiSVD<Matrix>(F).singularValues()(0);
 }
 
-double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, std::uint64_t seed) {
-  const Index n = M.rows();
-  const Index k_max = std::min<Index>(steps, n);
+double ScaledMassFloorEstimate(const BlockKrylovSpace& space, int steps, std::uint64_t seed) {
+  const Index n = space.local_rows();
+  const Index k_max = std::min<Index>(steps, space.global_rows());
   FLEXMBS_CHECK(k_max >= 1, "ScaledMassFloorEstimate: no Lanczos step");
-  const Eigen::VectorXd scale = M.diagonal().cwiseSqrt().cwiseInverse();
-  std::mt19937_64 rng(seed);
+  const Eigen::VectorXd scale = space.MassDiagonal().cwiseSqrt().cwiseInverse();
+  const auto norm = [&](const Eigen::VectorXd& v) { return std::sqrt(space.Sum(Matrix::Constant(1, 1, v.squaredNorm()))(0, 0)); };
+  std::mt19937_64 rng(seed ^ space.stream());
   std::normal_distribution<double> normal;
   Matrix V(n, k_max);
   Eigen::VectorXd v(n);
   for (Index i = 0; i < n; ++i) v(i) = normal(rng);
-  V.col(0) = v.normalized();
+  V.col(0) = v / norm(v);
   Matrix H = Matrix::Zero(k_max, k_max);
   Index k = 0;
   for (; k < k_max; ++k) {
-    Eigen::VectorXd w = scale.cwiseProduct(M * scale.cwiseProduct(V.col(k)));
+    Eigen::VectorXd w = scale.cwiseProduct(space.Mass(scale.cwiseProduct(V.col(k))));
     for (int pass = 0; pass < 2; ++pass) {
-      const Eigen::VectorXd c = V.leftCols(k + 1).transpose() * w;
+      const Eigen::VectorXd c = space.Sum(V.leftCols(k + 1).transpose() * w);
       w -= V.leftCols(k + 1) * c;
       H.col(k).head(k + 1) += c;
     }
-    const double beta = w.norm();
+    const double beta = norm(w);
     if (k + 1 == k_max || !(beta > kRankTolerance * H(k, k))) break;
     H(k + 1, k) = beta;
     V.col(k + 1) = w / beta;
@@ -193,32 +206,53 @@ double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, 
   return 0.5 * lowest;
 }
 
-BlockCheckResult CheckForMissedModes(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
-                                     const Matrix& found, double cut, const BlockCheckOptions& options) {
-  const Index n = M.rows();
-  const double sigma = factor.sigma();
+double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, std::uint64_t seed) {
+  // The space's shift-invert is not used here.
+  class MassOnly final : public BlockKrylovSpace {
+   public:
+    explicit MassOnly(const Eigen::SparseMatrix<double>& M) : M_(M) {}
+    Index local_rows() const override { return M_.rows(); }
+    Index global_rows() const override { return M_.rows(); }
+    double sigma() const override { return 0.0; }
+    Matrix ShiftInvert(const Matrix&) const override {
+      FLEXMBS_CHECK(false, "ScaledMassFloorEstimate: no shift-invert");
+      return {};
+    }
+    Matrix Mass(const Matrix& X) const override { return M_ * X; }
+    Eigen::VectorXd MassDiagonal() const override { return M_.diagonal(); }
+
+   private:
+    const Eigen::SparseMatrix<double>& M_;
+  };
+  return ScaledMassFloorEstimate(MassOnly(M), steps, seed);
+}
+
+BlockCheckResult CheckForMissedModes(const BlockKrylovSpace& space, const Matrix& found, double cut,
+                                     const BlockCheckOptions& options) {
+  const Index n = space.local_rows();
+  const double sigma = space.sigma();
   FLEXMBS_CHECK(cut > sigma, "CheckForMissedModes: the cut must lie above the shift");
   FLEXMBS_CHECK(options.block_size >= 1 && options.max_steps >= 1 && options.failure_probability > 0.0 &&
                     options.tolerance > 0.0 && options.scale_steps >= 1,
                 "CheckForMissedModes: bad options");
   const double mu_cut = 1.0 / (cut - sigma);
   BlockCheckResult result;
-  const Index p = std::min(options.block_size, n - found.cols());
+  const Index p = std::min(options.block_size, space.global_rows() - found.cols());
   if (p <= 0) {  // nothing outside span(found)
     result.verdict = BlockCheckVerdict::kNoneMissed;
     result.failure_probability = 0.0;
     return result;
   }
-  result.component_scale = std::sqrt(ScaledMassFloorEstimate(M, options.scale_steps, options.seed ^ 0x5ca1e));
+  result.component_scale = std::sqrt(ScaledMassFloorEstimate(space, options.scale_steps, options.seed ^ 0x5ca1e));
 
-  std::mt19937_64 rng(options.seed);
+  std::mt19937_64 rng(options.seed ^ space.stream());
   std::normal_distribution<double> normal;
-  const Eigen::VectorXd scale = M.diagonal().cwiseSqrt().cwiseInverse();
+  const Eigen::VectorXd scale = space.MassDiagonal().cwiseSqrt().cwiseInverse();
   Matrix start(n, p);
   for (Index j = 0; j < p; ++j) {
     for (Index i = 0; i < n; ++i) start(i, j) = scale(i) * normal(rng);
   }
-  DeflatedBlockLanczos lanczos(factor, M, found, std::move(start));
+  DeflatedBlockLanczos lanczos(space, found, std::move(start));
 
   for (int step = 0; step < options.max_steps; ++step) {
     const bool extended = lanczos.Extend();
@@ -259,6 +293,11 @@ BlockCheckResult CheckForMissedModes(const ShiftedFactorization& factor, const E
   }
   result.verdict = BlockCheckVerdict::kUndecided;
   return result;
+}
+
+BlockCheckResult CheckForMissedModes(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
+                                     const Matrix& found, double cut, const BlockCheckOptions& options) {
+  return CheckForMissedModes(FactorizationSpace(factor, M), found, cut, options);
 }
 
 }  // namespace flexmbs::reduction

@@ -14,21 +14,64 @@ namespace flexmbs::reduction {
 
 class ShiftedFactorization;
 
+/// What the block check needs of K phi = lambda M phi, on this process's rows of every vector:
+/// all rows serially, a row block of each under MPI, where every call is collective and the
+/// small matrices of inner products are summed over the processes (Sum). Every process then
+/// holds the same small matrices and takes the same decisions.
+class BlockKrylovSpace {
+ public:
+  virtual ~BlockKrylovSpace() = default;
+  /// Rows of the vectors on this process, and in all.
+  virtual Eigen::Index local_rows() const = 0;
+  virtual Eigen::Index global_rows() const = 0;
+  /// The shift sigma [rad^2/s^2] of ShiftInvert.
+  virtual double sigma() const = 0;
+  /// (K - sigma M)^{-1} B for all of B's columns at once (K - sigma M positive definite).
+  virtual Eigen::MatrixXd ShiftInvert(const Eigen::MatrixXd& B) const = 0;
+  /// M X.
+  virtual Eigen::MatrixXd Mass(const Eigen::MatrixXd& X) const = 0;
+  /// diag(M) on this process's rows (positive).
+  virtual Eigen::VectorXd MassDiagonal() const = 0;
+  /// The sum over the processes of `local`, the same small matrix shape on each (this
+  /// process's part of an inner product); itself serially.
+  virtual Eigen::MatrixXd Sum(const Eigen::MatrixXd& local) const { return local; }
+  /// A number that differs between the processes (their rank), so that each draws its own rows
+  /// of a random block; 0 serially.
+  virtual std::uint64_t stream() const { return 0; }
+};
+
+/// The serial space: a factorisation of K - sigma M and M held in this process. Both must
+/// outlive it.
+class FactorizationSpace final : public BlockKrylovSpace {
+ public:
+  /// `factor`: an ok() Cholesky factorisation of K - sigma M (positive definite); `M` [kg].
+  FactorizationSpace(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M);
+  Eigen::Index local_rows() const override { return M_.rows(); }
+  Eigen::Index global_rows() const override { return M_.rows(); }
+  double sigma() const override;
+  Eigen::MatrixXd ShiftInvert(const Eigen::MatrixXd& B) const override;
+  Eigen::MatrixXd Mass(const Eigen::MatrixXd& X) const override { return M_ * X; }
+  Eigen::VectorXd MassDiagonal() const override { return M_.diagonal(); }
+
+ private:
+  const ShiftedFactorization& factor_;
+  const Eigen::SparseMatrix<double>& M_;
+};
+
 /// Block Lanczos on the deflated shift-invert operator T = P (K - sigma M)^{-1} M P, P = I - X X^T M
 /// the M-orthogonal projector onto the complement of the found M-orthonormal modes X, in the M
 /// inner product, with full reorthogonalisation. Its eigenvalues are mu = 1 / (lambda - sigma)
 /// for the eigenpairs of K phi = lambda M phi not in span X (0 on span X). Each step is one
-/// solve with all columns of the last block at once (CHOLMOD's multi-column supernodal solve).
+/// solve with all columns of the last block at once (CHOLMOD's multi-column supernodal solve,
+/// or MUMPS's under MPI).
 class DeflatedBlockLanczos {
  public:
-  /// `factor`: an ok() Cholesky factorisation of K - sigma M (positive definite); `M`: the
-  /// mass matrix [kg]; `found`: M-orthonormal columns; `start`: the start block (its components
-  /// along span `found` are removed here). `factor`, `M` and `found` must outlive the object.
-  DeflatedBlockLanczos(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
-                       const Eigen::MatrixXd& found, Eigen::MatrixXd start);
+  /// `space`: the operators; `found`: M-orthonormal columns (this process's rows); `start`: the
+  /// start block (its components along span `found` are removed here). `space` and `found`
+  /// must outlive the object.
+  DeflatedBlockLanczos(const BlockKrylovSpace& space, const Eigen::MatrixXd& found, Eigen::MatrixXd start);
   /// `found` is kept by reference: a temporary would dangle.
-  DeflatedBlockLanczos(const ShiftedFactorization&, const Eigen::SparseMatrix<double>&, Eigen::MatrixXd&&,
-                       Eigen::MatrixXd) = delete;
+  DeflatedBlockLanczos(const BlockKrylovSpace&, Eigen::MatrixXd&&, Eigen::MatrixXd) = delete;
 
   /// One block step: solves with the last block, orthogonalises, updates the Ritz pairs.
   /// Returns false (and does nothing) once the space is invariant (the next block vanished).
@@ -47,7 +90,7 @@ class DeflatedBlockLanczos {
   const Eigen::VectorXd& ritz_values() const { return ritz_values_; }
   /// ||T y - mu y||_M of each Ritz pair (unit M-norm y), in the order of ritz_values().
   Eigen::VectorXd RitzResiduals() const;
-  /// The M-orthonormal Ritz vectors with the given positions in ritz_values().
+  /// The M-orthonormal Ritz vectors with the given positions in ritz_values() (this process's rows).
   Eigen::MatrixXd RitzVectors(const std::vector<Eigen::Index>& which) const;
 
   /// An upper bound on ||u^T M start()|| (2-norm of the row of components) for every unit
@@ -59,8 +102,7 @@ class DeflatedBlockLanczos {
   double HiddenComponentBound(double mu) const;
 
  private:
-  const ShiftedFactorization& factor_;
-  const Eigen::SparseMatrix<double>& M_;
+  const BlockKrylovSpace& space_;
   const Eigen::MatrixXd& X_;
   Eigen::MatrixXd MX_;
   Eigen::MatrixXd start_;
@@ -77,7 +119,9 @@ class DeflatedBlockLanczos {
 /// The estimate of the smallest eigenvalue of D^{-1/2} M D^{-1/2} (D = diag M) the check uses:
 /// the lowest Ritz value of `steps` Lanczos steps from a Gaussian vector (an upper bound of the
 /// eigenvalue; 6.5 % above it after 20 steps on the tet10 bench bar), halved. For a lumped
-/// (diagonal) M it is 0.5 (the eigenvalue is 1).
+/// (diagonal) M it is 0.5 (the eigenvalue is 1). Uses the space's Mass, MassDiagonal and Sum.
+double ScaledMassFloorEstimate(const BlockKrylovSpace& space, int steps, std::uint64_t seed);
+/// The same for M held in this process.
 double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, std::uint64_t seed);
 
 /// What CheckForMissedModes concluded.
@@ -86,6 +130,9 @@ enum class BlockCheckVerdict {
   kMissed,      ///< eigenvalues below the cut outside span(found): their converged pairs are returned
   kUndecided,   ///< neither within max_steps: the caller needs another check
 };
+
+/// The seed of the backends' block checks (plus the number of the run being checked).
+inline constexpr std::uint64_t kBlockCheckSeed = 0xb10c0000u;
 
 struct BlockCheckOptions {
   Eigen::Index block_size = 8;
@@ -124,8 +171,12 @@ struct BlockCheckResult {
 /// pair has converged (kMissed), or (b) none does and the probability that a mode below the cut
 /// hides from the block, bounded through HiddenComponentBound, is at most
 /// options.failure_probability (kNoneMissed), or (c) max_steps (kUndecided).
-/// Preconditions: `factor` an ok() Cholesky factorisation of K - sigma M with sigma < cut;
-/// `found` M-orthonormal.
+/// Preconditions: the space's shift-invert a positive definite K - sigma M with sigma < cut;
+/// `found` M-orthonormal (this process's rows). On every process under MPI (collective); the
+/// missed vectors are this process's rows.
+BlockCheckResult CheckForMissedModes(const BlockKrylovSpace& space, const Eigen::MatrixXd& found, double cut,
+                                     const BlockCheckOptions& options);
+/// The same with the serial space of `factor` and `M`.
 BlockCheckResult CheckForMissedModes(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
                                      const Eigen::MatrixXd& found, double cut, const BlockCheckOptions& options);
 

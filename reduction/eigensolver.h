@@ -66,7 +66,10 @@ struct EigenOptions {
   /// factorisation; if that fails, Solve throws.
   double residual_tolerance = 1e-8;
   /// Check that no mode below the cut was missed: the band edge, or a point between the last
-  /// returned and the next eigenvalue. Missed modes are then found by deflated Lanczos runs.
+  /// returned and the next eigenvalue. Missed modes are then found by another run (Spectra:
+  /// deflated Lanczos; SLEPc: Krylov-Schur for all of them). The slepc backend makes a Sturm
+  /// count or a block Krylov check (kAuto: by the flops of its factorisation; kNone and
+  /// kDeflatedLanczos: the Sturm count).
   MissedModeCheck check_missed_modes = MissedModeCheck::kAuto;
 };
 

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "fem/petsc_check.h"
 #include "reduction/blas_threads.h"
+#include "reduction/petsc_block_space.h"
 #include "reduction/slepc_pair_measures.h"
 
 namespace flexmbs::reduction {
@@ -325,6 +326,51 @@ double SecondsSince(std::chrono::steady_clock::time_point* since) {
   return seconds;
 }
 
+// Above this many flops of the shift-invert's factorisation (MUMPS RINFOG(3)) the automatic
+// missed-mode check is the block Krylov check: the Sturm count's own factorisation costs about
+// as much again, the check about 60 solved columns in blocks of 8 and 20 M products.
+constexpr double kBlockCheckFromFlops = 1e10;
+
+// The missed-mode check this backend makes: the block Krylov check (reduction/block_krylov_check.h)
+// where the factorisation that a Sturm count would add costs more than kBlockCheckFromFlops
+// (MUMPS's count for the shift-invert's, RINFOG(3)) or where asked, else the Sturm count. Not
+// with `fixed_dofs` (their rows of M are zero, so diag(M) cannot scale the start block).
+MissedModeCheck ChooseCheck(const EigenOptions& options, EPS eps, bool fixed_dofs) {
+  if (fixed_dofs) return MissedModeCheck::kSturmCount;
+  if (options.check_missed_modes == MissedModeCheck::kBlockKrylov) return MissedModeCheck::kBlockKrylov;
+  if (options.check_missed_modes != MissedModeCheck::kAuto) return MissedModeCheck::kSturmCount;
+  PetscReal flops = 0.0;
+  FLEXMBS_PETSC(MatMumpsGetRinfog(ShiftInvertFactor(eps), 3, &flops));
+  return flops > kBlockCheckFromFlops ? MissedModeCheck::kBlockKrylov : MissedModeCheck::kSturmCount;
+}
+
+// The number of eigenvalues below `cut` that the block Krylov check establishes for the pairs
+// `x` (all converged, M-orthonormal) with the shift-invert factorisation of `eps`: those found
+// below the cut plus those it found missing; -1 if it could not decide (the caller counts).
+PetscInt BlockCheckedCount(EPS eps, Mat M, const std::vector<Vec>& x, double cut, const EigenOptions& options,
+                           int attempt, EigenSolution* solution) {
+  auto phase = std::chrono::steady_clock::now();
+  const PetscBlockSpace space(ShiftInvertFactor(eps), M, solution->shift);
+  const Eigen::MatrixXd found = LocalRows(x, space.local_rows());
+  BlockCheckOptions block;
+  block.tolerance = options.tolerance;
+  block.seed = kBlockCheckSeed + static_cast<std::uint64_t>(attempt);
+  const BlockCheckResult result = CheckForMissedModes(space, found, cut, block);
+  solution->operator_applications += static_cast<int>(result.columns);
+  ++solution->krylov_runs;
+  solution->krylov_seconds += SecondsSince(&phase);
+  const auto below = static_cast<PetscInt>((solution->eigenvalues.array() < cut).count());
+  switch (result.verdict) {
+    case BlockCheckVerdict::kNoneMissed:
+      return below;
+    case BlockCheckVerdict::kMissed:
+      return below + static_cast<PetscInt>(result.missed_values.size());
+    case BlockCheckVerdict::kUndecided:
+      break;
+  }
+  return -1;
+}
+
 // Solves with the shift-invert factorisation so far (KSPPREONLY: one per right-hand side),
 // eigenvector purifications included.
 int OperatorApplications(EPS eps) {
@@ -511,13 +557,25 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     if (band_count < 0) {
       cut = SturmCutAfter(ValuesForTheCut(solution.eigenvalues, ritz.lambda), wanted, solution.shift);
       FLEXMBS_CHECK(cut > solution.eigenvalues(wanted - 1), "Sturm cut below the last wanted mode");
-      count = keep ? EigenvaluesBelow(K, M, cut) : EigenvaluesBelow(eps.eps, &*shifted, cut);
-      ++solution.factorizations;
-      solution.sturm_seconds += SecondsSince(&phase);
+      solution.missed_mode_check = ChooseCheck(options, eps.eps, !fixed_dofs.empty());
+      if (solution.missed_mode_check == MissedModeCheck::kBlockKrylov) {
+        count = BlockCheckedCount(eps.eps, M, x.v, cut, options, attempt, &solution);
+      }
+      if (count < 0) {
+        phase = std::chrono::steady_clock::now();
+        solution.missed_mode_check = MissedModeCheck::kSturmCount;
+        count = keep ? EigenvaluesBelow(K, M, cut) : EigenvaluesBelow(eps.eps, &*shifted, cut);
+        ++solution.factorizations;
+        solution.sturm_seconds += SecondsSince(&phase);
+        solution.sturm_count = static_cast<int>(count);
+        solution.sturm_cut = cut;
+      }
+    } else {
+      solution.missed_mode_check = MissedModeCheck::kSturmCount;
+      solution.sturm_count = static_cast<int>(count);
+      solution.sturm_cut = cut;
     }
     const auto found = static_cast<PetscInt>((solution.eigenvalues.array() < cut).count());
-    solution.sturm_count = static_cast<int>(count);
-    solution.sturm_cut = cut;
     solution.checked_cut = cut;
     if (count == found) {
       solution.eigenvalues.conservativeResize(wanted);
@@ -530,8 +588,12 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
       break;
     }
     if (count < found || attempt > 0) {
-      throw InputError(fmt::format("eigenproblem: SLEPc found {} modes below {:.6g} Hz but the Sturm count is {}",
-                                   found, FrequenciesHz(Eigen::VectorXd::Constant(1, cut))(0), count));
+      throw InputError(fmt::format("eigenproblem: SLEPc found {} modes below {:.6g} Hz but the {} is {}", found,
+                                   FrequenciesHz(Eigen::VectorXd::Constant(1, cut))(0),
+                                   solution.missed_mode_check == MissedModeCheck::kSturmCount
+                                       ? "Sturm count"
+                                       : "block Krylov check's count",
+                                   count));
     }
     // SLEPc missed modes: once more, every mode below the cut converged and GuardPairs more.
     nev = count + static_cast<PetscInt>(GuardPairs(count));
@@ -571,7 +633,6 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
                                  solution.relative_residuals(worst), options.residual_tolerance,
                                  kResidualFloorFactor, solution.residual_floors(worst)));
   }
-  solution.missed_mode_check = MissedModeCheck::kSturmCount;
   if (keep) *K_factor = held_factor.Release();
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;

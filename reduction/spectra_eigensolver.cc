@@ -47,8 +47,6 @@ constexpr double kAutoSturmMaxFlops = 5e9;
 constexpr Index kInitialBandNev = 20;
 // Pairs sought by a deflated verification run.
 constexpr Index kVerificationNev = 4;
-// Seed of the block check's random vectors (plus the run number).
-constexpr unsigned kBlockCheckSeed = 0xb10c0000u;
 // Problems that need nev >= DOF - 1 cannot use Lanczos; they are solved densely up to this size.
 constexpr Index kMaxDenseDofs = 4000;
 
@@ -538,7 +536,7 @@ EigenSolution SpectraEigensolver::SolveWith(const SparseMatrix& K, const SparseM
         const auto check_start = std::chrono::steady_clock::now();
         BlockCheckOptions block;
         block.tolerance = options.tolerance;
-        block.seed = kBlockCheckSeed + static_cast<unsigned>(run);
+        block.seed = kBlockCheckSeed + static_cast<std::uint64_t>(run);
         BlockCheckResult result = CheckForMissedModes(factor, M, basis, cut, block);
         solves += static_cast<int>(result.columns);
         ++solution.krylov_runs;

@@ -110,7 +110,8 @@ Eigen::MatrixXd GaussianBlock(Index rows, Index cols, unsigned seed) {
 TEST(DeflatedBlockLanczos, HiddenComponentBoundHoldsForEveryEigenvectorOutsideTheFoundSet) {
   const Problem p = Cantilever();
   const Eigen::MatrixXd found = Found(p, 12, {});
-  DeflatedBlockLanczos lanczos(p.factor, p.M, found, GaussianBlock(p.K.rows(), 4, 7));
+  const FactorizationSpace space(p.factor, p.M);
+  DeflatedBlockLanczos lanczos(space, found, GaussianBlock(p.K.rows(), 4, 7));
   ASSERT_EQ(lanczos.start().cols(), 4);
   EXPECT_LE((found.transpose() * (p.M * lanczos.start())).cwiseAbs().maxCoeff(),
             kDeflated * lanczos.start().cwiseAbs().maxCoeff());
@@ -136,7 +137,8 @@ TEST(DeflatedBlockLanczos, HiddenComponentBoundHoldsForEveryEigenvectorOutsideTh
 TEST(DeflatedBlockLanczos, RitzValuesLieWithinTheirResidualsOfUnfoundEigenvalues) {
   const Problem p = Cantilever();
   const Eigen::MatrixXd found = Found(p, 12, {});
-  DeflatedBlockLanczos lanczos(p.factor, p.M, found, GaussianBlock(p.K.rows(), 4, 11));
+  const FactorizationSpace space(p.factor, p.M);
+  DeflatedBlockLanczos lanczos(space, found, GaussianBlock(p.K.rows(), 4, 11));
   for (int step = 0; step < 4; ++step) ASSERT_TRUE(lanczos.Extend());
   const Eigen::VectorXd residuals = lanczos.RitzResiduals();
   const Eigen::ArrayXd unfound_mu = p.dense.values.tail(p.dense.values.size() - 12).array().inverse();
