@@ -18,8 +18,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -27,7 +25,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 
 #include "mbs/flexible_body.h"
 #include "mbs/force_element.h"
@@ -37,12 +34,12 @@
 #include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
 #include "mbs/rigid_body.h"
-#include "mbs/scene.h"
 #include "mbs/simulation.h"
 #include "mbs/system_jacobian.h"
 #include "mbs/time_function.h"
 #include "tests/input_error.h"
 #include "tests/mbs/flexible_test_bodies.h"
+#include "tests/mbs/scene_options_support.h"
 #include "tests/validation/flexible_pendulum_model.h"
 
 namespace flexmbs::mbs {
@@ -512,23 +509,13 @@ TEST(KktNewtonSolver, OptionChoosesTheSolver) {
 
 // The scene key simulation.newton: auto (the default), dense or sparse.
 TEST(KktNewtonSolver, SceneChoosesTheNewtonSolver) {
-  const std::filesystem::path directory =
-      std::filesystem::temp_directory_path() / ("flexmbs_kkt_newton_" + std::to_string(getpid()));
-  std::filesystem::create_directories(directory);
-  const auto load = [&](const std::string& newton_line) {
-    const std::filesystem::path file = directory / "scene.yaml";
-    std::ofstream(file) << "bodies:\n  box:\n    rigid: {mass: 1.0, inertia: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n"
-                        << "simulation:\n  end_time: 1.0\n  method: implicit\n"
-                        << newton_line;
-    return LoadScene(file).options.integrator.newton;
-  };
+  const auto load = [](const std::string& line) { return flexmbs::testing::LoadImplicitIntegratorOptions(line).newton; };
   EXPECT_EQ(load(""), OdeNewton::kAuto);
   EXPECT_EQ(load("  newton: auto\n"), OdeNewton::kAuto);
   EXPECT_EQ(load("  newton: dense\n"), OdeNewton::kDense);
   EXPECT_EQ(load("  newton: sparse\n"), OdeNewton::kSparse);
   const std::string message = flexmbs::testing::InputErrorMessage([&] { load("  newton: klu\n"); });
   EXPECT_NE(message.find("'klu' must be one of: auto, dense, sparse"), std::string::npos) << message;
-  std::filesystem::remove_all(directory);
 }
 
 }  // namespace

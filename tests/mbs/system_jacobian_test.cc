@@ -14,14 +14,11 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <memory>
 #include <random>
 #include <vector>
 
-#include <unistd.h>
 
 #include "core/rotation.h"
 #include "mbs/flexible_body.h"
@@ -37,6 +34,7 @@
 #include "mbs/time_function.h"
 #include "tests/input_error.h"
 #include "tests/mbs/flexible_test_bodies.h"
+#include "tests/mbs/scene_options_support.h"
 #include "tests/validation/flexible_pendulum_model.h"
 
 namespace flexmbs::mbs {
@@ -494,22 +492,12 @@ TEST(SystemJacobian, StiffModesRunAtTightTolerances) {
 
 // The scene key simulation.jacobian: model (the default) or difference_quotients.
 TEST(SystemJacobian, SceneChoosesTheJacobian) {
-  const std::filesystem::path directory =
-      std::filesystem::temp_directory_path() / ("flexmbs_system_jacobian_" + std::to_string(getpid()));
-  std::filesystem::create_directories(directory);
-  const auto load = [&](const std::string& jacobian_line) {
-    const std::filesystem::path file = directory / "scene.yaml";
-    std::ofstream(file) << "bodies:\n  box:\n    rigid: {mass: 1.0, inertia: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n"
-                        << "simulation:\n  end_time: 1.0\n  method: implicit\n"
-                        << jacobian_line;
-    return LoadScene(file).options.integrator.jacobian;
-  };
+  const auto load = [](const std::string& line) { return flexmbs::testing::LoadImplicitIntegratorOptions(line).jacobian; };
   EXPECT_EQ(load(""), OdeJacobian::kModel);
   EXPECT_EQ(load("  jacobian: model\n"), OdeJacobian::kModel);
   EXPECT_EQ(load("  jacobian: difference_quotients\n"), OdeJacobian::kDifferenceQuotients);
   const std::string message = flexmbs::testing::InputErrorMessage([&] { load("  jacobian: analytic\n"); });
   EXPECT_NE(message.find("'analytic' must be one of: model, difference_quotients"), std::string::npos) << message;
-  std::filesystem::remove_all(directory);
 }
 
 }  // namespace
