@@ -254,15 +254,7 @@ TEST(CheckForMissedModes, NothingOutsideTheFoundSetIsCertainAtOnce) {
 // misses a copy of the 5-fold eigenvalue (checked); the block check finds it, with fewer solves
 // and far fewer passes over the factor than the Lanczos check.
 TEST(SpectraWithBlockKrylovCheck, FindsTheCopyOfAFiveFoldEigenvalueThatTheFirstRunMissed) {
-  const int n = 200;
-  std::vector<Eigen::Triplet<double>> k, m;
-  for (int i = 0; i < n; ++i) {
-    k.emplace_back(i, i, i < 5 ? 1.0 : 1.0 + (i - 4));
-    m.emplace_back(i, i, 1.0);
-  }
-  SparseMatrix K(n, n), M(n, n);
-  K.setFromTriplets(k.begin(), k.end());
-  M.setFromTriplets(m.begin(), m.end());
+  const auto [K, M] = testing::FiveFoldLowestEigenvalue(200);
   const auto solver = MakeEigensolver("spectra");
   EigenOptions options;
   options.num_modes = 7;

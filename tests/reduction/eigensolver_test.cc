@@ -340,15 +340,7 @@ TEST_P(SpectraEigensolverWith, FindsEveryCopyOfAHighlyRepeatedEigenvalue) {
   // K = diag(1, 1, 1, 1, 1, 2, 3, ...), M = I: single-vector Lanczos sees each eigenspace only
   // through the start vector's projection; the check and deflated runs must find all five
   // copies of lambda = 1.
-  const int n = 200;
-  std::vector<Eigen::Triplet<double>> k, m;
-  for (int i = 0; i < n; ++i) {
-    k.emplace_back(i, i, i < 5 ? 1.0 : 1.0 + (i - 4));
-    m.emplace_back(i, i, 1.0);
-  }
-  SparseMatrix K(n, n), M(n, n);
-  K.setFromTriplets(k.begin(), k.end());
-  M.setFromTriplets(m.begin(), m.end());
+  const auto [K, M] = testing::FiveFoldLowestEigenvalue(200);
   EigenOptions options = Options();
   options.num_modes = 7;
   options.shift_hz = 0.0;

@@ -60,6 +60,18 @@ fem::Mesh HexBox(const Eigen::Vector3i& cells, const Eigen::Vector3d& size,
   return HexBox(cells, size, material, material, 0.0);
 }
 
+DiagonalProblem FiveFoldLowestEigenvalue(int n) {
+  std::vector<Eigen::Triplet<double>> k, m;
+  for (int i = 0; i < n; ++i) {
+    k.emplace_back(i, i, i < 5 ? 1.0 : 1.0 + (i - 4));
+    m.emplace_back(i, i, 1.0);
+  }
+  DiagonalProblem p{Eigen::SparseMatrix<double>(n, n), Eigen::SparseMatrix<double>(n, n)};
+  p.K.setFromTriplets(k.begin(), k.end());
+  p.M.setFromTriplets(m.begin(), m.end());
+  return p;
+}
+
 std::vector<int> NodesOnPlane(const fem::Mesh& mesh, int axis, double value) {
   std::vector<int> nodes;
   for (Eigen::Index n = 0; n < mesh.num_nodes(); ++n) {

@@ -27,6 +27,13 @@ fem::Mesh HexBox(const Eigen::Vector3i& cells, const Eigen::Vector3d& size,
 /// The nodes of `mesh` with coordinate `axis` equal to `value` (within 1e-12 of the box).
 std::vector<int> NodesOnPlane(const fem::Mesh& mesh, int axis, double value);
 
+/// K = diag(1, 1, 1, 1, 1, 2, 3, ..., n - 4), M = I (n x n): a 5-fold lowest eigenvalue that
+/// single-vector Lanczos sees only once per run.
+struct DiagonalProblem {
+  Eigen::SparseMatrix<double> K, M;
+};
+DiagonalProblem FiveFoldLowestEigenvalue(int n);
+
 /// Reference eigenpairs of K phi = lambda M phi by Eigen's dense generalized solver in
 /// shift-invert form: M x = mu (K - sigma M) x (Cholesky of K - sigma M, Householder
 /// tridiagonalisation, QR), lambda = sigma + 1 / mu. Ascending, M-orthonormal. The inverted
