@@ -13,6 +13,7 @@
 #include "reduction/blas_threads.h"
 #include "reduction/petsc_block_space.h"
 #include "reduction/slepc_pair_measures.h"
+#include "reduction/slepc_ritz_gap.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -251,62 +252,6 @@ PetscInt EigenvaluesBelow(Mat K, Mat M, double cut) {
   PetscInt negative = 0;
   FLEXMBS_PETSC(MatGetInertia(factor.A, &negative, nullptr, nullptr));
   return negative;
-}
-
-// ---- The gap after the wanted modes -------------------------------------------------------
-//
-// This backend's guard rule (not GuardPairs, which the Spectra backend uses): the first run asks
-// SLEPc for exactly the wanted pairs, and the gap after them, where the Sturm cut goes, is located
-// by the run's last Ritz values beyond the converged ones, each with its residual bound. Converged
-// guard pairs cost whole Krylov-Schur restarts (bench bar, 20 modes, 19 k DOF: 53 solves, 63-67 with
-// one converged guard, 80 with GuardPairs' 5); Spectra keeps its unconverged Ritz values to itself,
-// SLEPc passes them to a monitor. The Ritz values only place the cut: the modes found below it
-// are converged pairs, and the count is a factorisation's inertia, so the check is unchanged.
-
-// A Ritz value whose relative error estimate exceeds this says too little about where its
-// eigenvalue is (its lower bound below tends to sigma as the estimate tends to 1).
-constexpr double kRitzGuardMaxError = 1e-2;
-
-// Lower bounds of the eigenvalues that the last iteration's unconverged Ritz values approximate.
-// For shift-and-invert the Ritz values are theta = 1 / (lambda - sigma) of the operator
-// (K - sigma M)^-1 M, symmetric in the M inner product, and SLEPc's estimate is e = ||r|| / |theta|;
-// an eigenvalue lies within ||r|| of theta, hence at or above the back-transform of
-// theta + e |theta| (e < 1).
-struct RitzLowerBounds {
-  ST st = nullptr;
-  std::vector<double> lambda;
-};
-
-// EPSMonitorSet callback: keeps the lower bounds of the latest iteration (the last call is the
-// final one). Never throws into SLEPc.
-PetscErrorCode RecordRitzLowerBounds(EPS, PetscInt, PetscInt converged, PetscScalar* theta, PetscScalar*,
-                                     PetscReal* error, PetscInt count, void* context) {
-  auto* bounds = static_cast<RitzLowerBounds*>(context);
-  try {
-    bounds->lambda.clear();
-    for (PetscInt i = converged; i < count; ++i) {
-      if (!(error[i] <= kRitzGuardMaxError)) continue;
-      PetscScalar value = theta[i] + error[i] * std::abs(theta[i]);
-      PetscScalar imaginary = 0.0;
-      const PetscErrorCode code = STBackTransform(bounds->st, 1, &value, &imaginary);
-      if (code != 0) return code;
-      bounds->lambda.push_back(value);
-    }
-  } catch (...) {
-    return PETSC_ERR_MEM;
-  }
-  return 0;
-}
-
-// The converged eigenvalues (ascending) followed by the Ritz lower bounds above the largest of
-// them, ascending: the values SturmCutAfter places the cut among.
-Eigen::VectorXd ValuesForTheCut(const Eigen::VectorXd& converged, std::vector<double> ritz_lower) {
-  const double largest = converged(converged.size() - 1);
-  std::erase_if(ritz_lower, [&](double v) { return !(v > largest); });
-  std::sort(ritz_lower.begin(), ritz_lower.end());
-  Eigen::VectorXd values(converged.size() + static_cast<Eigen::Index>(ritz_lower.size()));
-  values << converged, Eigen::Map<const Eigen::VectorXd>(ritz_lower.data(), static_cast<Eigen::Index>(ritz_lower.size()));
-  return values;
 }
 
 // An EPS destroyed with its owner (also when an exception passes).
