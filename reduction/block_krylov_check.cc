@@ -173,7 +173,7 @@ double DeflatedBlockLanczos::HiddenComponentBound(double mu) const {
   return Eigen::JacobiSVD<Matrix>(F).singularValues()(0);
 }
 
-double ScaledMassFloorEstimate(const BlockKrylovSpace& space, int steps, std::uint64_t seed) {
+double ScaledMassFloorEstimate(const MassSpace& space, int steps, std::uint64_t seed) {
   const Index n = space.local_rows();
   const Index k_max = std::min<Index>(steps, space.global_rows());
   FLEXMBS_CHECK(k_max >= 1, "ScaledMassFloorEstimate: no Lanczos step");
@@ -207,24 +207,18 @@ double ScaledMassFloorEstimate(const BlockKrylovSpace& space, int steps, std::ui
 }
 
 double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, std::uint64_t seed) {
-  // The space's shift-invert is not used here.
-  class MassOnly final : public BlockKrylovSpace {
+  class SparseMass final : public MassSpace {
    public:
-    explicit MassOnly(const Eigen::SparseMatrix<double>& M) : M_(M) {}
+    explicit SparseMass(const Eigen::SparseMatrix<double>& M) : M_(M) {}
     Index local_rows() const override { return M_.rows(); }
     Index global_rows() const override { return M_.rows(); }
-    double sigma() const override { return 0.0; }
-    Matrix ShiftInvert(const Matrix&) const override {
-      FLEXMBS_CHECK(false, "ScaledMassFloorEstimate: no shift-invert");
-      return {};
-    }
     Matrix Mass(const Matrix& X) const override { return M_ * X; }
     Eigen::VectorXd MassDiagonal() const override { return M_.diagonal(); }
 
    private:
     const Eigen::SparseMatrix<double>& M_;
   };
-  return ScaledMassFloorEstimate(MassOnly(M), steps, seed);
+  return ScaledMassFloorEstimate(SparseMass(M), steps, seed);
 }
 
 BlockCheckResult CheckForMissedModes(const BlockKrylovSpace& space, const Matrix& found, double cut,

@@ -14,20 +14,16 @@ namespace flexmbs::reduction {
 
 class ShiftedFactorization;
 
-/// What the block check needs of K phi = lambda M phi, on this process's rows of every vector:
-/// all rows serially, a row block of each under MPI, where every call is collective and the
-/// small matrices of inner products are summed over the processes (Sum). Every process then
-/// holds the same small matrices and takes the same decisions.
-class BlockKrylovSpace {
+/// The mass matrix M [kg] on this process's rows of every vector: all rows serially, a row
+/// block of each under MPI, where every call is collective and the small matrices of inner
+/// products are summed over the processes (Sum). Every process then holds the same small
+/// matrices and takes the same decisions.
+class MassSpace {
  public:
-  virtual ~BlockKrylovSpace() = default;
+  virtual ~MassSpace() = default;
   /// Rows of the vectors on this process, and in all.
   virtual Eigen::Index local_rows() const = 0;
   virtual Eigen::Index global_rows() const = 0;
-  /// The shift sigma [rad^2/s^2] of ShiftInvert.
-  virtual double sigma() const = 0;
-  /// (K - sigma M)^{-1} B for all of B's columns at once (K - sigma M positive definite).
-  virtual Eigen::MatrixXd ShiftInvert(const Eigen::MatrixXd& B) const = 0;
   /// M X.
   virtual Eigen::MatrixXd Mass(const Eigen::MatrixXd& X) const = 0;
   /// diag(M) on this process's rows (positive).
@@ -38,6 +34,15 @@ class BlockKrylovSpace {
   /// A number that differs between the processes (their rank), so that each draws its own rows
   /// of a random block; 0 serially.
   virtual std::uint64_t stream() const { return 0; }
+};
+
+/// What the block check needs of K phi = lambda M phi: M, and the shift-invert solve.
+class BlockKrylovSpace : public MassSpace {
+ public:
+  /// The shift sigma [rad^2/s^2] of ShiftInvert.
+  virtual double sigma() const = 0;
+  /// (K - sigma M)^{-1} B for all of B's columns at once (K - sigma M positive definite).
+  virtual Eigen::MatrixXd ShiftInvert(const Eigen::MatrixXd& B) const = 0;
 };
 
 /// The serial space: a factorisation of K - sigma M and M held in this process. Both must
@@ -119,8 +124,8 @@ class DeflatedBlockLanczos {
 /// The estimate of the smallest eigenvalue of D^{-1/2} M D^{-1/2} (D = diag M) the check uses:
 /// the lowest Ritz value of `steps` Lanczos steps from a Gaussian vector (an upper bound of the
 /// eigenvalue; 6.5 % above it after 20 steps on the tet10 bench bar), halved. For a lumped
-/// (diagonal) M it is 0.5 (the eigenvalue is 1). Uses the space's Mass, MassDiagonal and Sum.
-double ScaledMassFloorEstimate(const BlockKrylovSpace& space, int steps, std::uint64_t seed);
+/// (diagonal) M it is 0.5 (the eigenvalue is 1).
+double ScaledMassFloorEstimate(const MassSpace& space, int steps, std::uint64_t seed);
 /// The same for M held in this process.
 double ScaledMassFloorEstimate(const Eigen::SparseMatrix<double>& M, int steps, std::uint64_t seed);
 
