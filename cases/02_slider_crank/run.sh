@@ -7,6 +7,8 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 flexmbs="${1:-flexmbs}"
+# A path (not a name looked up on PATH) made absolute: the script changes into its folder.
+case "$flexmbs" in */*) flexmbs="$(cd "$(dirname "$flexmbs")" && pwd)/$(basename "$flexmbs")" ;; esac
 out="${FLEXMBS_OUT:-$here/out}"
 mkdir -p "$out"
 cd "$here"
