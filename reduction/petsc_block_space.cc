@@ -40,21 +40,25 @@ Matrix PetscBlockSpace::ShiftInvert(const Matrix& B) const {
 Matrix PetscBlockSpace::Mass(const Matrix& X) const {
   FLEXMBS_CHECK(X.rows() == local_rows_, "PetscBlockSpace: a block of another row count");
   Matrix Y(local_rows_, X.cols());
-  Vec x = nullptr, y = nullptr;
-  FLEXMBS_PETSC(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(local_rows_), static_cast<PetscInt>(global_rows_),
-                                      nullptr, &x));
-  FLEXMBS_PETSC(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(local_rows_), static_cast<PetscInt>(global_rows_),
-                                      nullptr, &y));
-  PetscErrorCode error = 0;
-  for (Eigen::Index j = 0; j < X.cols() && error == 0; ++j) {
-    error = VecPlaceArray(x, X.col(j).data());
-    if (error == 0) error = VecPlaceArray(y, Y.col(j).data());
-    if (error == 0) error = MatMult(M_, x, y);
-    if (error == 0) error = VecResetArray(x);
-    if (error == 0) error = VecResetArray(y);
+  if (X.cols() == 0) return Y;
+  // One sparse-times-dense product for all columns: one pass over M, not one per column.
+  Mat x = nullptr, y = nullptr;
+  FLEXMBS_PETSC(MatCreateDense(comm_, static_cast<PetscInt>(local_rows_), PETSC_DECIDE,
+                               static_cast<PetscInt>(global_rows_), static_cast<PetscInt>(X.cols()),
+                               const_cast<double*>(X.data()), &x));
+  PetscErrorCode error = MatMatMult(M_, x, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &y);
+  const PetscScalar* values = nullptr;
+  PetscInt leading = 0;
+  if (error == 0) error = MatDenseGetLDA(y, &leading);
+  if (error == 0) error = MatDenseGetArrayRead(y, &values);
+  if (error == 0) {
+    for (Eigen::Index j = 0; j < X.cols(); ++j) {
+      Y.col(j) = Eigen::Map<const Eigen::VectorXd>(values + j * leading, local_rows_);
+    }
+    error = MatDenseRestoreArrayRead(y, &values);
   }
-  VecDestroy(&x);
-  VecDestroy(&y);
+  MatDestroy(&x);
+  MatDestroy(&y);
   FLEXMBS_PETSC(error);
   return Y;
 }
