@@ -351,9 +351,9 @@ struct ChainRun {
   SimulationStatistics statistics;
 };
 
-ChainRun RunChain(OdeNewton newton, double relative_tolerance, double absolute_tolerance, double end_time) {
-  VectorXd y0;
-  const auto system = MakeChain(4, &y0);
+// An implicit run of `system` from y0 to end_time [s] with the given Newton solve and tolerances.
+ChainRun RunImplicit(MultibodySystem& system, const VectorXd& y0, OdeNewton newton, double relative_tolerance,
+                     double absolute_tolerance, double end_time) {
   SimulationOptions options;
   options.integrator.method = OdeMethod::kImplicit;
   options.integrator.newton = newton;
@@ -362,8 +362,14 @@ ChainRun RunChain(OdeNewton newton, double relative_tolerance, double absolute_t
   options.end_time = end_time;
   options.output_interval = end_time;
   ChainRun run;
-  run.statistics = Simulate(*system, options, y0, [&](double, const VectorXd& y, const VectorXd&) { run.y_end = y; });
+  run.statistics = Simulate(system, options, y0, [&](double, const VectorXd& y, const VectorXd&) { run.y_end = y; });
   return run;
+}
+
+ChainRun RunChain(OdeNewton newton, double relative_tolerance, double absolute_tolerance, double end_time) {
+  VectorXd y0;
+  const auto system = MakeChain(4, &y0);
+  return RunImplicit(*system, y0, newton, relative_tolerance, absolute_tolerance, end_time);
 }
 
 void Print(const char* what, const SimulationStatistics& s) {
@@ -421,16 +427,7 @@ TEST(KktNewtonSolver, StiffModesAreSteppedOver) {
     u(0) = 2.0;
     VectorXd y0 = system.NeutralState();
     system.SetBodyState(0, x, u, y0);
-    SimulationOptions options;
-    options.integrator.method = OdeMethod::kImplicit;
-    options.integrator.newton = newton;
-    options.integrator.relative_tolerance = kRtol;
-    options.integrator.absolute_tolerance = kAtol;
-    options.end_time = kEndTime;
-    options.output_interval = kEndTime;
-    ChainRun out;
-    out.statistics = Simulate(system, options, y0, [&](double, const VectorXd& y, const VectorXd&) { out.y_end = y; });
-    return out;
+    return RunImplicit(system, y0, newton, kRtol, kAtol, kEndTime);
   };
   const ChainRun sparse = run(OdeNewton::kSparse);
   const ChainRun dense = run(OdeNewton::kDense);
