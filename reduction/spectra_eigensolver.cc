@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "reduction/block_krylov_check.h"
+#include "reduction/spectra_input_errors.h"
 #include "reduction/shifted_factorization.h"
 
 namespace flexmbs::reduction {
@@ -52,11 +53,6 @@ constexpr Index kMaxDenseDofs = 4000;
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double HzOf(double lambda) {
-  const double f = std::sqrt(std::abs(lambda)) / (2.0 * std::numbers::pi);
-  return lambda < 0.0 ? -f : f;
 }
 
 // y = M x. Spectra's Lanczos step asks for M f twice for the same f (its norm, then its
@@ -266,45 +262,6 @@ bool HasZeroEigenvalue(const ShiftedFactorization& factor, const SparseMatrix& K
   return ritz.eigenvalues()(0) <= kZeroEigenvalue * lambda_scale;
 }
 
-std::string ShiftText(double sigma, bool automatic) {
-  return automatic ? fmt::format("the automatic shift {:g} Hz (sigma = {:g} rad^2/s^2)", HzOf(sigma), sigma)
-                   : fmt::format("shift_hz = {:g} (sigma = {:g} rad^2/s^2)", HzOf(sigma), sigma);
-}
-
-// `free_body_shift_works`: K - FreeBodyShift M is positive definite (for a negative sigma
-// closer to zero than that: the shift was too small for the rigid-body modes).
-std::string NotPositiveDefiniteMessage(double sigma, bool automatic, bool free_body_shift_works,
-                                       double free_body_shift) {
-  if (sigma >= 0.0) {
-    return fmt::format("eigenproblem: K - sigma M is not positive definite at {}: the body is likely "
-                       "unconstrained (rigid-body modes at 0 Hz, not above the shift) or the shift is above the "
-                       "lowest mode; use a negative shift_hz or the automatic shift", ShiftText(sigma, automatic));
-  }
-  if (free_body_shift_works) {
-    return fmt::format("eigenproblem: K - sigma M is not positive definite at {}: the negative shift is too close "
-                       "to zero for the rigid-body modes (round-off); use a more negative shift_hz ({:.3g} Hz works) or the "
-                       "automatic shift", ShiftText(sigma, automatic), HzOf(free_body_shift));
-  }
-  return fmt::format("eigenproblem: K - sigma M is not positive definite at {}: K has eigenvalues below a "
-                     "negative shift, so it is not positive semi-definite (inverted elements or a bad material?)",
-                     ShiftText(sigma, automatic));
-}
-
-// Throws if an eigenvalue lies at the shift to round-off: K - sigma M was numerically singular
-// (its Cholesky factorisation can still succeed, with pivots of round-off size).
-void CheckNotSingular(const Eigen::VectorXd& values, double sigma, bool automatic, double lambda_scale) {
-  if (values.size() == 0) return;
-  const double distance = (values.array() - sigma).abs().minCoeff();
-  if (distance > kZeroEigenvalue * lambda_scale) return;
-  throw InputError(fmt::format(
-      "eigenproblem: K - sigma M is numerically singular at {}: an eigenvalue lies at the shift to round-off "
-      "(|lambda - sigma| = {:.3g} rad^2/s^2, {:.2g} of trace(K)/trace(M)); {}", ShiftText(sigma, automatic),
-      distance, distance / lambda_scale,
-      sigma >= 0.0 ? "the body is likely unconstrained (rigid-body modes at 0 Hz): use a negative shift_hz or the "
-                     "automatic shift"
-                   : "the negative shift is too close to zero for the rigid-body modes: use the automatic shift"));
-}
-
 // All eigenpairs of a small problem by a dense generalized solver, lowest `wanted` kept.
 RitzPairs SolveDense(const SparseMatrix& K, const SparseMatrix& M) {
   const Eigen::MatrixXd Kd = Eigen::MatrixXd(K);
@@ -314,12 +271,6 @@ RitzPairs SolveDense(const SparseMatrix& K, const SparseMatrix& M) {
     throw InputError("eigenproblem: dense generalized eigensolver failed: M is not positive definite");
   }
   return {dense.eigenvalues(), dense.eigenvectors()};
-}
-
-[[noreturn]] void ThrowEmptyBand(double max_frequency_hz, std::optional<double> lowest_lambda) {
-  throw InputError(fmt::format("eigenproblem: no mode below max_frequency_hz = {:g} Hz{}", max_frequency_hz,
-                               lowest_lambda ? fmt::format(": the lowest mode is at {:g} Hz", HzOf(*lowest_lambda))
-                                             : std::string()));
 }
 
 class SpectraEigensolver final : public Eigensolver {
