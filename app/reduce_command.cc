@@ -117,7 +117,8 @@ nlohmann::json EigensolverJson(const reduction::EigensolverSummary& s) {
           {"operator_applications", s.operator_applications},
           {"krylov_runs", s.krylov_runs},
           {"restarts", s.restarts},
-          {"missed_mode_check", reduction::MissedModeCheckName(s.missed_mode_check)}};
+          {"missed_mode_check", reduction::MissedModeCheckName(s.missed_mode_check)},
+          {"factorization", s.factorization}};
 }
 
 void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, const fem::Mesh& mesh,

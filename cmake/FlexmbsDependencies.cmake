@@ -78,3 +78,15 @@ find_package(SUNDIALS 6 REQUIRED CONFIG)
 add_library(ext::sundials INTERFACE IMPORTED)
 target_link_libraries(ext::sundials INTERFACE SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
                       SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared)
+
+# MUMPS's own C interface (the MPI build PETSc links) for the substructured factorisation's
+# sequential interior solves with Schur complements, METIS for their ordering, and LAPACK for its
+# dense interface matrix.
+find_path(MUMPS_INCLUDE_DIR dmumps_c.h REQUIRED)
+find_library(DMUMPS_LIBRARY dmumps REQUIRED)
+find_library(LAPACK_LIBRARY lapack REQUIRED)
+find_path(METIS_INCLUDE_DIR metis.h REQUIRED)
+find_library(METIS_LIBRARY metis REQUIRED)
+add_library(ext::mumps INTERFACE IMPORTED)
+target_include_directories(ext::mumps SYSTEM INTERFACE ${MUMPS_INCLUDE_DIR} ${METIS_INCLUDE_DIR})
+target_link_libraries(ext::mumps INTERFACE ${DMUMPS_LIBRARY} ${LAPACK_LIBRARY} ${METIS_LIBRARY} MPI::MPI_C)

@@ -159,8 +159,9 @@ struct DistributedModel::State {
 
   std::unique_ptr<RowScatter> K_scatter, M_scatter, consistent_scatter;
 
-  // The eigen-solve's factorisation of K (null: none).
+  // The eigen-solve's factorisation of K (null: none), MUMPS's or the substructured one.
   Mat K_factor = nullptr;
+  std::unique_ptr<SubstructuredFactor> K_substructured;
   // The factorisation for static solves: K without the rows `excluded` (K itself if none).
   std::optional<std::vector<PetscInt>> excluded;
   Mat K_ff = nullptr;    // owned if a submatrix
@@ -220,8 +221,8 @@ struct DistributedModel::State {
     if (excluded && *excluded == rows_out) return;
     DestroyFactor();
     K_ff = rows_out.empty() ? K : Submatrix(K, 1, rows_out);
-    if (rows_out.empty() && K_factor != nullptr) {
-      factor = K_factor;  // the eigen-solve's
+    if (rows_out.empty() && (K_factor != nullptr || K_substructured)) {
+      factor = K_factor;  // the eigen-solve's (null: the substructured one)
     } else {
       factor = MumpsCholesky(K_ff, MumpsFactorization::kPositiveDefinite, "flexmbs_static_");
       ++stats.factorizations;
@@ -252,7 +253,11 @@ struct DistributedModel::State {
     const std::vector<int>& dofs = rank == 0 ? ff_rows : none;
     for (Index j = 0; j < columns; ++j) {
       ff_scatter->Send(F, j, dofs);
-      FLEXMBS_PETSC(MatSolve(factor, ff_scatter->input, ff_scatter->output));
+      if (factor != nullptr) {
+        FLEXMBS_PETSC(MatSolve(factor, ff_scatter->input, ff_scatter->output));
+      } else {
+        K_substructured->Solve(ff_scatter->input, ff_scatter->output);
+      }
       ff_scatter->Receive(rank == 0 ? &X : nullptr, j, dofs);
     }
     stats.static_solves += static_cast<int>(columns);
@@ -310,10 +315,12 @@ Eigen::VectorXd DistributedOperator::Diagonal() const {
 
 DistributedModel::DistributedModel(Mat K, Mat M, bool scalar_mass, fem::MeshPart part, fem::MassMatrixKind mass_kind,
                                    std::vector<int> mesh_node, std::vector<int> clamped, Eigen::VectorXd K_diagonal,
-                                   Eigen::VectorXd M_diagonal, Mat K_factor)
+                                   Eigen::VectorXd M_diagonal, Mat K_factor,
+                                   std::unique_ptr<SubstructuredFactor> K_substructured)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.K_factor = K_factor;
+  s.K_substructured = std::move(K_substructured);
   PetscMPIInt rank = 0;
   FLEXMBS_PETSC(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   s.rank = rank;

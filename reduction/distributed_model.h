@@ -12,6 +12,7 @@
 #include "fem/element_integrator.h"
 #include "fem/mesh_partition.h"
 #include "reduction/model_operators.h"
+#include "reduction/substructured_factor.h"
 
 // PETSc's matrix type (`Mat` is a pointer to it), declared here so that no PETSc header
 // appears in this public header.
@@ -61,10 +62,11 @@ class DistributedModel final : public ModelOperators {
   /// `clamped` (the removed DOF, partition numbering, ascending), and the diagonals of the
   /// whole K and M in the mesh's numbering. `K_factor` (on every rank, or null on every rank):
   /// a MUMPS Cholesky factorisation of this K (SolveDistributedEigenproblem's `K_factor`), taken
-  /// and destroyed at the end like K and M.
+  /// and destroyed at the end like K and M; or `K_substructured`, its substructured one.
   DistributedModel(_p_Mat* K, _p_Mat* M, bool scalar_mass, fem::MeshPart part, fem::MassMatrixKind mass_kind,
                    std::vector<int> mesh_node, std::vector<int> clamped, Eigen::VectorXd K_diagonal,
-                   Eigen::VectorXd M_diagonal, _p_Mat* K_factor = nullptr);
+                   Eigen::VectorXd M_diagonal, _p_Mat* K_factor = nullptr,
+                   std::unique_ptr<SubstructuredFactor> K_substructured = nullptr);
   /// Collective: rank 0 ends the other ranks' Serve (if Finish has not), then every rank
   /// destroys its matrices and factors.
   ~DistributedModel() override;

@@ -150,6 +150,7 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
   double gather_seconds = 0.0;
   // A held body kept for static solves: the eigen-solve's factorisation of K_oo serves them.
   Mat K_factor = nullptr;
+  std::unique_ptr<SubstructuredFactor> K_substructured;
   try {
     if (keep) {
       // What the products after the solve need of the whole matrices: their diagonals and,
@@ -163,7 +164,7 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
       M = RemoveClamped(M, clamped);
     }
     solution = SolveDistributedEigenproblem(K, M, {}, options, ModesOn::kRankZero, &gather_seconds,
-                                            keep && !clamped.empty() ? &K_factor : nullptr);
+                                            keep && !clamped.empty() ? &K_factor : nullptr, &K_substructured);
   } catch (...) {
     if (K_factor != nullptr) MatDestroy(&K_factor);
     MatDestroy(&K);
@@ -179,7 +180,7 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
     const bool lumped = mass_kind != fem::MassMatrixKind::kConsistent;
     *keep = std::make_unique<DistributedModel>(K, M, M_s != nullptr, lumped ? std::move(part) : fem::MeshPart{},
                                                mass_kind, old_node, clamped, std::move(K_diagonal),
-                                               std::move(M_diagonal), K_factor);
+                                               std::move(M_diagonal), K_factor, std::move(K_substructured));
   } else {
     FLEXMBS_PETSC(MatDestroy(&K));
     FLEXMBS_PETSC(MatDestroy(&M));

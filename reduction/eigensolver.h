@@ -38,6 +38,17 @@ enum class MissedModeCheck {
 /// "none", "sturm_count", "deflated_lanczos", "block_krylov", "auto": the names used in reports.
 std::string_view MissedModeCheckName(MissedModeCheck check);
 
+/// How the slepc backend factorises K - sigma M on more than one rank.
+enum class DistributedFactorization {
+  /// Substructuring where it applies (K - sigma M positive definite) and its interface has at
+  /// most a set number of rows (reduction/slepc_solver.cc), else MUMPS.
+  kAuto,
+  /// MUMPS's own distributed Cholesky (L D L^T).
+  kMumps,
+  /// reduction/substructured_factor.h wherever K - sigma M is positive definite.
+  kSubstructured,
+};
+
 /// What to compute for the generalized symmetric eigenproblem K phi = lambda M phi
 /// (K symmetric positive semi-definite [N/m], M symmetric positive definite [kg]).
 struct EigenOptions {
@@ -71,6 +82,8 @@ struct EigenOptions {
   /// count or a block Krylov check (kAuto: by the flops of its factorisation; kNone and
   /// kDeflatedLanczos: the Sturm count).
   MissedModeCheck check_missed_modes = MissedModeCheck::kAuto;
+  /// The slepc backend's factorisation of K - sigma M (on one rank kAuto is MUMPS).
+  DistributedFactorization distributed_factorization = DistributedFactorization::kAuto;
 };
 
 /// Relative gap that separates the last wanted eigenvalue from the next one when placing a
@@ -124,6 +137,8 @@ struct EigenSolution {
   double sturm_seconds = 0.0;          ///< of which: Sturm counts (LDL^T factorisations)
   double krylov_seconds = 0.0;         ///< of which: Lanczos runs and Rayleigh-Ritz
   std::string backend;            ///< the backend's name
+  /// slepc: how K - sigma M was factorised, "mumps" or "substructured"; empty for the others.
+  std::string factorization;
 };
 
 /// The frequency of each eigenvalue [Hz]: sign(lambda) sqrt(|lambda|) / (2 pi), so round-off

@@ -124,6 +124,7 @@ EigensolverSummary SummarizeEigenSolution(const EigenSolution& solution) {
   summary.krylov_runs = solution.krylov_runs;
   summary.restarts = solution.restarts;
   summary.missed_mode_check = solution.missed_mode_check;
+  summary.factorization = solution.factorization;
   return summary;
 }
 

@@ -99,6 +99,7 @@ struct EigensolverSummary {
   int krylov_runs = 0;                 ///< Krylov (Lanczos / Krylov-Schur) runs
   int restarts = 0;                    ///< restarts over all runs
   MissedModeCheck missed_mode_check = MissedModeCheck::kNone;  ///< the check made against missed modes
+  std::string factorization;  ///< slepc: "mumps" or "substructured" (EigenSolution::factorization)
 };
 
 /// The summary of `solution` (its fields of the same names).

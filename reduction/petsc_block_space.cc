@@ -18,10 +18,19 @@ PetscBlockSpace::PetscBlockSpace(Mat factor, Mat M, double sigma) : factor_(fact
   global_rows_ = global;
 }
 
+PetscBlockSpace::PetscBlockSpace(const SubstructuredFactor& factor, Mat M, double sigma)
+    : PetscBlockSpace(static_cast<Mat>(nullptr), M, sigma) {
+  substructured_ = &factor;
+}
+
 Matrix PetscBlockSpace::ShiftInvert(const Matrix& B) const {
   FLEXMBS_CHECK(B.rows() == local_rows_, "PetscBlockSpace: a block of another row count");
   Matrix X(local_rows_, B.cols());
   if (B.cols() == 0) return X;
+  if (substructured_) {
+    substructured_->SolveColumns(B.data(), X.data(), static_cast<int>(B.cols()));
+    return X;
+  }
   // Dense PETSc matrices on the blocks' own storage (column-major, leading dimension = local
   // rows, as Eigen's): MUMPS solves all columns in one pass over its factors.
   Mat rhs = nullptr, solution = nullptr;

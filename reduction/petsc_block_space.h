@@ -1,14 +1,15 @@
 #pragma once
 // The block Krylov missed-mode check's space (reduction/block_krylov_check.h) on distributed
 // PETSc matrices: each rank holds its rows of every vector, solves go through a MUMPS
-// factorisation with all columns at once (MatMatSolve), inner products are summed over the
-// ranks. Used by the SLEPc backend instead of a Sturm count's factorisation.
+// factorisation (MatMatSolve) or a substructured one with all columns at once, inner products
+// are summed over the ranks. Used by the SLEPc backend instead of a Sturm count's factorisation.
 
 #include <petscmat.h>
 
 #include <vector>
 
 #include "reduction/block_krylov_check.h"
+#include "reduction/substructured_factor.h"
 
 namespace flexmbs::reduction {
 
@@ -18,6 +19,8 @@ class PetscBlockSpace final : public BlockKrylovSpace {
  public:
   /// `factor`: a factored (MUMPS) K - sigma M, positive definite; `M` [kg]; `sigma` [rad^2/s^2].
   PetscBlockSpace(Mat factor, Mat M, double sigma);
+  /// The same with K - sigma M factorised by substructuring (`factor` positive definite).
+  PetscBlockSpace(const SubstructuredFactor& factor, Mat M, double sigma);
 
   Eigen::Index local_rows() const override { return local_rows_; }
   Eigen::Index global_rows() const override { return global_rows_; }
@@ -29,7 +32,8 @@ class PetscBlockSpace final : public BlockKrylovSpace {
   std::uint64_t stream() const override { return static_cast<std::uint64_t>(rank_); }
 
  private:
-  Mat factor_;
+  Mat factor_ = nullptr;
+  const SubstructuredFactor* substructured_ = nullptr;
   Mat M_;
   double sigma_;
   MPI_Comm comm_;

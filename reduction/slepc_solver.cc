@@ -14,9 +14,24 @@
 #include "reduction/petsc_block_space.h"
 #include "reduction/slepc_pair_measures.h"
 #include "reduction/slepc_ritz_gap.h"
+#include "reduction/substructured_factor.h"
 
 namespace flexmbs::reduction {
 namespace {
+
+// The shell preconditioner's apply: x = (K - sigma M)^-1 b by the SubstructuredFactor in its
+// context.
+PetscErrorCode ApplySubstructured(PC pc, Vec b, Vec x) {
+  void* context = nullptr;
+  PetscErrorCode error = PCShellGetContext(pc, &context);
+  if (error != 0) return error;
+  try {
+    static_cast<const SubstructuredFactor*>(context)->Solve(b, x);
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
 
 // Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, the `nev`
 // pairs nearest sigma. Purification (one more solve per pair, removing components in M's null
@@ -26,8 +41,10 @@ namespace {
 // `shifted` null at sigma = 0, K itself (no copy: SLEPc's ST_MATMODE_COPY uses K when the shift
 // is 0). MUMPS gets ICNTL(13) = 1 before its analysis: without it (the root node on ScaLAPACK)
 // it does not report the inertia on more than one rank (the ST prefixes its factor's options).
+// With `substructured` (K - sigma M factorised by substructuring) the ST's solves are its solves
+// instead (a shell preconditioner under KSPPREONLY) and `shifted` is not used.
 void Configure(EPS eps, Mat K, Mat M, Mat shifted, double sigma, const EigenOptions& options, PetscInt nev,
-               bool singular_mass) {
+               bool singular_mass, const SubstructuredFactor* substructured) {
   ST st;
   KSP ksp;
   PC pc;
@@ -42,6 +59,16 @@ void Configure(EPS eps, Mat K, Mat M, Mat shifted, double sigma, const EigenOpti
   FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
   FLEXMBS_PETSC(EPSGetST(eps, &st));
   FLEXMBS_PETSC(STSetType(st, STSINVERT));
+  if (substructured) {
+    FLEXMBS_PETSC(STSetMatMode(st, ST_MATMODE_SHELL));
+    FLEXMBS_PETSC(STGetKSP(st, &ksp));
+    FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
+    FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
+    FLEXMBS_PETSC(PCSetType(pc, PCSHELL));
+    FLEXMBS_PETSC(PCShellSetContext(pc, const_cast<SubstructuredFactor*>(substructured)));
+    FLEXMBS_PETSC(PCShellSetApply(pc, ApplySubstructured));
+    return;
+  }
   if (shifted) {
     FLEXMBS_PETSC(STSetPreconditionerMat(st, shifted));
     FLEXMBS_PETSC(STSetMatMode(st, ST_MATMODE_SHELL));
@@ -263,6 +290,27 @@ struct OwnedEps {
   ~OwnedEps() { EPSDestroy(&eps); }
 };
 
+// Above this many interface rows the automatic choice stays with MUMPS: the substructured
+// factor's dense interface matrix takes 8 n^2 bytes on every rank (twice that while summed).
+constexpr std::int64_t kMaxAutoInterfaceRows = 12000;
+
+// K - sigma M (K itself when `held`) factorised by substructuring where `choice` asks for it,
+// or, for kAuto, on more than one rank when its interface has at most kMaxAutoInterfaceRows
+// rows; else null (the ST's MUMPS factorises). K - sigma M must be positive definite but for
+// round-off (the factor tells). Collective.
+std::unique_ptr<SubstructuredFactor> MaybeSubstructured(Mat K, Mat M, bool held, double sigma,
+                                                        DistributedFactorization choice) {
+  if (choice == DistributedFactorization::kMumps) return nullptr;
+  if (choice == DistributedFactorization::kAuto && SlepcSession::Size() < 2) return nullptr;
+  OwnedMat shifted;
+  if (!held) shifted.A = ShiftedCopy(K, M, sigma, SamePattern(K, M));
+  const Mat A = held ? K : shifted.A;
+  if (choice == DistributedFactorization::kAuto && SubstructuredInterfaceSize(A).rows > kMaxAutoInterfaceRows) {
+    return nullptr;
+  }
+  return std::make_unique<SubstructuredFactor>(A);
+}
+
 // Seconds since *since, which moves to now.
 double SecondsSince(std::chrono::steady_clock::time_point* since) {
   const auto now = std::chrono::steady_clock::now();
@@ -278,24 +326,33 @@ constexpr double kBlockCheckFromFlops = 1e10;
 
 // The missed-mode check this backend makes: the block Krylov check (reduction/block_krylov_check.h)
 // where the factorisation that a Sturm count would add costs more than kBlockCheckFromFlops
-// (MUMPS's count for the shift-invert's, RINFOG(3)) or where asked, else the Sturm count. Not
-// with `fixed_dofs` (their rows of M are zero, so diag(M) cannot scale the start block).
-MissedModeCheck ChooseCheck(const EigenOptions& options, EPS eps, bool fixed_dofs) {
+// (`flops`: the shift-invert's, MUMPS's RINFOG(3) or the substructured factor's) or where asked,
+// else the Sturm count. Not with `fixed_dofs` (their rows of M are zero, so diag(M) cannot
+// scale the start block).
+MissedModeCheck ChooseCheck(const EigenOptions& options, double flops, bool fixed_dofs) {
   if (fixed_dofs) return MissedModeCheck::kSturmCount;
   if (options.check_missed_modes == MissedModeCheck::kBlockKrylov) return MissedModeCheck::kBlockKrylov;
   if (options.check_missed_modes != MissedModeCheck::kAuto) return MissedModeCheck::kSturmCount;
-  PetscReal flops = 0.0;
-  FLEXMBS_PETSC(MatMumpsGetRinfog(ShiftInvertFactor(eps), 3, &flops));
   return flops > kBlockCheckFromFlops ? MissedModeCheck::kBlockKrylov : MissedModeCheck::kSturmCount;
 }
 
+// The flops of the shift-invert's factorisation: the substructured factor's, else MUMPS's.
+double FactorizationFlops(EPS eps, const SubstructuredFactor* substructured) {
+  if (substructured) return substructured->flops();
+  PetscReal flops = 0.0;
+  FLEXMBS_PETSC(MatMumpsGetRinfog(ShiftInvertFactor(eps), 3, &flops));
+  return flops;
+}
+
 // The number of eigenvalues below `cut` that the block Krylov check establishes for the pairs
-// `x` (all converged, M-orthonormal) with the shift-invert factorisation of `eps`: those found
-// below the cut plus those it found missing; -1 if it could not decide (the caller counts).
-PetscInt BlockCheckedCount(EPS eps, Mat M, const std::vector<Vec>& x, double cut, const EigenOptions& options,
-                           int attempt, EigenSolution* solution) {
+// `x` (all converged, M-orthonormal) with the shift-invert factorisation (`substructured`, else
+// that of `eps`): those found below the cut plus those it found missing; -1 if it could not
+// decide (the caller counts).
+PetscInt BlockCheckedCount(EPS eps, const SubstructuredFactor* substructured, Mat M, const std::vector<Vec>& x,
+                           double cut, const EigenOptions& options, int attempt, EigenSolution* solution) {
   auto phase = std::chrono::steady_clock::now();
-  const PetscBlockSpace space(ShiftInvertFactor(eps), M, solution->shift);
+  const PetscBlockSpace space = substructured ? PetscBlockSpace(*substructured, M, solution->shift)
+                                              : PetscBlockSpace(ShiftInvertFactor(eps), M, solution->shift);
   const Eigen::MatrixXd found = LocalRows(x, space.local_rows());
   BlockCheckOptions block;
   block.tolerance = options.tolerance;
@@ -414,7 +471,8 @@ int SlepcSession::Size() {
 
 EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>& fixed_dofs,
                                            const EigenOptions& options, ModesOn modes_on,
-                                           double* gather_seconds, Mat* K_factor) {
+                                           double* gather_seconds, Mat* K_factor,
+                                           std::unique_ptr<SubstructuredFactor>* K_substructured) {
   const auto start = std::chrono::steady_clock::now();
   RemoveFixedDofs(K, M, fixed_dofs);
   PetscScalar trace_k = 0.0, trace_m = 0.0;
@@ -426,6 +484,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
   if (K_factor) *K_factor = nullptr;
   EigenSolution solution;
   solution.backend = "slepc";
+  solution.factorization = "mumps";
   if (keep) {
     solution.shift = 0.0;
   } else if (options.shift_hz) {
@@ -457,22 +516,37 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
   OwnedVectors x;
   bool not_positive_definite = false;
   OwnedMat held_factor;  // kept: the factor of K (sigma = 0)
-  for (int attempt = 0;; ++attempt) {
+  // On more than one rank K - sigma M may be factorised once by substructuring (every attempt's
+  // solves use it); it must be positive definite: K itself when held, else sigma < 0.
+  std::unique_ptr<SubstructuredFactor> substructured;
+  if (keep || solution.shift < 0.0) {
+    auto phase = std::chrono::steady_clock::now();
+    substructured = MaybeSubstructured(K, M, keep, solution.shift, options.distributed_factorization);
+    if (substructured) {
+      ++solution.factorizations;
+      solution.factorization_seconds += SecondsSince(&phase);
+      solution.factorization = "substructured";
+      if (keep && !substructured->positive_definite()) not_positive_definite = true;
+      if (!keep && !substructured->positive_definite()) substructured.reset();  // MUMPS's LDL^T decides
+    }
+  }
+  for (int attempt = 0; !not_positive_definite; ++attempt) {
     x.Clear();
     auto phase = std::chrono::steady_clock::now();
     std::optional<ShiftedMatrix> shifted;
-    if (!keep) shifted.emplace(K, M, solution.shift);
+    if (!keep && !substructured) shifted.emplace(K, M, solution.shift);
     // At sigma = 0 the ST factorises K itself: as positive definite (MUMPS SYM = 1, no pivoting).
     if (keep) FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_TRUE));
     RitzLowerBounds ritz;
     OwnedEps eps;
-    Configure(eps.eps, K, M, shifted ? shifted->get() : nullptr, solution.shift, options, nev, !fixed_dofs.empty());
+    Configure(eps.eps, K, M, shifted ? shifted->get() : nullptr, solution.shift, options, nev, !fixed_dofs.empty(),
+              substructured.get());
     FLEXMBS_PETSC(EPSGetST(eps.eps, &ritz.st));
     FLEXMBS_PETSC(EPSSetTrackAll(eps.eps, PETSC_TRUE));  // error estimates of every Ritz value
     FLEXMBS_PETSC(EPSMonitorSet(eps.eps, RecordRitzLowerBounds, &ritz, nullptr));
     FLEXMBS_PETSC(EPSSetUp(eps.eps));  // K - sigma M factorised
     solution.factorization_seconds += SecondsSince(&phase);
-    if (keep && !FactoredPositiveDefinite(ShiftInvertFactor(eps.eps))) {
+    if (keep && !substructured && !FactoredPositiveDefinite(ShiftInvertFactor(eps.eps))) {
       ++solution.factorizations;
       not_positive_definite = true;
       break;
@@ -483,7 +557,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     FLEXMBS_PETSC(EPSGetIterationNumber(eps.eps, &iterations));
     ++solution.krylov_runs;
     solution.restarts += static_cast<int>(iterations);
-    ++solution.factorizations;
+    if (!substructured) ++solution.factorizations;
     if (converged < nev) {
       throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations", converged, nev,
                                    iterations));
@@ -502,14 +576,15 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     if (band_count < 0) {
       cut = SturmCutAfter(ValuesForTheCut(solution.eigenvalues, ritz.lambda), wanted, solution.shift);
       FLEXMBS_CHECK(cut > solution.eigenvalues(wanted - 1), "Sturm cut below the last wanted mode");
-      solution.missed_mode_check = ChooseCheck(options, eps.eps, !fixed_dofs.empty());
+      solution.missed_mode_check =
+          ChooseCheck(options, FactorizationFlops(eps.eps, substructured.get()), !fixed_dofs.empty());
       if (solution.missed_mode_check == MissedModeCheck::kBlockKrylov) {
-        count = BlockCheckedCount(eps.eps, M, x.v, cut, options, attempt, &solution);
+        count = BlockCheckedCount(eps.eps, substructured.get(), M, x.v, cut, options, attempt, &solution);
       }
       if (count < 0) {
         phase = std::chrono::steady_clock::now();
         solution.missed_mode_check = MissedModeCheck::kSturmCount;
-        count = keep ? EigenvaluesBelow(K, M, cut) : EigenvaluesBelow(eps.eps, &*shifted, cut);
+        count = shifted ? EigenvaluesBelow(eps.eps, &*shifted, cut) : EigenvaluesBelow(K, M, cut);
         ++solution.factorizations;
         solution.sturm_seconds += SecondsSince(&phase);
         solution.sturm_count = static_cast<int>(count);
@@ -525,7 +600,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     if (count == found) {
       solution.eigenvalues.conservativeResize(wanted);
       x.Truncate(static_cast<std::size_t>(wanted));
-      if (keep) {
+      if (keep && !substructured) {
         // The factor of K outlives the EPS, which resets its solver at the end of this scope.
         held_factor.A = ShiftInvertFactor(eps.eps);
         FLEXMBS_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(held_factor.A)));
@@ -579,6 +654,7 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
                                  kResidualFloorFactor, solution.residual_floors(worst)));
   }
   if (keep) *K_factor = held_factor.Release();
+  if (keep && substructured && K_substructured) *K_substructured = std::move(substructured);
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;
 }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "reduction/eigensolver.h"
+#include "reduction/substructured_factor.h"
 
 // PETSc's matrix type (`Mat` is a pointer to it), declared here so that no PETSc header
 // appears in this public header.
@@ -65,10 +66,13 @@ enum class ModesOn {
 /// the second Krylov-Schur run factorises K again. If K proves not positive definite (the
 /// factorisation fails or meets a negative pivot, or the lowest eigenvalue is zero to
 /// round-off), it solves as without `K_factor` (the attempt's work counted) and leaves
-/// *K_factor null; likewise for another shift.
+/// *K_factor null; likewise for another shift. Where K was factorised by substructuring
+/// (options.distributed_factorization) that factor goes to *K_substructured instead, if given
+/// (*K_factor stays null).
 EigenSolution SolveDistributedEigenproblem(_p_Mat* K, _p_Mat* M, const std::vector<int>& fixed_dofs,
                                            const EigenOptions& options, ModesOn modes_on = ModesOn::kEveryRank,
-                                           double* gather_seconds = nullptr, _p_Mat** K_factor = nullptr);
+                                           double* gather_seconds = nullptr, _p_Mat** K_factor = nullptr,
+                                           std::unique_ptr<SubstructuredFactor>* K_substructured = nullptr);
 
 /// The backend "slepc" behind the serial interface: every rank passes the same K and M, each
 /// copies its block of rows into PETSc matrices and SolveDistributedEigenproblem runs on them.

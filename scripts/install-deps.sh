@@ -12,7 +12,7 @@ packages=(
   # meshing
   libgmsh-dev gmsh
   # distributed eigen-solves
-  petsc-dev slepc-dev openmpi-bin
+  petsc-dev slepc-dev openmpi-bin libmumps-dev libmetis-dev
   # file format, time integration, contact
   libhdf5-dev libhdf5-openmpi-dev libsundials-dev libsiconos-numerics-dev libfcl-dev
   # command line, input, logging

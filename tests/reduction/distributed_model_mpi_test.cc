@@ -41,8 +41,12 @@ constexpr double kAgreement = 1e-9;
 
 int Rank() { return SlepcSession::Rank(); }
 
-// The numeric Cholesky factorisations (MUMPS's included) PETSc's log has seen on this rank.
-int LoggedFactorizations() { return testing::LoggedEventCount("MatCholFctrNum"); }
+// The numeric Cholesky factorisations (MUMPS's and the substructured ones) PETSc's log has seen
+// on this rank.
+int LoggedFactorizations() {
+  SubstructuredEvents();  // registered before they are counted
+  return testing::LoggedEventCount("MatCholFctrNum") + testing::LoggedEventCount("SubstrFactor");
+}
 
 // A 10 x 3 x 2 hex8 steel bar 0.5 m long with node sets "root" (x = 0) and "tip" (x = 0.5).
 fem::Mesh Bar() {

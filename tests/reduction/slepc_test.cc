@@ -1,6 +1,8 @@
 // The SLEPc backend agrees with the Spectra backend, through the serial interface and through
 // the distributed assembly, on one rank and under `mpiexec -n 2` (both registered with CTest).
 #include <gtest/gtest.h>
+
+#include <functional>
 #include <petscmat.h>
 
 #include <algorithm>
@@ -193,6 +195,7 @@ TEST(SlepcBackend, ReportsItsFactorisationsSolvesAndTimesAsPetscLogsThem) {
   const auto [K, M] = ClampedMatrices(ClampedBox());
   EigenOptions options;
   options.num_modes = 10;
+  options.distributed_factorization = DistributedFactorization::kMumps;  // MUMPS's events
   EigenSolution s;
   LoggedWorkOf(K, M, options, &s);  // registers the events
   const LoggedWork logged = LoggedWorkOf(K, M, options, &s);
@@ -214,6 +217,7 @@ TEST(SlepcBackend, ReportsItsFactorisationsSolvesAndTimesAsPetscLogsThem) {
   // shift-invert's; that count is the whole band's Sturm check, so no third factorisation.
   EigenOptions band;
   band.max_frequency_hz = 3000.0;
+  band.distributed_factorization = DistributedFactorization::kMumps;
   const LoggedWork banded = LoggedWorkOf(K, M, band, &s);
   EXPECT_EQ(banded.analyses, 2);
   EXPECT_EQ(s.factorizations, 2);
@@ -297,13 +301,13 @@ std::vector<int> ClampedDofs(const Problem& p) {
 }
 
 // Relative error of the factor's solution of K x = K x_true, x_true random.
-double SolveError(Mat K, Mat factor) {
+double SolveError(Mat K, const std::function<void(Vec, Vec)>& solve) {
   Vec x_true, b, x;
   EXPECT_EQ(MatCreateVecs(K, &x_true, &b), 0);
   EXPECT_EQ(VecDuplicate(x_true, &x), 0);
   EXPECT_EQ(VecSetRandom(x_true, nullptr), 0);
   EXPECT_EQ(MatMult(K, x_true, b), 0);
-  EXPECT_EQ(MatSolve(factor, b, x), 0);
+  solve(b, x);
   PetscReal error = 0.0, norm = 0.0;
   EXPECT_EQ(VecNorm(x_true, NORM_2, &norm), 0);
   EXPECT_EQ(VecAXPY(x, -1.0, x_true), 0);
@@ -319,6 +323,7 @@ TEST(SlepcBackend, KeptFactorisationOfAHeldBodySolvesKAndTheSturmCountIsTheDense
   const Problem p = ClampedBox();
   EigenOptions options;
   options.num_modes = 8;
+  options.distributed_factorization = DistributedFactorization::kMumps;
   fem::DistributedMatrices distributed = fem::AssembleDistributed(p.mesh, fem::MassMatrixKind::kConsistent);
   const int factorizations_before = LoggedEventCount("MatCholFctrNum");
   Mat K_factor = nullptr;
@@ -342,7 +347,8 @@ TEST(SlepcBackend, KeptFactorisationOfAHeldBodySolvesKAndTheSturmCountIsTheDense
   ExpectSameModes(slepc, spectra_full, system.mass, "kept");
   EXPECT_LT(slepc.relative_residuals.maxCoeff(), options.residual_tolerance);
 
-  const double solve_error = SolveError(distributed.stiffness, K_factor);
+  const double solve_error =
+      SolveError(distributed.stiffness, [&](Vec b, Vec x) { EXPECT_EQ(MatSolve(K_factor, b, x), 0); });
   EXPECT_LT(solve_error, kKeptSolveAgreement);
   EXPECT_EQ(LoggedEventCount("MatCholFctrNum") - factorizations_before, slepc.factorizations);  // no new one
   MatDestroy(&K_factor);
@@ -361,6 +367,7 @@ TEST(SlepcBackend, KeptFactorisationSurvivesAMissedModeAndItsSecondRun) {
   const Problem p{mesh, testing::NodesOnPlane(mesh, 2, 0.0)};
   EigenOptions options;
   options.num_modes = 5;
+  options.distributed_factorization = DistributedFactorization::kMumps;  // refactorised per run
   fem::DistributedMatrices distributed = fem::AssembleDistributed(p.mesh, fem::MassMatrixKind::kConsistent);
   Mat K_factor = nullptr;
   const EigenSolution slepc = SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, ClampedDofs(p),
@@ -376,9 +383,49 @@ TEST(SlepcBackend, KeptFactorisationSurvivesAMissedModeAndItsSecondRun) {
   for (Eigen::Index j = 0; j < options.num_modes; ++j) {
     EXPECT_NEAR(slepc.eigenvalues(j), dense.values(j), kBackendAgreement * dense.values(j)) << "mode " << j;
   }
-  EXPECT_LT(SolveError(distributed.stiffness, K_factor), kKeptSolveAgreement);
+  EXPECT_LT(SolveError(distributed.stiffness, [&](Vec b, Vec x) { EXPECT_EQ(MatSolve(K_factor, b, x), 0); }),
+            kKeptSolveAgreement);
   MatDestroy(&K_factor);
   fem::DestroyDistributed(&distributed);
+}
+
+// The same held body with K factorised by substructuring (any rank count): one factorisation
+// for the Krylov-Schur run and the static solves after it, whose factor solves K, and the Sturm
+// count's own (fixed DOF: no block check); the modes are the MUMPS path's.
+TEST(SlepcBackend, SubstructuredKeptFactorisationGivesTheModesAndSolvesK) {
+  const Problem p = ClampedBox();
+  EigenOptions options;
+  options.num_modes = 8;
+  EigenSolution mumps_path;
+  for (const auto choice : {DistributedFactorization::kMumps, DistributedFactorization::kSubstructured}) {
+    options.distributed_factorization = choice;
+    fem::DistributedMatrices distributed = fem::AssembleDistributed(p.mesh, fem::MassMatrixKind::kConsistent);
+    Mat K_factor = nullptr;
+    std::unique_ptr<SubstructuredFactor> K_substructured;
+    const EigenSolution slepc =
+        SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, ClampedDofs(p), options,
+                                     ModesOn::kEveryRank, nullptr, &K_factor, &K_substructured);
+    if (choice == DistributedFactorization::kMumps) {
+      ASSERT_NE(K_factor, nullptr);
+      MatDestroy(&K_factor);
+      mumps_path = slepc;
+      fem::DestroyDistributed(&distributed);
+      continue;
+    }
+    EXPECT_EQ(K_factor, nullptr);
+    ASSERT_TRUE(K_substructured);
+    EXPECT_EQ(slepc.factorization, "substructured");
+    EXPECT_EQ(slepc.factorizations, 2);
+    EXPECT_EQ(slepc.missed_mode_check, MissedModeCheck::kSturmCount);
+    EXPECT_EQ(slepc.sturm_count, mumps_path.sturm_count);
+    const fem::SystemMatrices system = fem::AssembleSystem(p.mesh, fem::MassMatrixKind::kConsistent);
+    ExpectSameModes(slepc, mumps_path, system.mass, "substructured");
+    EXPECT_LT(slepc.relative_residuals.maxCoeff(), options.residual_tolerance);
+    EXPECT_LT(SolveError(distributed.stiffness, [&](Vec b, Vec x) { K_substructured->Solve(b, x); }),
+              kKeptSolveAgreement);
+    K_substructured.reset();
+    fem::DestroyDistributed(&distributed);
+  }
 }
 
 // A free body's K is singular: nothing is kept, and the solve is the usual one (negative shift),
@@ -415,9 +462,11 @@ TEST(SlepcBackend, BlockKrylovCheckNeedsNoFactorisationOfItsOwn) {
   EigenOptions options;
   options.num_modes = 10;
   options.check_missed_modes = MissedModeCheck::kBlockKrylov;
-  const int factorizations_before = LoggedEventCount("MatCholFctrNum");
+  SubstructuredEvents();  // registered before they are counted
+  auto logged = [] { return LoggedEventCount("MatCholFctrNum") + LoggedEventCount("SubstrFactor"); };
+  const int factorizations_before = logged();
   const EigenSolution slepc = MakeEigensolver("slepc")->Solve(K, M, options);
-  EXPECT_EQ(LoggedEventCount("MatCholFctrNum") - factorizations_before, 1);
+  EXPECT_EQ(logged() - factorizations_before, 1);
   EXPECT_EQ(slepc.factorizations, 1);
   EXPECT_EQ(slepc.missed_mode_check, MissedModeCheck::kBlockKrylov);
   EXPECT_EQ(slepc.sturm_count, -1);
@@ -455,9 +504,10 @@ TEST(SlepcBackend, BlockKrylovCheckOnTheKeptPathFindsAMissedPairMode) {
     EXPECT_EQ(slepc.shift, 0.0);
     EXPECT_EQ(slepc.missed_mode_check, MissedModeCheck::kBlockKrylov);
     EXPECT_EQ(slepc.sturm_count, -1);
-    // One Krylov-Schur run and one check, or, after a miss, two of each; K factorised per run.
+    // One Krylov-Schur run and one check, or, after a miss, two of each; K factorised per run
+    // by MUMPS, once by substructuring.
     EXPECT_TRUE(slepc.krylov_runs == 2 || slepc.krylov_runs == 4) << slepc.krylov_runs;
-    EXPECT_EQ(slepc.factorizations, slepc.krylov_runs / 2);
+    EXPECT_EQ(slepc.factorizations, slepc.factorization == "substructured" ? 1 : slepc.krylov_runs / 2);
     const auto [K, M] = ClampedMatrices(p);
     const testing::DenseEigen dense = testing::SolveDense(K, M, 0.0);
     ASSERT_EQ(slepc.eigenvalues.size(), modes);
