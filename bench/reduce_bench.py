@@ -125,7 +125,8 @@ def petsc_log(path):
     if not os.path.exists(path):
         return out
     for line in open(path):
-        m = re.match(r"^(EPSSolve|EPSSetUp|MatCholFctrSym|MatCholFctrNum|MatSolve|BVOrthogonalizeV)\s+(\d+)\s+\S+\s+(\S+)",
+        m = re.match(r"^(EPSSolve|EPSSetUp|MatCholFctrSym|MatCholFctrNum|MatSolve|BVOrthogonalizeV|SubstrFactor|"
+                     r"SubstrSolve)\s+(\d+)\s+\S+\s+(\S+)",
                      line)
         if m:
             out[m.group(1)] = (int(m.group(2)), float(m.group(3)))
@@ -413,11 +414,15 @@ def print_details(case):
         r = by.get(s)
         if r and r.get("petsc"):
             g = r["petsc"]
-            fac = sum(g.get(k, (0, 0.0))[1] for k in ("MatCholFctrSym", "MatCholFctrNum"))
-            solves, solve_s = g.get("MatSolve", (0, 0.0))
+            # The eigen-solve's factorisation: MUMPS's, or on 2+ ranks the substructured one
+            # (docs/reduction.md), whose solves are logged as SubstrSolve.
+            substructured = (r.get("eigensolver") or {}).get("factorization") == "substructured"
+            fac = sum(g.get(k, (0, 0.0))[1] for k in ("MatCholFctrSym", "MatCholFctrNum", "SubstrFactor"))
+            solves, solve_s = (sum(g.get(k, (0, 0.0))[i] for k in ("MatSolve", "SubstrSolve")) for i in (0, 1))
             krylov = g.get("BVOrthogonalizeV", (0, 0.0))[0]  # one per Krylov-Schur step
             eps = g.get("EPSSolve", (0, 0.0))[1]
-            print(f"   {LABEL[s]}: MUMPS Cholesky {fac:.2f} s, {solves} solves ({krylov} Krylov-Schur steps, "
+            kind = "substructured" if substructured else "MUMPS"
+            print(f"   {LABEL[s]}: {kind} Cholesky {fac:.2f} s, {solves} solves ({krylov} Krylov-Schur steps, "
                   f"{solves - krylov} others: the SID step's static solves, purifications only for a singular M) "
                   f"{solve_s:.2f} s ({1e3 * solve_s / max(solves, 1):.0f} ms each), EPSSolve {eps:.2f} s, outside "
                   f"EPSSolve {r['seconds'] - eps:.2f} s (the Sturm count and the basis; the other solves, "

@@ -6,8 +6,9 @@
 // their sum plus the interface block of the matrix is the interface matrix S, dense, which every
 // rank factorises (LAPACK). A solve is the rank's forward condensation, one sum of the reduced
 // right-hand sides, the dense solve and the rank's expansion. The ranks' subtrees never wait for
-// each other, which is what MUMPS's own parallel factorisation does not reach on few ranks
-// (docs/reduction.md, "Under MPI"); the price is a dense S of the interface's size.
+// each other, which MUMPS's own distributed factorisation does not reach on two ranks
+// (docs/reduction.md, "Substructured factorisation"); the price is a dense S of the
+// interface's size on every rank.
 
 #include <cstdint>
 #include <memory>
