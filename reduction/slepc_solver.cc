@@ -527,7 +527,10 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
       solution.factorization_seconds += SecondsSince(&phase);
       solution.factorization = "substructured";
       if (keep && !substructured->positive_definite()) not_positive_definite = true;
-      if (!keep && !substructured->positive_definite()) substructured.reset();  // MUMPS's LDL^T decides
+      if (!keep && !substructured->positive_definite()) {
+        substructured.reset();  // MUMPS's LDL^T decides
+        solution.factorization = "mumps";
+      }
     }
   }
   for (int attempt = 0; !not_positive_definite; ++attempt) {
