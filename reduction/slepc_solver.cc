@@ -305,7 +305,7 @@ std::unique_ptr<SubstructuredFactor> MaybeSubstructured(Mat K, Mat M, bool held,
   OwnedMat shifted;
   if (!held) shifted.A = ShiftedCopy(K, M, sigma, SamePattern(K, M));
   const Mat A = held ? K : shifted.A;
-  if (choice == DistributedFactorization::kAuto && SubstructuredInterfaceSize(A).rows > kMaxAutoInterfaceRows) {
+  if (choice == DistributedFactorization::kAuto && SubstructuredInterfaceRows(A) > kMaxAutoInterfaceRows) {
     return nullptr;
   }
   return std::make_unique<SubstructuredFactor>(A);

@@ -302,12 +302,8 @@ SubstructuredLogEvents SubstructuredEvents() {
   return events;
 }
 
-InterfaceSize SubstructuredInterfaceSize(Mat A) {
-  const RowSplit split = SplitRows(A);
-  InterfaceSize size;
-  size.rows = static_cast<std::int64_t>(split.interface_rows.size());
-  size.interior_rows = std::count(split.interface.begin(), split.interface.end(), 0);
-  return size;
+std::int64_t SubstructuredInterfaceRows(Mat A) {
+  return static_cast<std::int64_t>(SplitRows(A).interface_rows.size());
 }
 
 SubstructuredFactor::SubstructuredFactor(Mat A) : s_(std::make_unique<State>()) {

@@ -25,14 +25,9 @@ struct SubstructuredLogEvents {
 };
 SubstructuredLogEvents SubstructuredEvents();
 
-/// How large the interface of a matrix's row distribution is (collective).
-struct InterfaceSize {
-  std::int64_t rows = 0;          ///< interface rows (global)
-  std::int64_t interior_rows = 0;  ///< this rank's interior rows
-};
-
-/// The interface size of `A`'s row distribution (MPIAIJ, symmetric sparsity). Collective.
-InterfaceSize SubstructuredInterfaceSize(_p_Mat* A);
+/// The number of interface rows (global) of `A`'s row distribution (symmetric sparsity), the
+/// order of the dense S a SubstructuredFactor of A would hold. Collective.
+std::int64_t SubstructuredInterfaceRows(_p_Mat* A);
 
 /// The factorisation of A (MPIAIJ on two or more ranks, symmetric positive definite, symmetric
 /// sparsity); A's values are copied, A may change afterwards. Every member is collective over A's
