@@ -14,6 +14,7 @@
 #include "reduction/petsc_block_space.h"
 #include "reduction/slepc_pair_measures.h"
 #include "reduction/slepc_ritz_gap.h"
+#include "reduction/slepc_shifted_matrix.h"
 #include "reduction/substructured_factor.h"
 
 namespace flexmbs::reduction {
@@ -147,95 +148,6 @@ struct OwnedVectors {
   }
 };
 
-// A matrix destroyed with its owner unless released (also when an exception passes).
-struct OwnedMat {
-  Mat A = nullptr;
-  OwnedMat() = default;
-  OwnedMat(const OwnedMat&) = delete;
-  OwnedMat& operator=(const OwnedMat&) = delete;
-  ~OwnedMat() {
-    if (A != nullptr) MatDestroy(&A);
-  }
-  Mat Release() {
-    const Mat out = A;
-    A = nullptr;
-    return out;
-  }
-};
-
-// Whether A and B (AIJ, same layout) store the same sparsity pattern on every rank. Collective.
-bool SamePattern(Mat A, Mat B) {
-  const auto same_seq = [](Mat X, Mat Y) {
-    PetscInt nx = 0, ny = 0;
-    const PetscInt *ix = nullptr, *jx = nullptr, *iy = nullptr, *jy = nullptr;
-    PetscBool done_x = PETSC_FALSE, done_y = PETSC_FALSE;
-    FLEXMBS_PETSC(MatGetRowIJ(X, 0, PETSC_FALSE, PETSC_FALSE, &nx, &ix, &jx, &done_x));
-    FLEXMBS_PETSC(MatGetRowIJ(Y, 0, PETSC_FALSE, PETSC_FALSE, &ny, &iy, &jy, &done_y));
-    const bool same = done_x && done_y && nx == ny && std::equal(ix, ix + nx + 1, iy) &&
-                      std::equal(jx, jx + ix[nx], jy);
-    FLEXMBS_PETSC(MatRestoreRowIJ(X, 0, PETSC_FALSE, PETSC_FALSE, &nx, &ix, &jx, &done_x));
-    FLEXMBS_PETSC(MatRestoreRowIJ(Y, 0, PETSC_FALSE, PETSC_FALSE, &ny, &iy, &jy, &done_y));
-    return same;
-  };
-  PetscBool distributed = PETSC_FALSE;
-  FLEXMBS_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATMPIAIJ, &distributed));
-  int same = 0;
-  if (distributed) {
-    // Diagonal and off-diagonal blocks, the latter with compressed columns (colmap: global index).
-    Mat A_diagonal, A_off, B_diagonal, B_off;
-    const PetscInt *A_columns = nullptr, *B_columns = nullptr;
-    FLEXMBS_PETSC(MatMPIAIJGetSeqAIJ(A, &A_diagonal, &A_off, &A_columns));
-    FLEXMBS_PETSC(MatMPIAIJGetSeqAIJ(B, &B_diagonal, &B_off, &B_columns));
-    PetscInt A_count = 0, B_count = 0;
-    FLEXMBS_PETSC(MatGetSize(A_off, nullptr, &A_count));
-    FLEXMBS_PETSC(MatGetSize(B_off, nullptr, &B_count));
-    same = A_count == B_count && std::equal(A_columns, A_columns + A_count, B_columns) &&
-           same_seq(A_diagonal, B_diagonal) && same_seq(A_off, B_off);
-  } else {
-    same = same_seq(A, B);
-  }
-  FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND, PetscObjectComm(reinterpret_cast<PetscObject>(A))));
-  return same != 0;
-}
-
-// K - sigma M as a new matrix (the caller destroys it), on the union of the patterns of K and M
-// (`same_pattern`: SamePattern(K, M)). Flagged symmetric, not positive definite, so that MUMPS
-// factorises it as a general symmetric matrix (SYM = 2: LDL^T with pivoting, the inertia known).
-Mat ShiftedCopy(Mat K, Mat M, double sigma, bool same_pattern) {
-  Mat A;
-  FLEXMBS_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &A));
-  // Where M has entries K has not, A gets the union of the patterns (so M's is a subset).
-  FLEXMBS_PETSC(MatAXPY(A, -sigma, M, same_pattern ? SAME_NONZERO_PATTERN : DIFFERENT_NONZERO_PATTERN));
-  FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
-  FLEXMBS_PETSC(MatSetOption(A, MAT_SPD, PETSC_FALSE));
-  return A;
-}
-
-// K - sigma M, owned: the matrix the shift-invert factorises, then moved to K - cut M in place
-// (same sparsity) for the Sturm count. Not flagged positive definite (ShiftedCopy), which keeps
-// the factorisation valid for the indefinite K - cut M in the same MUMPS instance.
-class ShiftedMatrix {
- public:
-  ShiftedMatrix(Mat K, Mat M, double sigma)
-      : M_(M), sigma_(sigma), same_pattern_(SamePattern(K, M)), A_(ShiftedCopy(K, M, sigma, same_pattern_)) {}
-  ShiftedMatrix(const ShiftedMatrix&) = delete;
-  ShiftedMatrix& operator=(const ShiftedMatrix&) = delete;
-  ~ShiftedMatrix() { MatDestroy(&A_); }
-
-  Mat get() const { return A_; }
-  // A = K - sigma M becomes K - shift M, its sparsity unchanged.
-  void MoveShift(double shift) {
-    FLEXMBS_PETSC(MatAXPY(A_, sigma_ - shift, M_, same_pattern_ ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN));
-    sigma_ = shift;
-  }
-
- private:
-  Mat M_;
-  double sigma_;
-  bool same_pattern_;
-  Mat A_ = nullptr;
-};
-
 // The factored matrix of the shift-and-invert's MUMPS instance (after EPSSetUp).
 Mat ShiftInvertFactor(EPS eps) {
   ST st;
@@ -266,21 +178,6 @@ PetscInt EigenvaluesBelow(EPS eps, ShiftedMatrix* shifted, double cut) {
   return negative;
 }
 
-// The number of eigenvalues of K phi = lambda M phi below `cut` as above, from a MUMPS instance
-// of its own that keeps no factors (MumpsFactorization::kInertiaOnly): for when the shift-invert's
-// factorisation of K stays (it is kept for static solves). K - cut M is formed and freed here.
-PetscInt EigenvaluesBelow(Mat K, Mat M, double cut) {
-  OwnedMat shifted, factor;
-  shifted.A = ShiftedCopy(K, M, cut, SamePattern(K, M));
-  factor.A = MumpsCholesky(shifted.A, MumpsFactorization::kInertiaOnly, "flexmbs_sturm_");
-  MatFactorError error = MAT_FACTOR_NOERROR;
-  FLEXMBS_PETSC(MatFactorGetError(factor.A, &error));
-  FLEXMBS_CHECK(error == MAT_FACTOR_NOERROR, "Sturm count: MUMPS failed to factorise K - cut M");
-  PetscInt negative = 0;
-  FLEXMBS_PETSC(MatGetInertia(factor.A, &negative, nullptr, nullptr));
-  return negative;
-}
-
 // An EPS destroyed with its owner (also when an exception passes).
 struct OwnedEps {
   EPS eps = nullptr;
@@ -289,27 +186,6 @@ struct OwnedEps {
   OwnedEps& operator=(const OwnedEps&) = delete;
   ~OwnedEps() { EPSDestroy(&eps); }
 };
-
-// Above this many interface rows the automatic choice stays with MUMPS: the substructured
-// factor's dense interface matrix takes 8 n^2 bytes on every rank (twice that while summed).
-constexpr std::int64_t kMaxAutoInterfaceRows = 12000;
-
-// K - sigma M (K itself when `held`) factorised by substructuring where `choice` asks for it,
-// or, for kAuto, on more than one rank when its interface has at most kMaxAutoInterfaceRows
-// rows; else null (the ST's MUMPS factorises). K - sigma M must be positive definite but for
-// round-off (the factor tells). Collective.
-std::unique_ptr<SubstructuredFactor> MaybeSubstructured(Mat K, Mat M, bool held, double sigma,
-                                                        DistributedFactorization choice) {
-  if (choice == DistributedFactorization::kMumps) return nullptr;
-  if (choice == DistributedFactorization::kAuto && SlepcSession::Size() < 2) return nullptr;
-  OwnedMat shifted;
-  if (!held) shifted.A = ShiftedCopy(K, M, sigma, SamePattern(K, M));
-  const Mat A = held ? K : shifted.A;
-  if (choice == DistributedFactorization::kAuto && SubstructuredInterfaceRows(A) > kMaxAutoInterfaceRows) {
-    return nullptr;
-  }
-  return std::make_unique<SubstructuredFactor>(A);
-}
 
 // Seconds since *since, which moves to now.
 double SecondsSince(std::chrono::steady_clock::time_point* since) {
