@@ -39,7 +39,8 @@ bool SamePattern(Mat A, Mat B) {
   } else {
     same = same_seq(A, B);
   }
-  FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND, PetscObjectComm(reinterpret_cast<PetscObject>(A))));
+  FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND,
+                              PetscObjectComm(reinterpret_cast<PetscObject>(A))));
   return same != 0;
 }
 
@@ -47,19 +48,24 @@ Mat ShiftedCopy(Mat K, Mat M, double sigma, bool same_pattern) {
   Mat A;
   FLEXMBS_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &A));
   // Where M has entries K has not, A gets the union of the patterns (so M's is a subset).
-  FLEXMBS_PETSC(MatAXPY(A, -sigma, M, same_pattern ? SAME_NONZERO_PATTERN : DIFFERENT_NONZERO_PATTERN));
+  FLEXMBS_PETSC(
+      MatAXPY(A, -sigma, M, same_pattern ? SAME_NONZERO_PATTERN : DIFFERENT_NONZERO_PATTERN));
   FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
   FLEXMBS_PETSC(MatSetOption(A, MAT_SPD, PETSC_FALSE));
   return A;
 }
 
 ShiftedMatrix::ShiftedMatrix(Mat K, Mat M, double sigma)
-    : M_(M), sigma_(sigma), same_pattern_(SamePattern(K, M)), A_(ShiftedCopy(K, M, sigma, same_pattern_)) {}
+    : M_(M),
+      sigma_(sigma),
+      same_pattern_(SamePattern(K, M)),
+      A_(ShiftedCopy(K, M, sigma, same_pattern_)) {}
 
 ShiftedMatrix::~ShiftedMatrix() { MatDestroy(&A_); }
 
 void ShiftedMatrix::MoveShift(double shift) {
-  FLEXMBS_PETSC(MatAXPY(A_, sigma_ - shift, M_, same_pattern_ ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN));
+  FLEXMBS_PETSC(MatAXPY(A_, sigma_ - shift, M_,
+                        same_pattern_ ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN));
   sigma_ = shift;
 }
 
@@ -90,9 +96,8 @@ std::unique_ptr<SubstructuredFactor> MaybeSubstructured(Mat K, Mat M, bool held,
   OwnedMat shifted;
   if (!held) shifted.A = ShiftedCopy(K, M, sigma, SamePattern(K, M));
   const Mat A = held ? K : shifted.A;
-  if (choice == DistributedFactorization::kAuto && SubstructuredInterfaceRows(A) > kMaxAutoInterfaceRows) {
-    return nullptr;
-  }
+  if (choice == DistributedFactorization::kAuto)
+    return SubstructuredFactor::IfInterfaceAtMost(A, kMaxAutoInterfaceRows);
   return std::make_unique<SubstructuredFactor>(A);
 }
 

@@ -1,12 +1,12 @@
 #include "reduction/substructured_factor.h"
 
 #include <dmumps_c.h>
-#include <petscmat.h>
+#include <fmt/format.h>
 #include <metis.h>
+#include <petscmat.h>
 
 #include <algorithm>
 #include <cstddef>
-#include <fmt/format.h>
 #include <optional>
 #include <vector>
 
@@ -15,9 +15,10 @@
 
 // LAPACK (Fortran ABI: trailing hidden lengths of the character arguments).
 extern "C" {
-void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, std::size_t uplo_len);
-void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda, double* b,
-             const int* ldb, int* info, std::size_t uplo_len);
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info,
+             std::size_t uplo_len);
+void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda,
+             double* b, const int* ldb, int* info, std::size_t uplo_len);
 }
 
 namespace flexmbs::reduction {
@@ -25,7 +26,7 @@ namespace {
 
 // MUMPS's JOB values and its ICNTL / INFOG entries used here (1-based in its documentation).
 constexpr int kJobInit = -1, kJobEnd = -2, kJobSolve = 3, kJobAnalyseFactorise = 4;
-constexpr int kSchurComplete = 3;  // ICNTL(19): the whole Schur complement, by columns
+constexpr int kSchurComplete = 3;          // ICNTL(19): the whole Schur complement, by columns
 constexpr int kCondense = 1, kExpand = 2;  // ICNTL(26) in a solve
 constexpr int kHostWorks = 1;              // PAR
 constexpr int kPositiveDefinite = 1;       // SYM
@@ -105,7 +106,9 @@ struct RowSplit {
   // The interface position of global row `g` (-1: interior).
   PetscInt Position(PetscInt g) const {
     const auto it = std::lower_bound(interface_rows.begin(), interface_rows.end(), g);
-    return it != interface_rows.end() && *it == g ? static_cast<PetscInt>(it - interface_rows.begin()) : -1;
+    return it != interface_rows.end() && *it == g
+               ? static_cast<PetscInt>(it - interface_rows.begin())
+               : -1;
   }
   int Owner(PetscInt g) const {
     return static_cast<int>(std::upper_bound(ranges.begin(), ranges.end(), g) - ranges.begin()) - 1;
@@ -140,12 +143,13 @@ RowSplit SplitRows(Mat A) {
     }
   }
   const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(static_cast<std::size_t>(split.size)), offsets(static_cast<std::size_t>(split.size) + 1, 0);
+  std::vector<int> counts(static_cast<std::size_t>(split.size)),
+      offsets(static_cast<std::size_t>(split.size) + 1, 0);
   FLEXMBS_PETSC(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, split.comm));
   for (std::size_t r = 0; r < counts.size(); ++r) offsets[r + 1] = offsets[r] + counts[r];
   split.interface_rows.resize(static_cast<std::size_t>(offsets.back()));
-  FLEXMBS_PETSC(MPI_Allgatherv(mine.data(), count, MPIU_INT, split.interface_rows.data(), counts.data(),
-                               offsets.data(), MPIU_INT, split.comm));
+  FLEXMBS_PETSC(MPI_Allgatherv(mine.data(), count, MPIU_INT, split.interface_rows.data(),
+                               counts.data(), offsets.data(), MPIU_INT, split.comm));
   return split;
 }
 
@@ -153,10 +157,10 @@ RowSplit SplitRows(Mat A) {
 
 struct SubstructuredFactor::State {
   RowSplit split;
-  std::vector<PetscInt> interior;         // local rows of the interior, ascending
-  std::vector<PetscInt> own_interface;    // local rows of this rank's interface rows
-  std::vector<PetscInt> own_position;     // their interface positions
-  std::vector<PetscInt> schur_position;   // per local Schur variable: its interface position
+  std::vector<PetscInt> interior;        // local rows of the interior, ascending
+  std::vector<PetscInt> own_interface;   // local rows of this rank's interface rows
+  std::vector<PetscInt> own_position;    // their interface positions
+  std::vector<PetscInt> schur_position;  // per local Schur variable: its interface position
   std::vector<MUMPS_INT> irn, jcn, listvar, order;
   std::vector<double> values;
   mutable DMUMPS_STRUC_C id{};  // solves write their arrays and ICNTL(26) into it
@@ -174,9 +178,11 @@ struct SubstructuredFactor::State {
   void Mumps(int job) const {
     id.job = job;
     dmumps_c(&id);
-    FLEXMBS_CHECK(id.infog[0] >= 0,
-                  fmt::format("substructured factor: MUMPS (job {}) failed on rank {}: INFOG(1) = {}, INFOG(2) = {}",
-                              job, split.rank, id.infog[0], id.infog[1]));
+    FLEXMBS_CHECK(
+        id.infog[0] >= 0,
+        fmt::format(
+            "substructured factor: MUMPS (job {}) failed on rank {}: INFOG(1) = {}, INFOG(2) = {}",
+            job, split.rank, id.infog[0], id.infog[1]));
   }
 
   // The local problem: interior rows with their interface columns, lower triangle, 1-based.
@@ -223,14 +229,17 @@ struct SubstructuredFactor::State {
       }
       for (PetscInt k = off ? off->begin(i) : 0; off && k < off->end(i); ++k) {
         const PetscInt position = split.Position(blocks.garray[off->column(k)]);
-        FLEXMBS_CHECK(position >= 0, "substructured factor: an interior row couples to another rank's interior");
+        FLEXMBS_CHECK(position >= 0,
+                      "substructured factor: an interior row couples to another rank's interior");
         add(schur_variable(position), li, off->value(k));
       }
     }
-    for (PetscInt v = 0; v < static_cast<PetscInt>(schur_position.size()); ++v) add(n_interior + v, n_interior + v, 0.0);
+    for (PetscInt v = 0; v < static_cast<PetscInt>(schur_position.size()); ++v)
+      add(n_interior + v, n_interior + v, 0.0);
     OrderInterior(diag, local_of);
     listvar.resize(schur_position.size());
-    for (std::size_t v = 0; v < listvar.size(); ++v) listvar[v] = static_cast<MUMPS_INT>(interior.size() + v + 1);
+    for (std::size_t v = 0; v < listvar.size(); ++v)
+      listvar[v] = static_cast<MUMPS_INT>(interior.size() + v + 1);
   }
 
   // The pivot order of the local problem (MUMPS's PERM_IN): METIS's nested dissection of the
@@ -248,18 +257,20 @@ struct SubstructuredFactor::State {
       }
       xadj[static_cast<std::size_t>(li) + 1] = static_cast<idx_t>(adjacency.size());
     }
-    std::vector<idx_t> permutation(static_cast<std::size_t>(n)), position(static_cast<std::size_t>(n));
+    std::vector<idx_t> permutation(static_cast<std::size_t>(n)),
+        position(static_cast<std::size_t>(n));
     if (n > 0) {
       idx_t options[METIS_NOPTIONS];
       METIS_SetDefaultOptions(options);
       idx_t vertices = n;
-      const int status = METIS_NodeND(&vertices, xadj.data(), adjacency.data(), nullptr, options, permutation.data(),
-                                      position.data());
+      const int status = METIS_NodeND(&vertices, xadj.data(), adjacency.data(), nullptr, options,
+                                      permutation.data(), position.data());
       FLEXMBS_CHECK(status == METIS_OK, "substructured factor: METIS_NodeND failed");
     }
     order.resize(interior.size() + schur_position.size());
     for (std::size_t v = 0; v < order.size(); ++v) {
-      order[v] = static_cast<MUMPS_INT>(v < interior.size() ? position[v] + 1 : static_cast<idx_t>(v) + 1);
+      order[v] =
+          static_cast<MUMPS_INT>(v < interior.size() ? position[v] + 1 : static_cast<idx_t>(v) + 1);
     }
   }
 
@@ -302,11 +313,22 @@ SubstructuredLogEvents SubstructuredEvents() {
   return events;
 }
 
-std::int64_t SubstructuredInterfaceRows(Mat A) {
-  return static_cast<std::int64_t>(SplitRows(A).interface_rows.size());
+SubstructuredFactor::SubstructuredFactor(Mat A)
+    : SubstructuredFactor(std::make_unique<State>(), A) {}
+
+std::unique_ptr<SubstructuredFactor> SubstructuredFactor::IfInterfaceAtMost(
+    Mat A, std::int64_t max_interface_rows) {
+  auto state = std::make_unique<State>();
+  state->split = SplitRows(A);
+  if (static_cast<std::int64_t>(state->split.interface_rows.size()) > max_interface_rows)
+    return nullptr;
+  return std::unique_ptr<SubstructuredFactor>(new SubstructuredFactor(std::move(state), A));
 }
 
-SubstructuredFactor::SubstructuredFactor(Mat A) : s_(std::make_unique<State>()) {
+SubstructuredFactor::SubstructuredFactor(std::unique_ptr<State> state, Mat A)
+    : s_(std::move(state)) {
+  if (s_->split.comm == MPI_COMM_NULL)
+    s_->split = SplitRows(A);  // not split yet (public constructor)
   const PetscLogEvent event = SubstructuredEvents().factor;
   FLEXMBS_PETSC(PetscLogEventBegin(event, A, nullptr, nullptr, nullptr));
   Factorize(A);
@@ -315,7 +337,6 @@ SubstructuredFactor::SubstructuredFactor(Mat A) : s_(std::make_unique<State>()) 
 
 void SubstructuredFactor::Factorize(Mat A) {
   State& s = *s_;
-  s.split = SplitRows(A);
   s.interface_size = static_cast<int>(s.split.interface_rows.size());
   s.BuildLocalProblem(A);
 
@@ -337,7 +358,8 @@ void SubstructuredFactor::Factorize(Mat A) {
   id.irn = s.irn.data();
   id.jcn = s.jcn.data();
   id.a = s.values.data();
-  std::vector<double> schur(static_cast<std::size_t>(s.schur_size()) * static_cast<std::size_t>(s.schur_size()));
+  std::vector<double> schur(static_cast<std::size_t>(s.schur_size()) *
+                            static_cast<std::size_t>(s.schur_size()));
   if (s.schur_size() > 0) {
     Icntl(id, 19) = kSchurComplete;
     id.size_schur = static_cast<MUMPS_INT>(s.schur_size());
@@ -351,13 +373,16 @@ void SubstructuredFactor::Factorize(Mat A) {
   if (s.mumps_started) dmumps_c(&id);
   // Agreed by every rank: 0 factorised, 1 an interior is not positive definite (MUMPS's
   // "singular" or a negative pivot, INFOG(12)), 2 MUMPS failed otherwise (INFOG(1) < 0).
-  int status = id.infog[0] == -10 || (id.infog[0] >= 0 && id.infog[11] > 0) ? 1 : id.infog[0] < 0 ? 2 : 0;
+  int status = id.infog[0] == -10 || (id.infog[0] >= 0 && id.infog[11] > 0) ? 1
+               : id.infog[0] < 0                                            ? 2
+                                                                            : 0;
   int mumps_error = status == 2 ? id.infog[0] : 0;
   FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &status, 1, MPI_INT, MPI_MAX, s.split.comm));
   FLEXMBS_PETSC(MPI_Allreduce(MPI_IN_PLACE, &mumps_error, 1, MPI_INT, MPI_MIN, s.split.comm));
   if (status == 2) {
-    throw InputError(
-        fmt::format("substructured factor: MUMPS failed to factorise a rank's interior (INFOG(1) = {})", mumps_error));
+    throw InputError(fmt::format(
+        "substructured factor: MUMPS failed to factorise a rank's interior (INFOG(1) = {})",
+        mumps_error));
   }
   s.flops = s.mumps_started ? id.rinfog[2] : 0.0;
   // The MUMPS arrays of the matrix are not needed by solves.
@@ -412,7 +437,8 @@ void SubstructuredFactor::Solve(Vec b, Vec x) const {
 
 void SubstructuredFactor::SolveColumns(const double* B, double* X, int columns) const {
   const State& s = *s_;
-  FLEXMBS_CHECK(s.positive_definite, "substructured factor: solve with a matrix that is not positive definite");
+  FLEXMBS_CHECK(s.positive_definite,
+                "substructured factor: solve with a matrix that is not positive definite");
   DMUMPS_STRUC_C& id = s.id;
   const auto rows = static_cast<std::size_t>(s.split.rows);
   const auto local = static_cast<std::size_t>(s.local_size());
@@ -438,9 +464,11 @@ void SubstructuredFactor::SolveColumns(const double* B, double* X, int columns) 
   // The interface right-hand side: the owners' rows of B minus every rank's condensed part.
   s.G.assign(n * k, 0.0);
   for (std::size_t c = 0; c < k; ++c) {
-    for (std::size_t a = 0; a < m; ++a) s.G[static_cast<std::size_t>(s.schur_position[a]) + c * n] += s.reduced[a + c * m];
+    for (std::size_t a = 0; a < m; ++a)
+      s.G[static_cast<std::size_t>(s.schur_position[a]) + c * n] += s.reduced[a + c * m];
     for (std::size_t r = 0; r < s.own_interface.size(); ++r) {
-      s.G[static_cast<std::size_t>(s.own_position[r]) + c * n] += B[static_cast<std::size_t>(s.own_interface[r]) + c * rows];
+      s.G[static_cast<std::size_t>(s.own_position[r]) + c * n] +=
+          B[static_cast<std::size_t>(s.own_interface[r]) + c * rows];
     }
   }
   SumInPlace(s.G.data(), s.G.size(), s.split.comm);
@@ -452,7 +480,8 @@ void SubstructuredFactor::SolveColumns(const double* B, double* X, int columns) 
   }
   if (m > 0) {
     for (std::size_t c = 0; c < k; ++c) {
-      for (std::size_t a = 0; a < m; ++a) s.reduced[a + c * m] = s.G[static_cast<std::size_t>(s.schur_position[a]) + c * n];
+      for (std::size_t a = 0; a < m; ++a)
+        s.reduced[a + c * m] = s.G[static_cast<std::size_t>(s.schur_position[a]) + c * n];
     }
     Icntl(id, 26) = kExpand;
     s.Mumps(kJobSolve);
@@ -462,7 +491,8 @@ void SubstructuredFactor::SolveColumns(const double* B, double* X, int columns) 
       X[static_cast<std::size_t>(s.interior[li]) + c * rows] = s.rhs[li + c * local];
     }
     for (std::size_t r = 0; r < s.own_interface.size(); ++r) {
-      X[static_cast<std::size_t>(s.own_interface[r]) + c * rows] = s.G[static_cast<std::size_t>(s.own_position[r]) + c * n];
+      X[static_cast<std::size_t>(s.own_interface[r]) + c * rows] =
+          s.G[static_cast<std::size_t>(s.own_position[r]) + c * n];
     }
   }
 }

@@ -25,18 +25,19 @@ struct SubstructuredLogEvents {
 };
 SubstructuredLogEvents SubstructuredEvents();
 
-/// The number of interface rows (global) of `A`'s row distribution (symmetric sparsity), the
-/// order of the dense S a SubstructuredFactor of A would hold. Collective.
-std::int64_t SubstructuredInterfaceRows(_p_Mat* A);
-
 /// The factorisation of A (MPIAIJ on two or more ranks, symmetric positive definite, symmetric
 /// sparsity); A's values are copied, A may change afterwards. Every member is collective over A's
 /// communicator.
 class SubstructuredFactor {
  public:
   /// Factorises A; whether A is positive definite (a rank's interior or S not) tells
-  /// positive_definite(). Throws flexmbs::InputError (on every rank) if MUMPS fails otherwise (memory).
+  /// positive_definite(). Throws flexmbs::InputError (on every rank) if MUMPS fails otherwise
+  /// (memory).
   explicit SubstructuredFactor(_p_Mat* A);
+  /// The same, or null (nothing factorised) where A's interface has more than
+  /// `max_interface_rows` rows: the dense S would take 8 n^2 bytes on every rank.
+  static std::unique_ptr<SubstructuredFactor> IfInterfaceAtMost(_p_Mat* A,
+                                                                std::int64_t max_interface_rows);
   ~SubstructuredFactor();
   SubstructuredFactor(const SubstructuredFactor&) = delete;
   SubstructuredFactor& operator=(const SubstructuredFactor&) = delete;
@@ -56,9 +57,11 @@ class SubstructuredFactor {
   double flops() const;
 
  private:
+  struct State;
+  /// Factorises A with `state` holding A's row split.
+  SubstructuredFactor(std::unique_ptr<State> state, _p_Mat* A);
   void Factorize(_p_Mat* A);
 
-  struct State;
   std::unique_ptr<State> s_;
 };
 

@@ -1,11 +1,10 @@
 // The substructured factorisation (reduction/substructured_factor.h) against a MUMPS Cholesky of
 // the same distributed matrix, on one rank (no interface) and on two (run by CTest both ways).
 
-#include "reduction/substructured_factor.h"
-
 #include <gtest/gtest.h>
 #include <petscmat.h>
 
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -13,6 +12,7 @@
 #include "fem/distributed_assembly.h"
 #include "fem/petsc_check.h"
 #include "reduction/slepc_pair_measures.h"
+#include "reduction/substructured_factor.h"
 #include "test_problems.h"
 
 namespace flexmbs::reduction {
@@ -136,6 +136,18 @@ TEST(SubstructuredFactor, ColumnsAtOnceEqualColumnsOneByOne) {
   // In place (B and X the same array) as well.
   factor.SolveColumns(B.data(), B.data(), columns);
   for (std::size_t i = 0; i < X.size(); ++i) EXPECT_EQ(B[i], X[i]) << i;
+}
+
+TEST(SubstructuredFactor, AnInterfaceAboveTheLimitIsNotFactorised) {
+  const ShiftedBox box(-1e4);
+  const SubstructuredFactor reference(box.A);
+  const std::int64_t rows = reference.interface_rows();
+  // At the limit it is factorised (one rank: no interface); one row below it, not.
+  const std::unique_ptr<SubstructuredFactor> at = SubstructuredFactor::IfInterfaceAtMost(box.A, rows);
+  ASSERT_TRUE(at);
+  EXPECT_EQ(at->interface_rows(), rows);
+  EXPECT_TRUE(at->positive_definite());
+  EXPECT_EQ(SubstructuredFactor::IfInterfaceAtMost(box.A, rows - 1), nullptr);
 }
 
 TEST(SubstructuredFactor, AnIndefiniteMatrixIsNotPositiveDefinite) {
