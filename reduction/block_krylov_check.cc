@@ -178,7 +178,9 @@ double ScaledMassFloorEstimate(const MassSpace& space, int steps, std::uint64_t 
   const Index k_max = std::min<Index>(steps, space.global_rows());
   FLEXMBS_CHECK(k_max >= 1, "ScaledMassFloorEstimate: no Lanczos step");
   const Eigen::VectorXd scale = space.MassDiagonal().cwiseSqrt().cwiseInverse();
-  const auto norm = [&](const Eigen::VectorXd& v) { return std::sqrt(space.Sum(Matrix::Constant(1, 1, v.squaredNorm()))(0, 0)); };
+  const auto norm = [&](const Eigen::VectorXd& v) {
+    return std::sqrt(space.Sum(Matrix::Constant(1, 1, v.squaredNorm()))(0, 0));
+  };
   std::mt19937_64 rng(seed ^ space.stream());
   std::normal_distribution<double> normal;
   Matrix V(n, k_max);
