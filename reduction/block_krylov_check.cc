@@ -9,6 +9,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "reduction/mass_operator.h"
 #include "reduction/shifted_factorization.h"
 
 namespace flexmbs::reduction {
@@ -67,7 +68,7 @@ MOrthonormalized MOrthonormalize(const BlockKrylovSpace& space, const Matrix& W,
 
 }  // namespace
 
-FactorizationSpace::FactorizationSpace(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M)
+FactorizationSpace::FactorizationSpace(const ShiftedFactorization& factor, const SymmetricOperator& M)
     : factor_(factor), M_(M) {
   FLEXMBS_CHECK(factor.ok() && factor.rows() == M.rows(),
                 "FactorizationSpace: the factorisation and M must be of one size");
@@ -293,7 +294,8 @@ BlockCheckResult CheckForMissedModes(const BlockKrylovSpace& space, const Matrix
 
 BlockCheckResult CheckForMissedModes(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M,
                                      const Matrix& found, double cut, const BlockCheckOptions& options) {
-  return CheckForMissedModes(FactorizationSpace(factor, M), found, cut, options);
+  const MassOperator mass(M);
+  return CheckForMissedModes(FactorizationSpace(factor, mass), found, cut, options);
 }
 
 }  // namespace flexmbs::reduction

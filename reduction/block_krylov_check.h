@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "reduction/model_operators.h"
+
 namespace flexmbs::reduction {
 
 class ShiftedFactorization;
@@ -49,18 +51,19 @@ class BlockKrylovSpace : public MassSpace {
 /// outlive it.
 class FactorizationSpace final : public BlockKrylovSpace {
  public:
-  /// `factor`: an ok() Cholesky factorisation of K - sigma M (positive definite); `M` [kg].
-  FactorizationSpace(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& M);
+  /// `factor`: an ok() Cholesky factorisation of K - sigma M (positive definite); `M` [kg]
+  /// (a MassOperator, reduction/mass_operator.h, for M held here).
+  FactorizationSpace(const ShiftedFactorization& factor, const SymmetricOperator& M);
   Eigen::Index local_rows() const override { return M_.rows(); }
   Eigen::Index global_rows() const override { return M_.rows(); }
   double sigma() const override;
   Eigen::MatrixXd ShiftInvert(const Eigen::MatrixXd& B) const override;
-  Eigen::MatrixXd Mass(const Eigen::MatrixXd& X) const override { return M_ * X; }
-  Eigen::VectorXd MassDiagonal() const override { return M_.diagonal(); }
+  Eigen::MatrixXd Mass(const Eigen::MatrixXd& X) const override { return M_.Times(X); }
+  Eigen::VectorXd MassDiagonal() const override { return M_.Diagonal(); }
 
  private:
   const ShiftedFactorization& factor_;
-  const Eigen::SparseMatrix<double>& M_;
+  const SymmetricOperator& M_;
 };
 
 /// Block Lanczos on the deflated shift-invert operator T = P (K - sigma M)^{-1} M P, P = I - X X^T M

@@ -180,25 +180,32 @@ PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen
   return ComputeResiduals(SparseOperator(K), SparseOperator(M), eigenvalues, modes, sigma);
 }
 
-bool PairResiduals::Accepted(double tolerance, Eigen::Index* worst, double floor_factor) const {
-  bool accepted = true;
+double PairResiduals::WorstRatio(double tolerance, Eigen::Index* worst, double floor_factor) const {
   double worst_ratio = 0.0;
   for (Eigen::Index j = 0; j < relative.size(); ++j) {
     const double bound = std::max(tolerance, floor_factor * floor(j));
-    const double ratio = relative(j) / bound;
-    if (!(ratio <= 1.0)) accepted = false;
-    if (!(ratio <= worst_ratio)) {
+    double ratio = relative(j) / bound;
+    if (std::isnan(ratio)) ratio = std::numeric_limits<double>::infinity();
+    if (ratio > worst_ratio) {
       worst_ratio = ratio;
       if (worst != nullptr) *worst = j;
     }
   }
-  return accepted;
+  return worst_ratio;
+}
+
+bool PairResiduals::Accepted(double tolerance, Eigen::Index* worst, double floor_factor) const {
+  return WorstRatio(tolerance, worst, floor_factor) <= 1.0;
+}
+
+double MOrthonormalityError(const SymmetricOperator& M, const Eigen::MatrixXd& modes) {
+  if (modes.cols() == 0) return 0.0;
+  const Eigen::MatrixXd G = modes.transpose() * M.Times(modes);
+  return (G - Eigen::MatrixXd::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
 }
 
 double MOrthonormalityError(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& modes) {
-  if (modes.cols() == 0) return 0.0;
-  const Eigen::MatrixXd G = modes.transpose() * (M * modes);
-  return (G - Eigen::MatrixXd::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
+  return MOrthonormalityError(SparseOperator(M), modes);
 }
 
 Eigen::Index GuardPairs(Eigen::Index wanted) { return std::max<Eigen::Index>(5, wanted / 5); }

@@ -224,6 +224,10 @@ struct PairResiduals {
   /// pair furthest above its bound.
   bool Accepted(double tolerance, Eigen::Index* worst = nullptr,
                 double floor_factor = kResidualFloorFactor) const;
+  /// The largest relative(j) / max(tolerance, floor_factor * floor(j)) (infinity for a NaN
+  /// residual; 0 without pairs): Accepted is WorstRatio <= 1.
+  double WorstRatio(double tolerance, Eigen::Index* worst = nullptr,
+                    double floor_factor = kResidualFloorFactor) const;
 };
 /// The squared norms residuals are made of, per mode (column), summed over rows so that
 /// ranks holding different rows can add theirs: ||K phi||^2, ||M phi||^2,
@@ -242,6 +246,8 @@ PairResiduals ComputeResiduals(const Eigen::SparseMatrix<double>& K, const Eigen
                                double sigma);
 
 /// max |modes^T M modes - I| over all entries.
+double MOrthonormalityError(const SymmetricOperator& M, const Eigen::MatrixXd& modes);
+/// The same for M held whole in this process.
 double MOrthonormalityError(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& modes);
 
 }  // namespace flexmbs::reduction

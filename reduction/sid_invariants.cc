@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 #include <utility>
 
 #include "core/error.h"
+#include "reduction/mass_operator.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -59,47 +61,13 @@ sid::TaylorMatrix Order0(MatrixXd m0) { return {std::move(m0), {}, {}}; }
 }  // namespace
 
 Eigen::SparseMatrix<double> ScalarMassMatrix(const Eigen::SparseMatrix<double>& M) {
-  FLEXMBS_CHECK(M.rows() == M.cols() && M.rows() % 3 == 0, "mass matrix must be 3N x 3N");
-  const Index N = M.rows() / 3;
-  // M_s from the x-axis entries (3 v, 3 w), column by column (rows are sorted within a column).
-  Eigen::SparseMatrix<double> M_s(N, N);
-  M_s.reserve(M.nonZeros() / 9 + N);
-  for (Index w = 0; w < N; ++w) {
-    M_s.startVec(w);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, 3 * w); it; ++it) {
-      if (it.row() % 3 == 0) M_s.insertBack(it.row() / 3, w) = it.value();
-    }
-  }
-  M_s.finalize();
-  // Every column of M against the same column of M_s (x) I_3: a merge of the two sorted columns.
-  double max_entry = 0.0;
-  double max_deviation = 0.0;
-  for (Index column = 0; column < M.outerSize(); ++column) {
-    const Index a = column % 3;
-    Eigen::SparseMatrix<double>::InnerIterator expected(M_s, column / 3);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, column); it; ++it) {
-      max_entry = std::max(max_entry, std::abs(it.value()));
-      if (it.row() % 3 != a) {
-        max_deviation = std::max(max_deviation, std::abs(it.value()));
-        continue;
-      }
-      for (; expected && expected.row() < it.row() / 3; ++expected) {
-        max_deviation = std::max(max_deviation, std::abs(expected.value()));
-      }
-      if (expected && expected.row() == it.row() / 3) {
-        max_deviation = std::max(max_deviation, std::abs(it.value() - expected.value()));
-        ++expected;
-      } else {
-        max_deviation = std::max(max_deviation, std::abs(it.value()));
-      }
-    }
-    for (; expected; ++expected) max_deviation = std::max(max_deviation, std::abs(expected.value()));
-  }
-  FLEXMBS_CHECK(max_deviation <= kKroneckerTolerance * max_entry,
+  std::optional<ScalarMassSplit> split = SplitScalarMass(M);
+  FLEXMBS_CHECK(split.has_value(), "mass matrix must be 3N x 3N");
+  FLEXMBS_CHECK(split->max_deviation <= kKroneckerTolerance * split->max_entry,
                 fmt::format("the SID integrals need M = M_s (x) I_3: an entry deviates by {:.3g}, the largest "
                             "entry is {:.3g}",
-                            max_deviation, max_entry));
-  return M_s;
+                            split->max_deviation, split->max_entry));
+  return std::move(split->M_s);
 }
 
 ModeComponents SplitModeComponents(const Eigen::MatrixXd& Phi) {

@@ -12,6 +12,7 @@
 #include "fem/assembly.h"
 #include "reduction/dof_constraints.h"
 #include "reduction/eigensolver.h"
+#include "reduction/mass_operator.h"
 #include "reduction/shifted_factorization.h"
 #include "test_problems.h"
 
@@ -110,7 +111,8 @@ Eigen::MatrixXd GaussianBlock(Index rows, Index cols, unsigned seed) {
 TEST(DeflatedBlockLanczos, HiddenComponentBoundHoldsForEveryEigenvectorOutsideTheFoundSet) {
   const Problem p = Cantilever();
   const Eigen::MatrixXd found = Found(p, 12, {});
-  const FactorizationSpace space(p.factor, p.M);
+  const MassOperator mass(p.M);
+  const FactorizationSpace space(p.factor, mass);
   DeflatedBlockLanczos lanczos(space, found, GaussianBlock(p.K.rows(), 4, 7));
   ASSERT_EQ(lanczos.start().cols(), 4);
   EXPECT_LE((found.transpose() * (p.M * lanczos.start())).cwiseAbs().maxCoeff(),
@@ -137,7 +139,8 @@ TEST(DeflatedBlockLanczos, HiddenComponentBoundHoldsForEveryEigenvectorOutsideTh
 TEST(DeflatedBlockLanczos, RitzValuesLieWithinTheirResidualsOfUnfoundEigenvalues) {
   const Problem p = Cantilever();
   const Eigen::MatrixXd found = Found(p, 12, {});
-  const FactorizationSpace space(p.factor, p.M);
+  const MassOperator mass(p.M);
+  const FactorizationSpace space(p.factor, mass);
   DeflatedBlockLanczos lanczos(space, found, GaussianBlock(p.K.rows(), 4, 11));
   for (int step = 0; step < 4; ++step) ASSERT_TRUE(lanczos.Extend());
   const Eigen::VectorXd residuals = lanczos.RitzResiduals();
