@@ -118,7 +118,8 @@ nlohmann::json EigensolverJson(const reduction::EigensolverSummary& s) {
           {"krylov_runs", s.krylov_runs},
           {"restarts", s.restarts},
           {"missed_mode_check", reduction::MissedModeCheckName(s.missed_mode_check)},
-          {"factorization", s.factorization}};
+          {"factorization", s.factorization},
+          {"lanczos_block_size", s.lanczos_block_size}};
 }
 
 void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, const fem::Mesh& mesh,

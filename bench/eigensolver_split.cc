@@ -6,7 +6,9 @@
 // For a clamped body this is the very problem `flexmbs reduce` (fixed_interface) solves:
 // K_oo = G^T K G with G the selection of the free DOFs. Used by reduce_bench.py.
 //
-//   bench_eigensolver_split K.mtx M.mtx [--fixed-nodes FILE] [--modes 20]
+//   bench_eigensolver_split K.mtx M.mtx [--fixed-nodes FILE] [--modes 20] [--block B]
+//
+// --block: EigenOptions::lanczos_block_size (default 0, automatic; 1 = Spectra's Lanczos).
 #include <cholmod.h>
 
 #include <Eigen/SparseCore>
@@ -73,16 +75,19 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   std::string fixed_file;
   int modes = 20;
+  int block = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--fixed-nodes" && i + 1 < argc) {
       fixed_file = argv[++i];
     } else if (arg == "--modes" && i + 1 < argc) {
       modes = std::atoi(argv[++i]);
+    } else if (arg == "--block" && i + 1 < argc) {
+      block = std::atoi(argv[++i]);
     } else if (arg[0] != '-') {
       files.push_back(arg);
     } else {
-      Fail("usage: bench_eigensolver_split K.mtx M.mtx [--fixed-nodes FILE] [--modes N]");
+      Fail("usage: bench_eigensolver_split K.mtx M.mtx [--fixed-nodes FILE] [--modes N] [--block B]");
     }
   }
   if (files.size() != 2) Fail("need K.mtx and M.mtx");
@@ -104,6 +109,7 @@ int main(int argc, char** argv) {
 
   flexmbs::reduction::EigenOptions options;
   options.num_modes = modes;
+  options.lanczos_block_size = block;
   const auto solver = flexmbs::reduction::MakeEigensolver("spectra");
   const flexmbs::reduction::EigenSolution s = solver->Solve(K, M, options);
   const std::string check(flexmbs::reduction::MissedModeCheckName(s.missed_mode_check));
@@ -111,9 +117,10 @@ int main(int argc, char** argv) {
       "{\"free_dofs\": %ld, \"modes\": %ld, \"seconds\": %.6f, \"factorization_seconds\": %.6f, "
       "\"sturm_seconds\": %.6f, \"krylov_seconds\": %.6f, \"factorizations\": %d, \"operator_applications\": %d, "
       "\"krylov_runs\": %d, \"restarts\": %d, \"refinement_steps\": %d, \"missed_mode_check\": \"%s\", "
+      "\"lanczos_block_size\": %d, "
       "\"lowest_hz\": %.10g, \"highest_hz\": %.10g}\n",
       n_free, static_cast<long>(s.eigenvalues.size()), s.seconds, s.factorization_seconds, s.sturm_seconds,
       s.krylov_seconds, s.factorizations, s.operator_applications, s.krylov_runs, s.restarts, s.refinement_steps,
-      check.c_str(), flexmbs::reduction::FrequenciesHz(s)(0), flexmbs::reduction::FrequenciesHz(s)(s.eigenvalues.size() - 1));
+      check.c_str(), s.lanczos_block_size, flexmbs::reduction::FrequenciesHz(s)(0), flexmbs::reduction::FrequenciesHz(s)(s.eigenvalues.size() - 1));
   return 0;
 }

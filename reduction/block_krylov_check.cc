@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "reduction/mass_operator.h"
 #include "reduction/shifted_factorization.h"
+#include "reduction/tall_products.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -34,8 +35,8 @@ void Deflate(const BlockKrylovSpace& space, const Matrix& X, const Matrix& MX, M
              Eigen::RowVectorXd& removed) {
   if (X.cols() == 0) return;
   for (int pass = 0; pass < 2; ++pass) {
-    const Matrix c = space.Sum(MX.transpose() * W);
-    W -= X * c;
+    const Matrix c = space.Sum(TransposeTimes(MX, W));
+    SubtractProduct(X, c, W);
     removed += c.colwise().squaredNorm();
   }
 }
@@ -92,18 +93,34 @@ DeflatedBlockLanczos::DeflatedBlockLanczos(const BlockKrylovSpace& space, const 
   Deflate(space, X_, MX_, start_, removed);
   MOrthonormalized first = MOrthonormalize(space, start_, removed);
   start_coordinates_ = std::move(first.B);
-  blocks_.push_back(std::move(first.Q));
-  m_blocks_.push_back(std::move(first.MQ));
-  next_coupling_ = Matrix(blocks_.back().cols(), 0);
+  Append(first.Q, first.MQ);
+  next_coupling_ = Matrix(widths_.back(), 0);
+}
+
+void DeflatedBlockLanczos::Append(const Matrix& Q, const Matrix& MQ) {
+  const Index w = Q.cols();
+  if (stored_ + w > Q_.cols()) {
+    const Index capacity = std::max(2 * Q_.cols(), stored_ + w);
+    Matrix grown_Q(Q.rows(), capacity);
+    Matrix grown_MQ(Q.rows(), capacity);
+    grown_Q.leftCols(stored_) = Q_.leftCols(stored_);
+    grown_MQ.leftCols(stored_) = MQ_.leftCols(stored_);
+    Q_.swap(grown_Q);
+    MQ_.swap(grown_MQ);
+  }
+  Q_.middleCols(stored_, w) = Q;
+  MQ_.middleCols(stored_, w) = MQ;
+  stored_ += w;
+  widths_.push_back(w);
 }
 
 bool DeflatedBlockLanczos::Extend() {
-  const Index w = blocks_.back().cols();
+  const Index w = widths_.back();
   if (w == 0) return false;
   const Index d_old = ritz_values_.size();
-  const Index d = d_old + w;
+  const Index d = d_old + w;  // = stored_
 
-  Matrix W = space_.ShiftInvert(m_blocks_.back());  // T Q_k before deflation
+  Matrix W = space_.ShiftInvert(MQ_.middleCols(d_old, w));  // T Q_k before deflation
   columns_solved_ += w;
   // Two passes of block classical Gram-Schmidt against the found modes (the deflation) and the
   // Krylov blocks; the coefficients along the blocks are the new block column of H.
@@ -111,14 +128,10 @@ bool DeflatedBlockLanczos::Extend() {
   Eigen::RowVectorXd removed = Eigen::RowVectorXd::Zero(w);  // squared M-norms taken out
   for (int pass = 0; pass < 2; ++pass) {
     Deflate(space_, X_, MX_, W, removed);
-    Index offset = 0;
-    for (std::size_t j = 0; j < blocks_.size(); ++j) {
-      const Matrix c = space_.Sum(m_blocks_[j].transpose() * W);
-      W -= blocks_[j] * c;
-      coefficients.middleRows(offset, c.rows()) += c;
-      removed += c.colwise().squaredNorm();
-      offset += c.rows();
-    }
+    const Matrix c = space_.Sum(TransposeTimes(MQ_.leftCols(d), W));
+    SubtractProduct(Q_.leftCols(d), c, W);
+    coefficients += c;
+    removed += c.colwise().squaredNorm();
   }
   MOrthonormalized next = MOrthonormalize(space_, W, removed);
 
@@ -128,8 +141,7 @@ bool DeflatedBlockLanczos::Extend() {
   if (d_old > 0) H.block(d_old, d_old - next_coupling_.cols(), w, next_coupling_.cols()) = next_coupling_;
   H_ = std::move(H);
   next_coupling_ = std::move(next.B);
-  blocks_.push_back(std::move(next.Q));
-  m_blocks_.push_back(std::move(next.MQ));
+  Append(next.Q, next.MQ);
 
   const Matrix symmetric = 0.5 * (H_ + H_.transpose());
   Eigen::SelfAdjointEigenSolver<Matrix> ritz(symmetric);
@@ -141,27 +153,21 @@ bool DeflatedBlockLanczos::Extend() {
 Eigen::VectorXd DeflatedBlockLanczos::RitzResiduals() const {
   const Index d = ritz_values_.size();
   if (d == 0 || next_coupling_.rows() == 0) return Eigen::VectorXd::Zero(d);
-  const Index last = blocks_[blocks_.size() - 2].cols();
+  const Index last = widths_[widths_.size() - 2];
   return (next_coupling_ * ritz_coordinates_.bottomRows(last)).colwise().norm().transpose();
 }
 
 Matrix DeflatedBlockLanczos::RitzVectors(const std::vector<Index>& which) const {
   Matrix S(ritz_values_.size(), static_cast<Index>(which.size()));
   for (std::size_t j = 0; j < which.size(); ++j) S.col(static_cast<Index>(j)) = ritz_coordinates_.col(which[j]);
-  Matrix Y = Matrix::Zero(space_.local_rows(), S.cols());
-  Index offset = 0;
-  for (std::size_t b = 0; b + 1 < blocks_.size(); ++b) {
-    Y += blocks_[b] * S.middleRows(offset, blocks_[b].cols());
-    offset += blocks_[b].cols();
-  }
-  return Y;
+  return Q_.leftCols(ritz_values_.size()) * S;
 }
 
 double DeflatedBlockLanczos::HiddenComponentBound(double mu) const {
   const Index d = ritz_values_.size();
   if (d == 0 || next_coupling_.rows() == 0) return 0.0;
-  const Index first = blocks_.front().cols();
-  const Index last = blocks_[blocks_.size() - 2].cols();
+  const Index first = widths_.front();
+  const Index last = widths_[widths_.size() - 2];
   // B E^T S (mu - Theta)^{-1} S^T E_0 R_0, with H = S Theta S^T.
   const Matrix G = next_coupling_ * ritz_coordinates_.bottomRows(last);
   const Matrix C = ritz_coordinates_.topRows(first).transpose() * start_coordinates_;

@@ -85,7 +85,7 @@ class DeflatedBlockLanczos {
   /// Returns false (and does nothing) once the space is invariant (the next block vanished).
   bool Extend();
 
-  int steps() const { return static_cast<int>(blocks_.size()) - 1; }
+  int steps() const { return static_cast<int>(widths_.size()) - 1; }
   /// Right-hand sides solved so far (the columns of all solves).
   Eigen::Index columns_solved() const { return columns_solved_; }
   /// Dimension of the Krylov space the Ritz pairs come from (blocks solved so far).
@@ -114,8 +114,15 @@ class DeflatedBlockLanczos {
   const Eigen::MatrixXd& X_;
   Eigen::MatrixXd MX_;
   Eigen::MatrixXd start_;
-  std::vector<Eigen::MatrixXd> blocks_;     // M-orthonormal blocks Q_0 .. Q_k, Q_k not solved yet
-  std::vector<Eigen::MatrixXd> m_blocks_;   // M Q_j
+  // Appends a new block Q_k and M Q_k to the stored columns (the capacity doubles as needed).
+  void Append(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& MQ);
+
+  // The M-orthonormal blocks Q_0 .. Q_k side by side in the first `stored_` columns of Q_ (Q_k
+  // not solved yet), and M Q_j in MQ_: one product with all of them per Gram-Schmidt pass.
+  Eigen::MatrixXd Q_;
+  Eigen::MatrixXd MQ_;
+  Eigen::Index stored_ = 0;
+  std::vector<Eigen::Index> widths_;        // columns of Q_0 .. Q_k
   Eigen::MatrixXd H_;                       // Q^T M T Q over the solved blocks (upper block part filled)
   Eigen::MatrixXd next_coupling_;           // B: T Q_solved - Q_solved H = Q_k B E^T
   Eigen::MatrixXd start_coordinates_;       // Q_0^T M start

@@ -135,6 +135,10 @@ void ValidateEigenInputs(const Eigen::SparseMatrix<double>& K, const Eigen::Spar
   if (options.max_iterations <= 0) {
     throw InputError(fmt::format("eigenproblem: max_iterations {} must be > 0", options.max_iterations));
   }
+  if (options.lanczos_block_size < 0) {
+    throw InputError(fmt::format("eigenproblem: lanczos_block_size {} must be >= 0 (0 = automatic)",
+                                 options.lanczos_block_size));
+  }
 }
 
 PairResiduals ResidualsFromSums(const ResidualSums& sums, const Eigen::VectorXd& eigenvalues,

@@ -84,7 +84,17 @@ struct EigenOptions {
   MissedModeCheck check_missed_modes = MissedModeCheck::kAuto;
   /// The slepc backend's factorisation of K - sigma M (on one rank kAuto is MUMPS).
   DistributedFactorization distributed_factorization = DistributedFactorization::kAuto;
+  /// The spectra backend's Lanczos runs: 1 = Spectra's implicitly restarted single-vector
+  /// Lanczos; b > 1 = block Lanczos with blocks of b columns, unrestarted
+  /// (reduction/block_lanczos_run.h); 0 = automatic (kAutoLanczosBlockSize).
+  int lanczos_block_size = 0;
 };
+
+/// What lanczos_block_size = 0 picks: blocks of 8 columns when the factorisation of
+/// K - sigma M takes more than kAutoBlockLanczosMinFlops (there one solve of 8 columns costs
+/// about twice one of a single column), else Spectra's single-vector Lanczos.
+inline constexpr int kAutoLanczosBlockSize = 8;
+inline constexpr double kAutoBlockLanczosMinFlops = 5e9;
 
 /// Relative gap that separates the last wanted eigenvalue from the next one when placing a
 /// Sturm cut (of max(|lambda|, |sigma|)); closer eigenvalues are one cluster, counted together.
@@ -139,6 +149,9 @@ struct EigenSolution {
   std::string backend;            ///< the backend's name
   /// slepc: how K - sigma M was factorised, "mumps" or "substructured"; empty for the others.
   std::string factorization;
+  /// spectra: the columns of each Lanczos solve (1: Spectra's single-vector Lanczos); 0 for
+  /// the others and for a dense solve.
+  int lanczos_block_size = 0;
 };
 
 /// The frequency of each eigenvalue [Hz]: sign(lambda) sqrt(|lambda|) / (2 pi), so round-off

@@ -125,6 +125,7 @@ EigensolverSummary SummarizeEigenSolution(const EigenSolution& solution) {
   summary.restarts = solution.restarts;
   summary.missed_mode_check = solution.missed_mode_check;
   summary.factorization = solution.factorization;
+  summary.lanczos_block_size = solution.lanczos_block_size;
   return summary;
 }
 

@@ -100,6 +100,7 @@ struct EigensolverSummary {
   int restarts = 0;                    ///< restarts over all runs
   MissedModeCheck missed_mode_check = MissedModeCheck::kNone;  ///< the check made against missed modes
   std::string factorization;  ///< slepc: "mumps" or "substructured" (EigenSolution::factorization)
+  int lanczos_block_size = 0;  ///< spectra: columns per Lanczos solve (EigenSolution::lanczos_block_size)
 };
 
 /// The summary of `solution` (its fields of the same names).

@@ -9,6 +9,8 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   # core numerics
   libeigen3-dev libspectra-dev libarpack2-dev libsuitesparse-dev
+  # BLAS and LAPACK: the reference headers and link libraries, OpenBLAS at run time
+  libblas-dev liblapack-dev libopenblas0-pthread
   # meshing
   libgmsh-dev gmsh
   # distributed eigen-solves
