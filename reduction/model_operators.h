@@ -26,8 +26,8 @@ class SymmetricOperator {
   virtual Eigen::VectorXd Diagonal() const = 0;
 };
 
-/// A held in this process (a view: A must outlive it). Times is A * X, AbsTimes a copy of A
-/// with absolute values times X, Diagonal A.diagonal(): the products the serial code always made.
+/// A held in this process (a view: A must outlive it; symmetric, full storage). Times is A X,
+/// AbsTimes |A| X, Diagonal A.diagonal(); a block of columns is multiplied in one pass over A.
 class SparseOperator final : public SymmetricOperator {
  public:
   explicit SparseOperator(const Eigen::SparseMatrix<double>& A) : A_(&A) {}

@@ -8,7 +8,10 @@ namespace flexmbs::reduction {
 
 /// The serial backend "spectra": implicitly restarted Lanczos (Spectra 1.0) in shift-invert
 /// mode, (K - sigma M)^{-1} M, M inner product, with a CHOLMOD factorisation of K - sigma M
-/// (supernodal Cholesky when positive definite, else simplicial LDL^T). Missed modes are found
+/// (supernodal Cholesky when positive definite, else simplicial LDL^T); on large bodies block
+/// Lanczos with the same factorisation (EigenOptions::lanczos_block_size,
+/// reduction/lanczos_runs.h); M is multiplied through its scalar mass where it has one
+/// (reduction/mass_operator.h). Missed modes are found
 /// again by a deflated Lanczos run after a Sturm count, or by the block Krylov check
 /// (reduction/block_krylov_check.h), which returns them itself; every pair is then
 /// Rayleigh-Ritz refined and checked. Problems too small for Lanczos (nev >= DOF - 1) are
