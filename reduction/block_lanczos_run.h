@@ -17,8 +17,12 @@ namespace flexmbs::reduction {
 struct BlockRunOptions {
   /// Columns of each block.
   Eigen::Index block_size = 8;
-  /// A Ritz pair has converged once ||T y - mu y||_M <= tolerance mu (Spectra's criterion).
+  /// A Ritz pair has converged once ||T y - mu y||_M <= tolerance mu (Spectra's criterion) or
+  /// <= 10 eps ||T|| (the round-off of applying T, which deep in the spectrum is larger).
   double tolerance = 1e-10;
+  /// ||T||_M = 1 / (lambda_1 - sigma), if known from the pairs found (a deflated run's own Ritz
+  /// values are smaller); 0: the run's largest Ritz value.
+  double operator_norm = 0.0;
   /// The run stops at this Krylov dimension (the memory is two n x dimension blocks, the
   /// Lanczos vectors and their M products) with the pairs converged by then.
   Eigen::Index max_dimension = 0;

@@ -33,9 +33,10 @@ KrylovRun RunLanczos(const ShiftedFactorization& factor, const MassOperator& M,
 Eigen::Index BlockRunDimension(Eigen::Index available, Eigen::Index nev, Eigen::Index block);
 
 /// The same with block Lanczos, blocks of `block` columns (RunBlockLanczos), stopped at
-/// BlockRunDimension. Empty vectors if nothing converged by then.
+/// BlockRunDimension; `lowest_found` is the lowest eigenvalue among X (NaN if X is empty), which
+/// sets ||T||. Empty vectors if nothing converged by then.
 KrylovRun RunBlock(const ShiftedFactorization& factor, const MassOperator& M,
-                   const Eigen::MatrixXd& X, Eigen::Index nev, const EigenOptions& options,
-                   Eigen::Index block, unsigned seed, int* solves);
+                   const Eigen::MatrixXd& X, double lowest_found, Eigen::Index nev,
+                   const EigenOptions& options, Eigen::Index block, unsigned seed, int* solves);
 
 }  // namespace flexmbs::reduction

@@ -306,8 +306,12 @@ EigenSolution SpectraEigensolver::SolveWith(const SparseMatrix& K, const SparseM
         }
         const auto krylov_start = std::chrono::steady_clock::now();
         const auto seed = static_cast<unsigned>(run);
-        KrylovRun krylov = lanczos_block > 1 ? RunBlock(factor, mass, basis, nev, options, lanczos_block, seed, &solves)
-                                             : RunLanczos(factor, mass, basis, nev, options, seed, &solves);
+        const double lowest_found =
+            ritz.values.size() > 0 ? ritz.values(0) : std::numeric_limits<double>::quiet_NaN();
+        KrylovRun krylov =
+            lanczos_block > 1
+                ? RunBlock(factor, mass, basis, lowest_found, nev, options, lanczos_block, seed, &solves)
+                : RunLanczos(factor, mass, basis, nev, options, seed, &solves);
         ++solution.krylov_runs;
         solution.restarts += krylov.restarts;
         if (krylov.vectors.cols() == 0 && lanczos_block > 1) {
