@@ -594,45 +594,5 @@ TEST(SpectraEigensolver, BadOptionsAreInputErrors) {
   EXPECT_NE(SolveError(p.K, p.M, options).find("lanczos_block_size -2 must be >= 0"), std::string::npos);
 }
 
-// 150 modes of a slender cantilever (30 x 3 x 3 hex8, 1 440 free DOF): the block run stops at
-// its 400 Krylov vectors with part of the 180 pairs sought, and a deflated run finds the rest
-// (its pairs deep in the spectrum converge only to the round-off of applying T).
-TEST(SpectraEigensolver, BlockRunsBeyondTheirDimensionLimitContinueDeflated) {
-  Problem p = Assemble(HexBox({30, 3, 3}, {1.5, 0.05, 0.04}, Steel()));
-  const FreeDofMap map = FreeDofMap::ClampNodes(p.mesh.num_nodes(), NodesOnPlane(p.mesh, 0, 0.0));
-  const SparseMatrix K = map.Restrict(p.K);
-  const SparseMatrix M = map.Restrict(p.M);
-  EigenOptions options;
-  options.num_modes = 150;
-  options.lanczos_block_size = 4;
-  const EigenSolution s = Spectra()->Solve(K, M, options);
-  Report("slender cantilever, 150 modes, blocks of 4", s);
-  ASSERT_EQ(s.eigenvalues.size(), 150);
-  EXPECT_GE(s.krylov_runs, 2);  // the first block run and at least one deflated one
-  ExpectContract(K, M, s, /*strict=*/false);  // a slender beam: floors above 1e-8
-  const testing::DenseEigen dense = SolveDense(K, M, 0.0);
-  ExpectMatchesDense(M, s, dense, dense.values(0));
-}
-
-// K = diag(1 + j / n), M = I, n = 1000: eigenvalues 1e-3 apart across [1, 2], where 200 Krylov
-// vectors (50 blocks of 4) bring no pair near convergence (Chebyshev: the lowest Ritz value's
-// error falls like exp(-2 k sqrt(gap)) = exp(-2.2) after k = 50 steps).
-TEST(SpectraEigensolver, ABlockLanczosRunWithoutConvergedPairIsAnInputError) {
-  constexpr int kSize = 1000;
-  SparseMatrix K(kSize, kSize);
-  SparseMatrix M(kSize, kSize);
-  for (int j = 0; j < kSize; ++j) {
-    K.insert(j, j) = 1.0 + static_cast<double>(j) / kSize;
-    M.insert(j, j) = 1.0;
-  }
-  EigenOptions options;
-  options.num_modes = 3;
-  options.shift_hz = 0.0;
-  options.lanczos_block_size = 4;
-  EXPECT_EQ(SolveError(K, M, options),
-            "eigenproblem: block Lanczos converged no pair within 200 Krylov vectors (tolerance 1e-10); raise "
-            "tolerance or set lanczos_block_size 1");
-}
-
 }  // namespace
 }  // namespace flexmbs::reduction
