@@ -116,7 +116,6 @@ KrylovRun RunLanczos(const ShiftedFactorization& factor, const MassOperator& M,
                  Spectra::SortRule::SmallestAlge);
   KrylovRun run;
   run.vectors = solver.eigenvectors();
-  run.requested = nev;
   run.restarts = static_cast<int>(solver.num_iterations());
   return run;
 }
@@ -141,7 +140,6 @@ KrylovRun RunBlock(const ShiftedFactorization& factor, const MassOperator& M,
   *solves += static_cast<int>(result.columns);
   KrylovRun run;
   run.vectors = std::move(result.vectors);
-  run.requested = nev;
   return run;
 }
 

@@ -16,8 +16,7 @@ class MassOperator;
 /// The converged Ritz vectors of one run.
 struct KrylovRun {
   Eigen::MatrixXd vectors;  ///< M-orthonormal, M-orthogonal to the pairs found
-  Eigen::Index requested = 0;
-  int restarts = 0;
+  int restarts = 0;         ///< Spectra's implicit restarts (0 for a block run)
 };
 
 /// One implicitly restarted Lanczos run (Spectra, shift-invert with `factor`, M inner product)

@@ -97,7 +97,7 @@ RitzPairs RayleighRitz(const SparseMatrix& K, const MassOperator& M, const Eigen
   Eigen::LLT<Eigen::MatrixXd> llt(G2);
   FLEXMBS_CHECK(llt.info() == Eigen::Success, "Rayleigh-Ritz: basis Gram matrix not positive definite");
   Q = llt.matrixU().solve<Eigen::OnTheRight>(Q);
-  Eigen::MatrixXd Kr = Q.transpose() * (K * Q);
+  Eigen::MatrixXd Kr = Q.transpose() * SparseOperator(K).Times(Q);
   Kr = 0.5 * (Kr + Kr.transpose()).eval();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> reduced(Kr);
   ritz.values = reduced.eigenvalues();
