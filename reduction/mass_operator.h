@@ -41,7 +41,6 @@ class MassOperator final : public SymmetricOperator {
   void Times(const double* X, double* Y, Eigen::Index cols) const;
   /// Whether the products go through M_s.
   bool uses_scalar_mass() const { return M_s_.has_value(); }
-  const Eigen::SparseMatrix<double>& matrix() const { return *M_; }
 
  private:
   const Eigen::SparseMatrix<double>* M_;
