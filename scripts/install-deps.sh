@@ -23,7 +23,9 @@ packages=(
   libssl-dev
   # independent peers for validation and benchmarks
   calculix-ccx python3-dolfinx python3-gmsh python3-numpy python3-scipy
-  python3-matplotlib python3-h5py python3-meshio
+  python3-matplotlib python3-h5py python3-meshio python3-siconos
+  # sanitizers and fuzzing (scripts/check-sanitizers.sh, fuzz/)
+  clang-14 libclang-rt-14-dev libfuzzer-14-dev
   # independent reader of the ParaView output in tests
   python3-vtk9
   # peak-memory measurement in bench/
