@@ -1,5 +1,5 @@
 # Finds every third-party library and exposes each as an imported target.
-# How each is found on Debian 12 is documented in ../shared/STACK.md.
+# How each is found on Debian 12, and the pitfalls met, is documented in docs/building.md.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)
@@ -64,7 +64,7 @@ else()
   target_link_libraries(Spectra::Spectra INTERFACE Eigen3::Eigen)
 endif()
 
-# HDF5: the Open MPI build through pkg-config, the one PETSc already links (see STACK.md);
+# HDF5: the Open MPI build through pkg-config, the one PETSc already links (see docs/building.md);
 # CMake's FindHDF5 would mix the serial and parallel libraries. The .pc also gives Open MPI's
 # include directories, which <hdf5.h> needs for <mpi.h>. Include directories of an imported
 # target are SYSTEM for its consumers, so -Werror builds stay clean.
