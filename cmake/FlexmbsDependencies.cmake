@@ -96,3 +96,13 @@ find_library(METIS_LIBRARY metis REQUIRED)
 add_library(ext::mumps INTERFACE IMPORTED)
 target_include_directories(ext::mumps SYSTEM INTERFACE ${MUMPS_INCLUDE_DIR} ${METIS_INCLUDE_DIR})
 target_link_libraries(ext::mumps INTERFACE ${DMUMPS_LIBRARY} ${LAPACK_LIBRARY} ${METIS_LIBRARY} MPI::MPI_C)
+
+# Siconos numerics 4.4 (the complementarity peer, contact/complementarity/siconos_solvers.cc):
+# Debian's CMake config is broken, so header and library by hand. Its headers include each other
+# as "NumericsFwd.h" and "SiconosConfig.h": both directories go on the (SYSTEM) include path.
+find_path(SICONOS_NUMERICS_INCLUDE_DIR LinearComplementarityProblem.h PATH_SUFFIXES siconos/numerics REQUIRED)
+find_path(SICONOS_CONFIG_INCLUDE_DIR SiconosConfig.h PATH_SUFFIXES siconos REQUIRED)
+find_library(SICONOS_NUMERICS_LIBRARY siconos_numerics REQUIRED)
+add_library(ext::siconos INTERFACE IMPORTED)
+target_include_directories(ext::siconos SYSTEM INTERFACE ${SICONOS_NUMERICS_INCLUDE_DIR} ${SICONOS_CONFIG_INCLUDE_DIR})
+target_link_libraries(ext::siconos INTERFACE ${SICONOS_NUMERICS_LIBRARY})
