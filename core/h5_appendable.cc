@@ -23,6 +23,7 @@ using detail::Check;
 using detail::CheckInternal;
 using detail::CheckName;
 using detail::CheckUnits;
+using detail::ChecksummedChunks;
 using detail::FailFile;
 using detail::FileState;
 using detail::Handle;
@@ -72,9 +73,7 @@ AppendableDataset Group::CreateAppendable(std::string_view name,
   const Handle space(Check(H5Screate_simple(rank, dims.data(), max_dims.data()), file, object,
                            "create the dataspace"),
                      H5Sclose);
-  const Handle create_list(CheckInternal(H5Pcreate(H5P_DATASET_CREATE), "create a property list"),
-                           H5Pclose);
-  Check(H5Pset_chunk(create_list.get(), rank, chunk.data()), file, object, "set the chunk shape");
+  const Handle create_list = ChecksummedChunks(chunk);
   const std::string n(name);
   Handle dataset(Check(H5Dcreate2(id_, n.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
                                   create_list.get(), H5P_DEFAULT),

@@ -23,8 +23,14 @@ using detail::CheckInternal;
 using detail::Fail;
 using detail::FileState;
 using detail::Handle;
+using detail::IsBinary64;
+using detail::IsInt64;
 using detail::Live;
+using detail::ReadDoubleAttribute;
+using detail::ReadIntegerAttribute;
 using detail::ReadStringAttribute;
+using detail::StringTypeProblem;
+using detail::Utf8StringType;
 using detail::Writable;
 using detail::WriteStringAttribute;
 
@@ -76,6 +82,16 @@ Handle OpenAttribute(const FileState& file, hid_t object_id, const std::string& 
     Fail(file, object,
          fmt::format("attribute '{}': expected one value, found {}", name, std::max<hssize_t>(count, 0)));
   }
+  const std::size_t size = H5Tget_size(type.get());
+  std::string problem;
+  if (expected == H5T_FLOAT && !IsBinary64(type.get())) {
+    problem = fmt::format("expected an 8-byte IEEE double, found a {}-byte floating-point value", size);
+  } else if (expected == H5T_INTEGER && !IsInt64(type.get())) {
+    problem = fmt::format("expected an 8-byte signed integer, found a {}-byte integer", size);
+  } else if (expected == H5T_STRING) {
+    problem = StringTypeProblem(type.get());
+  }
+  if (!problem.empty()) Fail(file, object, fmt::format("attribute '{}': {}", name, problem));
   *type_out = std::move(type);
   return attribute;
 }
@@ -84,44 +100,23 @@ Handle OpenAttribute(const FileState& file, hid_t object_id, const std::string& 
 
 namespace detail {
 
-Handle Utf8StringType() {
-  Handle type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
-  CheckInternal(H5Tset_size(type.get(), H5T_VARIABLE), "make a variable-length string type");
-  CheckInternal(H5Tset_cset(type.get(), H5T_CSET_UTF8), "make a UTF-8 string type");
-  return type;
-}
-
 std::vector<std::string> ReadStringData(const FileState& file, const std::string& object,
                                         hid_t file_type, std::size_t count, const StringReader& read) {
+  const std::string problem = StringTypeProblem(file_type);
+  if (!problem.empty()) Fail(file, object, problem);
   std::vector<std::string> out;
   if (count == 0) return out;
   out.reserve(count);
-  const H5T_cset_t cset = H5Tget_cset(file_type);
-  if (Check(H5Tis_variable_str(file_type), file, object, "inspect the string type") > 0) {
-    Handle memory_type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
-    CheckInternal(H5Tset_size(memory_type.get(), H5T_VARIABLE), "make a string type");
-    CheckInternal(H5Tset_cset(memory_type.get(), cset), "set the character set");
-    std::vector<char*> buffer(count, nullptr);
-    Check(read(memory_type.get(), static_cast<void*>(buffer.data())), file, object,
-          "read the strings");
-    for (char* s : buffer) {
-      out.emplace_back(s != nullptr ? s : "");
-      if (s != nullptr) H5free_memory(s);
-    }
-  } else {
-    const std::size_t size = H5Tget_size(file_type);
-    if (size == 0) Fail(file, object, "cannot read the strings (size 0)");
-    Handle memory_type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
-    CheckInternal(H5Tset_size(memory_type.get(), size), "make a string type");
-    CheckInternal(H5Tset_cset(memory_type.get(), cset), "set the character set");
-    CheckInternal(H5Tset_strpad(memory_type.get(), H5T_STR_NULLPAD), "set the string padding");
-    std::vector<char> buffer(count * size, '\0');
-    Check(read(memory_type.get(), static_cast<void*>(buffer.data())), file, object,
-          "read the strings");
-    for (std::size_t i = 0; i < count; ++i) {
-      const char* begin = buffer.data() + i * size;
-      out.emplace_back(begin, std::find(begin, begin + size, '\0'));
-    }
+  const std::size_t size = H5Tget_size(file_type);
+  Handle memory_type(CheckInternal(H5Tcopy(H5T_C_S1), "copy the string type"), H5Tclose);
+  CheckInternal(H5Tset_size(memory_type.get(), size), "make a string type");
+  CheckInternal(H5Tset_cset(memory_type.get(), H5Tget_cset(file_type)), "set the character set");
+  CheckInternal(H5Tset_strpad(memory_type.get(), H5T_STR_NULLPAD), "set the string padding");
+  std::vector<char> buffer(count * size, '\0');
+  Check(read(memory_type.get(), static_cast<void*>(buffer.data())), file, object, "read the strings");
+  for (std::size_t i = 0; i < count; ++i) {
+    const char* begin = buffer.data() + i * size;
+    out.emplace_back(begin, std::find(begin, begin + size, '\0'));
   }
   return out;
 }
@@ -139,10 +134,29 @@ void WriteStringAttribute(const FileState& file, hid_t object_id, const std::str
                           std::string_view name, std::string_view value) {
   FLEXMBS_CHECK(value.find('\0') == std::string_view::npos,
                 fmt::format("{}: attribute '{}': strings cannot hold '\\0'", object, name));
-  const Handle type = Utf8StringType();
-  const std::string text(value);
-  const char* pointer = text.c_str();
-  WriteAttribute(file, object_id, object, name, type.get(), type.get(), &pointer);
+  const Handle type = Utf8StringType(value.size());
+  const std::string text = value.empty() ? std::string(1, '\0') : std::string(value);
+  WriteAttribute(file, object_id, object, name, type.get(), type.get(), text.data());
+}
+
+double ReadDoubleAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                           std::string_view name) {
+  Handle type(H5I_INVALID_HID, H5Tclose);
+  const Handle attribute = OpenAttribute(file, object_id, object, name, H5T_FLOAT, &type);
+  double value = 0.0;
+  Check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), file, object,
+        fmt::format("read attribute '{}'", name));
+  return value;
+}
+
+std::int64_t ReadIntegerAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                                  std::string_view name) {
+  Handle type(H5I_INVALID_HID, H5Tclose);
+  const Handle attribute = OpenAttribute(file, object_id, object, name, H5T_INTEGER, &type);
+  std::int64_t value = 0;
+  Check(H5Aread(attribute.get(), H5T_NATIVE_INT64, &value), file, object,
+        fmt::format("read attribute '{}'", name));
+  return value;
 }
 
 }  // namespace detail
@@ -170,23 +184,11 @@ std::string Group::GetStringAttribute(std::string_view name) const {
 }
 
 double Group::GetDoubleAttribute(std::string_view name) const {
-  const FileState& file = Live(file_);
-  Handle type(H5I_INVALID_HID, H5Tclose);
-  const Handle attribute = OpenAttribute(file, id_, path_, name, H5T_FLOAT, &type);
-  double value = 0.0;
-  Check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), file, path_,
-        fmt::format("read attribute '{}'", name));
-  return value;
+  return ReadDoubleAttribute(Live(file_), id_, path_, name);
 }
 
 std::int64_t Group::GetIntegerAttribute(std::string_view name) const {
-  const FileState& file = Live(file_);
-  Handle type(H5I_INVALID_HID, H5Tclose);
-  const Handle attribute = OpenAttribute(file, id_, path_, name, H5T_INTEGER, &type);
-  std::int64_t value = 0;
-  Check(H5Aread(attribute.get(), H5T_NATIVE_INT64, &value), file, path_,
-        fmt::format("read attribute '{}'", name));
-  return value;
+  return ReadIntegerAttribute(Live(file_), id_, path_, name);
 }
 
 }  // namespace flexmbs::h5

@@ -1,12 +1,13 @@
 #pragma once
 
-// Private to core/h5_file.cc, core/h5_group.cc and core/h5_appendable.cc: the state that File,
+// Private to the core/h5_*.cc files: the state that File,
 // Group and AppendableDataset of one file share, HDF5 handles, and the error and naming helpers
 // the three use. Not included by core/h5_file.h, so no HDF5 header reaches flexmbs' users.
 
 #include <fmt/format.h>
 #include <hdf5.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -121,17 +122,85 @@ void CheckName(std::string_view name);
 void CheckUnits(std::string_view units, const std::string& object);
 
 // ------------------------------------------------------------------------------------------
-// Strings and attributes (defined in h5_attributes.cc)
+// Datasets (defined in h5_group.cc)
 
-/// A variable-length UTF-8 string type.
-Handle Utf8StringType();
+/// H5I_GROUP, H5I_DATASET, ... for the child `name` of `loc`, or H5I_BADID if there is none.
+H5I_type_t ChildType(const FileState& file, hid_t loc, const std::string& object, std::string_view name);
+
+/// The names of the links of the group `id` (named `object`), sorted by name.
+std::vector<std::string> LinkNames(const FileState& file, hid_t id, const std::string& object);
+
+/// An open dataset with its element type and extent.
+struct DatasetView {
+  Handle dataset;
+  Handle type;
+  H5T_class_t type_class = H5T_NO_CLASS;
+  int rank = 0;  // -1 for a null dataspace, 0 for a scalar
+  std::vector<hsize_t> dims;
+  std::size_t count = 0;
+};
+
+/// Opens the dataset `name` of `loc` and reads its type and extent (nothing of its data).
+DatasetView InspectDataset(const FileState& file, hid_t loc, const std::string& object,
+                           std::string_view name);
+
+// ------------------------------------------------------------------------------------------
+// Storage layout and checksums of datasets (defined in h5_layout.cc)
+
+/// The creation list of a dataset of `dims` ({} for a scalar) with `element_bytes` per value:
+/// no values: contiguous (nothing to check); a scalar: compact, i.e. inside the object header
+/// and under its checksum; else chunked in blocks of whole rows of about 1 MiB with the
+/// Fletcher32 checksum on every chunk.
+Handle DatasetCreationList(const std::vector<hsize_t>& dims, std::size_t element_bytes);
+
+/// The creation list of a chunked dataset with chunk dims `chunk` and the Fletcher32 checksum.
+Handle ChecksummedChunks(const std::vector<hsize_t>& chunk);
+
+/// Throws InputError "<file>: <object>: ..." unless the dataset's stored bytes can hold all its
+/// values (a damaged chunk index or extent would read missing chunks as fill values) and its
+/// values fit in the file (a damaged extent would allocate without bound).
+void CheckStorage(const FileState& file, const DatasetView& view, const std::string& object,
+                  std::size_t element_bytes);
+
+/// Throws InputError naming `object` unless the dataset is stored as flexmbs writes it: no
+/// values, compact, or chunked with the Fletcher32 checksum.
+void RequireChecksum(const FileState& file, const DatasetView& view, const std::string& object);
+
+// ------------------------------------------------------------------------------------------
+// Element types (defined in h5_types.cc)
+
+/// True for IEEE binary64 in either byte order: the only floating-point type readers accept.
+bool IsBinary64(hid_t type);
+
+/// True for 64-bit two's-complement signed integers in either byte order.
+bool IsInt64(hid_t type);
+
+/// "" for a fixed-length ASCII or UTF-8 string type, else why flexmbs does not read it
+/// (variable-length strings live on HDF5's global heap, which a damaged file can make HDF5
+/// read out of bounds).
+std::string StringTypeProblem(hid_t type);
+
+/// A fixed-length UTF-8 string type of `size` bytes (at least 1), padded with '\0'.
+Handle Utf8StringType(std::size_t size);
+
+// ------------------------------------------------------------------------------------------
+// Strings and attributes (defined in h5_attributes.cc)
 
 /// Calls H5Dread or H5Aread with the memory type and buffer it is given.
 using StringReader = std::function<herr_t(hid_t memory_type, void* buffer)>;
 
-/// Reads `count` strings of `file_type` (variable- or fixed-length) through `read`.
+/// Reads `count` fixed-length strings of `file_type` through `read`; InputError naming
+/// `object` for another string type (StringTypeProblem).
 std::vector<std::string> ReadStringData(const FileState& file, const std::string& object,
                                         hid_t file_type, std::size_t count, const StringReader& read);
+
+/// The scalar binary64 attribute `name` of `object_id`; InputError naming `object` otherwise.
+double ReadDoubleAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                           std::string_view name);
+
+/// The scalar 64-bit integer attribute `name` of `object_id`; InputError naming `object` otherwise.
+std::int64_t ReadIntegerAttribute(const FileState& file, hid_t object_id, const std::string& object,
+                                  std::string_view name);
 
 /// The scalar string attribute `name` of `object_id`; InputError naming `object` if it is
 /// missing or not one string.

@@ -94,12 +94,24 @@ void InitLibrary() {
 }
 
 /// File access: H5F_CLOSE_STRONG, so closing the file closes its groups and datasets too and
-/// Commit never leaves the file half-open behind a live Group. The library version bounds
-/// stay at the default (earliest): superblock v0/v2 has no "open for writing" flag, so a file
-/// whose writer was killed still opens (with "latest", HDF5 1.10 refuses it until h5clear).
+/// Commit never leaves the file half-open behind a live Group.
 Handle FileAccessList() {
   Handle fapl(CheckInternal(H5Pcreate(H5P_FILE_ACCESS), "create a file access list"), H5Pclose);
   CheckInternal(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "set the file close degree");
+  return fapl;
+}
+
+/// The access list of a new file, with the file format versions of its mode (docs/h5.md): both
+/// checksum their metadata (superblock, object headers with their attributes, group indexes).
+/// kAtomic: the 1.10 format, whose chunk indexes are checksummed too; its "open for writing"
+/// flag does not matter, as only a closed file is renamed into place. kInPlace: the 1.8 format
+/// (superblock 2, no such flag), so that a file whose writer was killed still opens (with the
+/// 1.10 format HDF5 refuses it until h5clear); its chunk indexes (version-1 B-trees) have no
+/// checksum, and readers check that every chunk is there (CheckStorage).
+Handle CreationAccessList(WriteMode mode) {
+  Handle fapl = FileAccessList();
+  const H5F_libver_t version = mode == WriteMode::kAtomic ? H5F_LIBVER_V110 : H5F_LIBVER_V18;
+  CheckInternal(H5Pset_libver_bounds(fapl.get(), version, version), "set the file format version");
   return fapl;
 }
 
@@ -158,7 +170,7 @@ File File::Create(const std::filesystem::path& path, WriteMode mode) {
   if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) {
     FailFile(*state, fmt::format("cannot create the file: no folder '{}'", folder.string()));
   }
-  const Handle fapl = FileAccessList();
+  const Handle fapl = CreationAccessList(mode);
   const hid_t id = H5Fcreate(state->disk_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
   if (id < 0) {
     const std::string detail = Hdf5Detail();

@@ -6,7 +6,9 @@
 // On-disk conventions (docs/h5.md):
 // - a matrix is a 2-D dataset of IEEE binary64, row-major, dims (rows, cols): h5py/numpy see
 //   the natural shape; a vector is 1-D, a scalar is a scalar dataspace;
-// - integers are 64-bit signed; strings are 1-D datasets of variable-length UTF-8;
+// - integers are 64-bit signed; strings are 1-D datasets of fixed-length UTF-8;
+// - every dataset with values is chunked with the Fletcher32 checksum (scalars: compact, under
+//   the object header's checksum); readers accept binary64, int64 and fixed-length strings only;
 // - every numeric dataset has a string attribute "units" ("1" if dimensionless);
 // - File::Create writes a temporary beside the target and renames it into place on Commit.
 //
@@ -52,6 +54,15 @@ enum class WriteMode {
 
 class Group;
 class AppendableDataset;
+
+/// What Group::VerifyAll read.
+struct VerifyReport {
+  int groups = 0;
+  int datasets = 0;
+  int attributes = 0;
+  std::int64_t values = 0;     ///< numbers and strings read, attributes included
+  std::string content_sha256;  ///< SHA-256 over every name, attribute and value read, in name order
+};
 
 /// An open HDF5 file. Move-only; closing happens in Commit (writers) or the destructor.
 class File {
@@ -137,7 +148,8 @@ class Group {
   /// A 2-D dataset of 64-bit signed integers, row-major, dims (rows, cols).
   void WriteIntegerMatrix(std::string_view name, const Eigen::Ref<const IntegerMatrix>& value,
                           std::string_view units);
-  /// A 1-D dataset of variable-length UTF-8 strings (no units). Strings must not contain '\0'.
+  /// A 1-D dataset of fixed-length UTF-8 strings of the longest one's size, padded with '\0'
+  /// (no units). Strings must not contain '\0'.
   void WriteStrings(std::string_view name, const std::vector<std::string>& values);
 
   // --- reading datasets: InputError naming file and object path on a missing dataset, a
@@ -147,7 +159,7 @@ class Group {
   double ReadScalar(std::string_view name) const;
   std::vector<std::int64_t> ReadIntegers(std::string_view name) const;
   IntegerMatrix ReadIntegerMatrix(std::string_view name) const;
-  /// Reads variable-length and fixed-length string datasets alike.
+  /// Reads fixed-length string datasets; variable-length ones are refused (InputError).
   std::vector<std::string> ReadStrings(std::string_view name) const;
   /// The "units" attribute of the dataset `name`; InputError if it has none.
   std::string ReadUnits(std::string_view name) const;
@@ -163,6 +175,13 @@ class Group {
   std::string GetStringAttribute(std::string_view name) const;
   double GetDoubleAttribute(std::string_view name) const;
   std::int64_t GetIntegerAttribute(std::string_view name) const;
+
+  // --- verification --------------------------------------------------------------------------
+  /// Reads this group and everything under it in full: every attribute, and every dataset
+  /// through the reader of its rank and type, after checking that it is stored as flexmbs
+  /// writes it (no values, compact, or chunked with the Fletcher32 checksum, which HDF5 checks
+  /// on the read). Throws the first problem as InputError naming the file and the object.
+  VerifyReport VerifyAll() const;
 
   // --- incremental writing -----------------------------------------------------------------
   /// An extendible, chunked dataset of doubles with dims (0, row_shape...) that grows by one

@@ -23,44 +23,30 @@ namespace flexmbs::h5 {
 using detail::Check;
 using detail::CheckInternal;
 using detail::CheckName;
+using detail::CheckStorage;
 using detail::CheckUnits;
+using detail::ChildType;
+using detail::DatasetCreationList;
+using detail::DatasetView;
 using detail::Fail;
 using detail::FileState;
 using detail::Handle;
+using detail::InspectDataset;
+using detail::IsBinary64;
+using detail::IsInt64;
 using detail::Join;
 using detail::Live;
 using detail::ReadStringAttribute;
 using detail::ReadStringData;
+using detail::StringTypeProblem;
 using detail::Utf8StringType;
 using detail::Writable;
 using detail::WriteStringAttribute;
 
 namespace {
 
-/// H5I_GROUP, H5I_DATASET, ... for the child `name` of `loc`, or H5I_BADID if there is none.
-H5I_type_t ChildType(const FileState& file, hid_t loc, const std::string& object,
-                     std::string_view name) {
-  const std::string n(name);
-  if (Check(H5Lexists(loc, n.c_str(), H5P_DEFAULT), file, object, "look up the object") <= 0) {
-    return H5I_BADID;
-  }
-  const Handle child(Check(H5Oopen(loc, n.c_str(), H5P_DEFAULT), file, object, "open the object"),
-                     H5Oclose);
-  return H5Iget_type(child.get());
-}
-
 // ------------------------------------------------------------------------------------------
 // Datasets
-
-/// An open dataset with its element class and extent.
-struct DatasetView {
-  Handle dataset;
-  Handle type;
-  H5T_class_t type_class = H5T_NO_CLASS;
-  int rank = 0;  // -1 for a null dataspace, 0 for a scalar
-  std::vector<hsize_t> dims;
-  std::size_t count = 0;
-};
 
 Handle OpenDataset(const FileState& file, hid_t loc, const std::string& object,
                    std::string_view name) {
@@ -73,6 +59,38 @@ Handle OpenDataset(const FileState& file, hid_t loc, const std::string& object,
   const std::string n(name);
   return Handle(Check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), file, object, "open the dataset"),
                 H5Dclose);
+}
+
+}  // namespace
+
+namespace detail {
+
+H5I_type_t ChildType(const FileState& file, hid_t loc, const std::string& object, std::string_view name) {
+  const std::string n(name);
+  if (Check(H5Lexists(loc, n.c_str(), H5P_DEFAULT), file, object, "look up the object") <= 0) {
+    return H5I_BADID;
+  }
+  const Handle child(Check(H5Oopen(loc, n.c_str(), H5P_DEFAULT), file, object, "open the object"),
+                     H5Oclose);
+  return H5Iget_type(child.get());
+}
+
+std::vector<std::string> LinkNames(const FileState& file, hid_t id, const std::string& object) {
+  H5G_info_t info;
+  Check(H5Gget_info(id, &info), file, object, "list the group");
+  std::vector<std::string> names;
+  names.reserve(info.nlinks);
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length = Check(H5Lget_name_by_idx(id, ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                                    nullptr, 0, H5P_DEFAULT),
+                                 file, object, "list the group");
+    std::vector<char> buffer(static_cast<std::size_t>(length) + 1, '\0');
+    Check(H5Lget_name_by_idx(id, ".", H5_INDEX_NAME, H5_ITER_INC, i, buffer.data(),
+                             buffer.size(), H5P_DEFAULT),
+          file, object, "list the group");
+    names.emplace_back(buffer.data(), static_cast<std::size_t>(length));
+  }
+  return names;
 }
 
 DatasetView InspectDataset(const FileState& file, hid_t loc, const std::string& object,
@@ -100,6 +118,10 @@ DatasetView InspectDataset(const FileState& file, hid_t loc, const std::string& 
       Check(H5Sget_simple_extent_npoints(space.get()), file, object, "read the dataset extent"));
   return view;
 }
+
+}  // namespace detail
+
+namespace {
 
 std::string_view PluralKind(H5T_class_t type_class) {
   switch (type_class) {
@@ -133,9 +155,27 @@ void Expect(const DatasetView& view, const FileState& file, const std::string& o
                                  PluralKind(type_class), found));
 }
 
+/// Throws "<file>: <object>: expected 8-byte IEEE doubles, found 4-byte floating-point values"
+/// unless the dataset holds binary64 (`type_class` H5T_FLOAT) or signed 64-bit integers.
+void ExpectElements(const DatasetView& view, const FileState& file, const std::string& object) {
+  const hid_t type = view.type.get();
+  const std::size_t size = H5Tget_size(type);
+  if (view.type_class == H5T_FLOAT && !IsBinary64(type)) {
+    Fail(file, object, fmt::format("expected 8-byte IEEE doubles, found {}-byte floating-point values", size));
+  }
+  if (view.type_class == H5T_INTEGER && !IsInt64(type)) {
+    Fail(file, object, fmt::format("expected 8-byte signed integers, found {}-byte {} integers", size,
+                                   H5Tget_sign(type) == H5T_SGN_2 ? "signed" : "unsigned"));
+  }
+}
+
+/// The values of a dataset whose rank and class Expect checked: its element type and storage
+/// are checked before anything is allocated or read.
 template <typename T>
 std::vector<T> ReadData(const DatasetView& view, const FileState& file, const std::string& object,
                         hid_t memory_type) {
+  ExpectElements(view, file, object);
+  CheckStorage(file, view, object, sizeof(T));
   std::vector<T> data(view.count);
   if (!data.empty()) {
     Check(H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
@@ -157,8 +197,9 @@ void WriteNumeric(FileState& file, hid_t loc, const std::string& object, std::st
                   object, "create the dataspace"),
       H5Sclose);
   const std::string n(name);
+  const Handle create_list = DatasetCreationList(dims, H5Tget_size(file_type));
   const Handle dataset(Check(H5Dcreate2(loc, n.c_str(), file_type, space.get(), H5P_DEFAULT,
-                                        H5P_DEFAULT, H5P_DEFAULT),
+                                        create_list.get(), H5P_DEFAULT),
                              file, object, "create the dataset"),
                        H5Dclose);
   std::size_t count = 1;
@@ -268,22 +309,7 @@ bool Group::HasDataset(std::string_view name) const {
 }
 
 std::vector<std::string> Group::ChildNames() const {
-  const FileState& file = Live(file_);
-  H5G_info_t info;
-  Check(H5Gget_info(id_, &info), file, path_, "list the group");
-  std::vector<std::string> names;
-  names.reserve(info.nlinks);
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t length = Check(H5Lget_name_by_idx(id_, ".", H5_INDEX_NAME, H5_ITER_INC, i,
-                                                    nullptr, 0, H5P_DEFAULT),
-                                 file, path_, "list the group");
-    std::vector<char> buffer(static_cast<std::size_t>(length) + 1, '\0');
-    Check(H5Lget_name_by_idx(id_, ".", H5_INDEX_NAME, H5_ITER_INC, i, buffer.data(),
-                             buffer.size(), H5P_DEFAULT),
-          file, path_, "list the group");
-    names.emplace_back(buffer.data(), static_cast<std::size_t>(length));
-  }
-  return names;
+  return detail::LinkNames(Live(file_), id_, path_);
 }
 
 std::vector<std::int64_t> Group::Shape(std::string_view name) const {
@@ -352,24 +378,27 @@ void Group::WriteStrings(std::string_view name, const std::vector<std::string>& 
   CheckName(name);
   const std::string object = Join(path_, name);
   FLEXMBS_CHECK(!Has(name), fmt::format("{}: {} already exists", file.name(), object));
-  std::vector<const char*> pointers;
-  pointers.reserve(values.size());
+  std::size_t size = 1;
   for (const std::string& s : values) {
     FLEXMBS_CHECK(s.find('\0') == std::string::npos,
                   fmt::format("{}: strings cannot hold '\\0'", object));
-    pointers.push_back(s.c_str());
+    size = std::max(size, s.size());
   }
-  const Handle type = Utf8StringType();
-  const hsize_t dims[1] = {static_cast<hsize_t>(values.size())};
-  const Handle space(Check(H5Screate_simple(1, dims, nullptr), file, object, "create the dataspace"),
+  // Fixed-length strings of the longest one's size, padded with '\0': no global heap.
+  std::vector<char> packed(values.size() * size, '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) std::copy(values[i].begin(), values[i].end(), packed.begin() + static_cast<std::ptrdiff_t>(i * size));
+  const Handle type = Utf8StringType(size);
+  const std::vector<hsize_t> dims{static_cast<hsize_t>(values.size())};
+  const Handle space(Check(H5Screate_simple(1, dims.data(), nullptr), file, object, "create the dataspace"),
                      H5Sclose);
+  const Handle create_list = DatasetCreationList(dims, size);
   const std::string n(name);
   const Handle dataset(Check(H5Dcreate2(id_, n.c_str(), type.get(), space.get(), H5P_DEFAULT,
-                                        H5P_DEFAULT, H5P_DEFAULT),
+                                        create_list.get(), H5P_DEFAULT),
                              file, object, "create the dataset"),
                        H5Dclose);
-  if (!pointers.empty()) {
-    Check(H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()),
+  if (!values.empty()) {
+    Check(H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()),
           file, object, "write the dataset");
   }
 }
@@ -433,6 +462,9 @@ std::vector<std::string> Group::ReadStrings(std::string_view name) const {
   const std::string object = Join(path_, name);
   const DatasetView view = InspectDataset(file, id_, object, name);
   Expect(view, file, object, 1, H5T_STRING);
+  const std::string problem = StringTypeProblem(view.type.get());
+  if (!problem.empty()) Fail(file, object, problem);
+  CheckStorage(file, view, object, H5Tget_size(view.type.get()));
   return ReadStringData(file, object, view.type.get(), view.count,
                         [&](hid_t memory_type, void* buffer) {
                           return H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL,

@@ -10,32 +10,24 @@
 #include "core/error.h"
 
 namespace flexmbs {
-namespace {
 
-/// An EVP digest context running SHA-256.
-class Sha256 {
- public:
-  Sha256() : context_(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
-    FLEXMBS_CHECK(context_ && EVP_DigestInit_ex(context_.get(), EVP_sha256(), nullptr) == 1,
-                  "OpenSSL could not start a SHA-256 digest");
-  }
-  void Update(const void* data, std::size_t size) {
-    FLEXMBS_CHECK(EVP_DigestUpdate(context_.get(), data, size) == 1, "OpenSSL SHA-256 update failed");
-  }
-  std::string HexDigest() {
-    std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-    unsigned int length = 0;
-    FLEXMBS_CHECK(EVP_DigestFinal_ex(context_.get(), digest.data(), &length) == 1, "OpenSSL SHA-256 final failed");
-    std::string hex;
-    for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
-    return hex;
-  }
+Sha256::Sha256() : context_(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
+  FLEXMBS_CHECK(context_ && EVP_DigestInit_ex(context_.get(), EVP_sha256(), nullptr) == 1,
+                "OpenSSL could not start a SHA-256 digest");
+}
 
- private:
-  std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> context_;
-};
+void Sha256::Update(const void* data, std::size_t size) {
+  FLEXMBS_CHECK(EVP_DigestUpdate(context_.get(), data, size) == 1, "OpenSSL SHA-256 update failed");
+}
 
-}  // namespace
+std::string Sha256::HexDigest() {
+  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+  unsigned int length = 0;
+  FLEXMBS_CHECK(EVP_DigestFinal_ex(context_.get(), digest.data(), &length) == 1, "OpenSSL SHA-256 final failed");
+  std::string hex;
+  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
+}
 
 std::string Sha256Hex(std::span<const std::byte> bytes) {
   Sha256 sha;

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/h5_file.h"
 #include "sid/reduced_body.h"
 
 namespace flexmbs::sid {
@@ -13,22 +14,29 @@ namespace flexmbs::sid {
 /// The root attribute `format` of every `.sid.h5` file.
 inline constexpr std::string_view kSidFormat = "flexmbs-sid";
 
-/// The `.sid.h5` schema this code writes (bumped when the layout changes).
-inline constexpr int kSidSchemaVersion = 3;
+/// The `.sid.h5` schema this code writes (bumped when the layout changes). Schema 4: every
+/// dataset checksummed (Fletcher32), fixed-length strings, the root attribute `content_sha256`.
+inline constexpr int kSidSchemaVersion = 4;
 
-/// The oldest schema the reader still reads: schema 2 lacks only `/visual_surface`, which
-/// reads as an empty sid::VisualSurface.
-inline constexpr int kSidOldestReadableSchemaVersion = 2;
+/// The oldest schema the reader reads: older files (variable-length strings, no checksums, no
+/// content digest) are refused with the command that regenerates them.
+inline constexpr int kSidOldestReadableSchemaVersion = 4;
 
-/// Writes `body` to `path` atomically (a temporary renamed into place only when complete).
+/// Writes `body` to `path` atomically (a temporary renamed into place only when complete), with
+/// its content digest (sid_digest.h).
 /// Throws InputError naming `path` if it cannot be written; InternalError if the body is not
 /// self-consistent (a per-mode list or a Taylor block of the wrong size).
 void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body);
 
 /// Reads a `.sid.h5` file of schema kSidOldestReadableSchemaVersion .. kSidSchemaVersion.
 /// Throws InputError (one line, naming `path`) for a missing, foreign (not flexmbs), truncated
-/// or wrong-version file, or a missing, mis-shaped or unit-less dataset.
+/// or wrong-version file, a missing, mis-shaped, mistyped or unit-less dataset, a checksum
+/// mismatch, and a body whose content digest differs from the one `reduce` wrote.
 ReducedBody ReadReducedBody(const std::filesystem::path& path);
+
+/// Reads the body (ReadReducedBody) and then every object of the file in full
+/// (h5::Group::VerifyAll): what `flexmbs info --verify` checks. Throws the first problem.
+h5::VerifyReport VerifyReducedBodyFile(const std::filesystem::path& path);
 
 /// The schema version of a readable `.sid.h5` file (the checks and errors of ReadReducedBody's
 /// header).

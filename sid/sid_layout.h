@@ -49,8 +49,8 @@ inline constexpr std::array<NodeField, 4> kNodeFields{{
     {"AP", &Node::AP, {"1", "1/q", ""}},
 }};
 
-/// The first schema with the optional group /visual_surface (older files have none).
-inline constexpr int kVisualSurfaceSchemaVersion = 3;
+/// The root attribute holding the body's content digest (sid_digest.h).
+inline constexpr std::string_view kDigestAttribute = "content_sha256";
 
 /// The stiffening matrices in /stiffening: dataset name suffixes and units per load case.
 inline constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};

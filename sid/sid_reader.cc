@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/h5_file.h"
+#include "sid/sid_digest.h"
 #include "sid/sid_file.h"
 #include "sid/sid_layout.h"
 
@@ -109,18 +110,39 @@ std::vector<ContactSurface> ReadSurfaces(const h5::Group& root) {
   return surfaces;
 }
 
-// The schema version of the open file's root, checked to be flexmbs-sid and readable.
+// The schema version of the open file's root, checked to be flexmbs-sid and readable. The
+// version (an integer) is read before the format (a string), so that a file of an earlier
+// schema, whose strings are of a kind this reader refuses, gets the command that regenerates it.
 int CheckedSchemaVersion(const std::filesystem::path& path, const h5::Group& root) {
-  if (!root.HasAttribute("format") || root.GetStringAttribute("format") != kSidFormat) {
+  if (!root.HasAttribute("format")) {
     throw InputError(fmt::format("{}: not a flexmbs reduced body (no format '{}')", path.string(), kSidFormat));
   }
-  const std::int64_t version = root.GetIntegerAttribute("schema_version");
-  if (version < kSidOldestReadableSchemaVersion || version > kSidSchemaVersion) {
+  const std::int64_t version = root.HasAttribute("schema_version") ? root.GetIntegerAttribute("schema_version") : 0;
+  if (version > 0 && version < kSidOldestReadableSchemaVersion) {
+    throw InputError(fmt::format("{}: schema_version {} was written by an earlier flexmbs, without checksums or "
+                                 "content digest; regenerate it with `flexmbs reduce BODY.yaml -o {}`",
+                                 path.string(), version, path.string()));
+  }
+  if (root.GetStringAttribute("format") != kSidFormat) {
+    throw InputError(fmt::format("{}: not a flexmbs reduced body (no format '{}')", path.string(), kSidFormat));
+  }
+  if (version > kSidSchemaVersion || version == 0) {
     throw InputError(fmt::format("{}: schema_version {} is not supported (this flexmbs reads {} to {}; "
                                  "run `flexmbs reduce` again)",
                                  path.string(), version, kSidOldestReadableSchemaVersion, kSidSchemaVersion));
   }
   return static_cast<int>(version);
+}
+
+/// Throws InputError unless `body`'s content digest is the one the file's writer stored.
+void CheckDigest(const std::filesystem::path& path, const h5::Group& root, const ReducedBody& body) {
+  const std::string stored = root.GetStringAttribute(layout::kDigestAttribute);
+  const std::string computed = ContentDigest(body);
+  if (stored != computed) {
+    throw InputError(fmt::format("{}: content digest mismatch: the body was damaged or edited after `flexmbs "
+                                 "reduce` wrote it (stored {:.16}..., computed {:.16}...)",
+                                 path.string(), stored, computed));
+  }
 }
 
 }  // namespace
@@ -133,7 +155,7 @@ int ReadSidSchemaVersion(const std::filesystem::path& path) {
 ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   const h5::File file = h5::File::Open(path);
   const h5::Group root = file.root();
-  const int version = CheckedSchemaVersion(path, root);
+  CheckedSchemaVersion(path, root);
   ReducedBody body;
   body.name = root.GetStringAttribute("name");
   const h5::Group refmod = root.OpenGroup("refmod");
@@ -169,7 +191,7 @@ ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   for (const std::string& name : sets.ChildNames()) body.node_sets[name] = ReadIndices(sets, name);
   body.nodes = ReadNodes(path, root);
   body.surfaces = ReadSurfaces(root);
-  if (version >= layout::kVisualSurfaceSchemaVersion && root.HasGroup("visual_surface")) {
+  if (root.HasGroup("visual_surface")) {
     const h5::Group visual = root.OpenGroup("visual_surface");
     body.visual_surface.face_sizes = ReadIndices(visual, "face_sizes");
     body.visual_surface.face_nodes = ReadIndices(visual, "face_nodes");
@@ -184,7 +206,13 @@ ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < keys.size(); ++i) body.provenance[keys[i]] = values[i];
   const std::string problem = FindInconsistency(body);
   if (!problem.empty()) throw InputError(fmt::format("{}: inconsistent body: {}", path.string(), problem));
+  CheckDigest(path, root, body);
   return body;
+}
+
+h5::VerifyReport VerifyReducedBodyFile(const std::filesystem::path& path) {
+  ReadReducedBody(path);
+  return h5::File::Open(path).root().VerifyAll();
 }
 
 }  // namespace flexmbs::sid

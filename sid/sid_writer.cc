@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/h5_file.h"
 #include "core/version.h"
+#include "sid/sid_digest.h"
 #include "sid/sid_file.h"
 #include "sid/sid_layout.h"
 
@@ -110,6 +111,7 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   if (!body.visual_surface.empty()) WriteVisualSurface(root, body.visual_surface);
 
   // Provenance as two parallel string lists, so that any key round-trips.
+  root.SetStringAttribute(layout::kDigestAttribute, ContentDigest(body));
   std::map<std::string, std::string> provenance_entries = body.provenance;
   provenance_entries["tool_version"] = std::string(Version());
   std::vector<std::string> keys, values;

@@ -312,7 +312,7 @@ TEST_F(BadSceneTest, BodyFileOfAnotherSchemaIsNamed) {
   old.root().SetIntegerAttribute("schema_version", 1);
   old.Commit();
   ExpectRefused("bodies:\n  b: {flexible: {file: old.sid.h5}}\nsimulation: {end_time: 1}\n",
-                "schema_version 1 is not supported");
+                "schema_version 1 was written by an earlier flexmbs");
 }
 
 TEST_F(BadSceneTest, UnknownKeyAndMissingEndTimeAreNamed) {

@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 
 #include "core/error.h"
 #include "core/h5_file.h"
+#include "sid/sid_digest.h"
 #include "tests/input_error.h"
 
 namespace flexmbs::sid {
@@ -221,9 +223,10 @@ TEST(SidFile, WrongSchemaVersionIsRefusedByName) {
   file.root().SetStringAttribute("format", "flexmbs-sid");
   file.root().SetIntegerAttribute("schema_version", 1);
   file.Commit();
-  EXPECT_EQ(ReadError(path), fmt::format("{}: schema_version 1 is not supported (this flexmbs reads 2 to {}; "
-                                         "run `flexmbs reduce` again)",
-                                         path.string(), kSidSchemaVersion));
+  EXPECT_EQ(ReadError(path), fmt::format("{0}: schema_version 1 was written by an earlier flexmbs, without "
+                                         "checksums or content digest; regenerate it with `flexmbs reduce BODY.yaml "
+                                         "-o {0}`",
+                                         path.string()));
 }
 
 TEST(SidFile, NewerSchemaVersionIsRefusedByName) {
@@ -242,27 +245,55 @@ void RunPython(const std::string& script) {
                 "h5py could not alter the test file");
 }
 
-// A schema-2 file as `flexmbs reduce` of schema 2 wrote it (the sample body without the group
-// /visual_surface, which schema 2 did not have) reads as a body without a visual surface.
-TEST(SidFile, SchemaTwoFileReadsWithoutVisualSurface) {
-  const fs::path path = TempPath("schema2.sid.h5");
+// A file of schema 3 (variable-length strings, no checksums, no digest), as h5py writes its
+// strings, is refused with the command that regenerates it, before any string is read.
+TEST(SidFile, EarlierSchemaIsRefusedWithTheCommandThatRegeneratesIt) {
+  const fs::path path = TempPath("schema3.sid.h5");
+  RunPython(fmt::format("import h5py; f = h5py.File('{}', 'w'); f.attrs['format'] = 'flexmbs-sid'; "
+                        "f.attrs['schema_version'] = 3; f.attrs['name'] = 'rod'; f.close()",
+                        path.string()));
+  EXPECT_EQ(ReadError(path), fmt::format("{0}: schema_version 3 was written by an earlier flexmbs, without "
+                                         "checksums or content digest; regenerate it with `flexmbs reduce BODY.yaml "
+                                         "-o {0}`",
+                                         path.string()));
+}
+
+// A value changed by hand (h5py, the dataset rewritten with its units, so every checksum
+// holds) is named as an edit by the content digest.
+TEST(SidFile, HandEditedValueIsNamedByTheContentDigest) {
+  const fs::path path = TempPath("edited.sid.h5");
+  WriteReducedBody(path, SampleBody());
+  RunPython(fmt::format("import h5py, numpy; g = h5py.File('{}', 'r+')['/invariants/Ke']; m = g['m0'][()]; "
+                        "m[0, 0] *= 1.001; del g['m0']; g.create_dataset('m0', data=m, fletcher32=True)"
+                        ".attrs['units'] = numpy.bytes_('N m/q^2')",
+                        path.string()));
+  EXPECT_NE(ReadError(path).find(path.string() + ": content digest mismatch: the body was damaged or edited after "
+                                                 "`flexmbs reduce` wrote it (stored "),
+            std::string::npos)
+      << ReadError(path);
+}
+
+TEST(SidFile, TheDigestCoversEveryValueTheReaderReturns) {
+  const fs::path path = TempPath("digest.sid.h5");
   const ReducedBody written = SampleBody();
   WriteReducedBody(path, written);
-  RunPython(fmt::format("import h5py; f = h5py.File('{}', 'r+'); del f['visual_surface']; "
-                        "f.attrs['schema_version'] = 2; f.close()",
-                        path.string()));
-  const ReducedBody read = ReadReducedBody(path);
-  EXPECT_TRUE(read.visual_surface.empty());
-  EXPECT_TRUE(read.J == written.J);
-  ExpectSame(read.phi, written.phi);
-  ASSERT_EQ(read.surfaces.size(), 1u);
+  EXPECT_EQ(ContentDigest(ReadReducedBody(path)), ContentDigest(written));
+  ReducedBody changed = written;
+  changed.phi(2, 1) = std::nextafter(changed.phi(2, 1), 2.0);
+  EXPECT_NE(ContentDigest(changed), ContentDigest(written));
+  changed = written;
+  changed.nodes[0].coupling = "averaging";
+  EXPECT_NE(ContentDigest(changed), ContentDigest(written));
+  changed = written;
+  changed.visual_surface.face_nodes[0] = 4;
+  EXPECT_NE(ContentDigest(changed), ContentDigest(written));
 }
 
 TEST(SidFile, VisualSurfaceNodeOutOfRangeIsRefusedByName) {
   const fs::path path = TempPath("visual_range.sid.h5");
   WriteReducedBody(path, SampleBody());
   RunPython(fmt::format("import h5py, numpy; g = h5py.File('{}', 'r+')['visual_surface']; del g['face_nodes']; "
-                        "g.create_dataset('face_nodes', data=numpy.array([0, 1, 2, 1, 2, 3, {}])).attrs['units'] = '1'",
+                        "g.create_dataset('face_nodes', data=numpy.array([0, 1, 2, 1, 2, 3, {}])).attrs['units'] = numpy.bytes_('1')",
                         path.string(), kNodes));
   EXPECT_EQ(ReadError(path), fmt::format("{}: inconsistent body: visual surface: FE node {} out of range",
                                          path.string(), kNodes));
@@ -291,7 +322,7 @@ fs::path WithAlteredCt(const std::string& file_name, const std::string& dataset,
   WriteReducedBody(path, SampleBody());
   RunPython(fmt::format(
       "import h5py, numpy; f = h5py.File('{0}', 'r+'); g = f['/invariants/Ct']; del g['{1}']; "
-      "g.create_dataset('{1}', data=numpy.zeros(({2}, 3))).attrs['units'] = '{3}'; f.close()",
+      "g.create_dataset('{1}', data=numpy.zeros(({2}, 3))).attrs['units'] = numpy.bytes_('{3}'); f.close()",
       path.string(), dataset, rows, units));
   return path;
 }

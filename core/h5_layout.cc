@@ -1,0 +1,85 @@
+// core/h5_detail.h: how datasets are stored (chunked with the Fletcher32 checksum, compact
+// scalars) and the checks readers make of a dataset's storage before they read it.
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/h5_detail.h"
+
+namespace flexmbs::h5::detail {
+
+namespace {
+
+/// Chunks of datasets written whole hold whole rows, about this many bytes (HDF5 suggests
+/// 10 KiB to 1 MiB; its default chunk cache holds 1 MiB).
+constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+
+}  // namespace
+
+Handle ChecksummedChunks(const std::vector<hsize_t>& chunk) {
+  Handle list(CheckInternal(H5Pcreate(H5P_DATASET_CREATE), "create a dataset creation list"), H5Pclose);
+  CheckInternal(H5Pset_chunk(list.get(), static_cast<int>(chunk.size()), chunk.data()), "set the chunk shape");
+  CheckInternal(H5Pset_fletcher32(list.get()), "add the Fletcher32 checksum");
+  return list;
+}
+
+Handle DatasetCreationList(const std::vector<hsize_t>& dims, std::size_t element_bytes) {
+  std::size_t row_values = 1;
+  for (std::size_t d = 1; d < dims.size(); ++d) row_values *= static_cast<std::size_t>(dims[d]);
+  const bool empty = std::find(dims.begin(), dims.end(), hsize_t{0}) != dims.end();
+  if (dims.empty() || empty) {
+    Handle list(CheckInternal(H5Pcreate(H5P_DATASET_CREATE), "create a dataset creation list"), H5Pclose);
+    if (dims.empty()) CheckInternal(H5Pset_layout(list.get(), H5D_COMPACT), "make a compact dataset");
+    return list;
+  }
+  std::vector<hsize_t> chunk = dims;
+  chunk[0] = std::clamp<hsize_t>(kChunkBytes / (row_values * element_bytes), 1, dims[0]);
+  return ChecksummedChunks(chunk);
+}
+
+void CheckStorage(const FileState& file, const DatasetView& view, const std::string& object,
+                  std::size_t element_bytes) {
+  if (view.count == 0) return;
+  hsize_t file_bytes = 0;
+  Check(H5Fget_filesize(file.id, &file_bytes), file, object, "read the file size");
+  if (view.count > std::numeric_limits<std::size_t>::max() / element_bytes ||
+      view.count * element_bytes > file_bytes) {
+    Fail(file, object, fmt::format("dims [{}] of {}-byte values do not fit in the file ({} bytes)",
+                                   fmt::join(view.dims, ", "), element_bytes, file_bytes));
+  }
+  const std::size_t bytes = view.count * element_bytes;
+  const hsize_t stored = H5Dget_storage_size(view.dataset.get());
+  if (stored < bytes) {
+    Fail(file, object, fmt::format("{} values of {} bytes, but only {} bytes stored: part of the data is missing",
+                                   view.count, element_bytes, stored));
+  }
+}
+
+void RequireChecksum(const FileState& file, const DatasetView& view, const std::string& object) {
+  if (view.count == 0) return;
+  const Handle list(Check(H5Dget_create_plist(view.dataset.get()), file, object, "read the storage layout"),
+                    H5Pclose);
+  const H5D_layout_t layout = H5Pget_layout(list.get());
+  if (layout == H5D_COMPACT) return;
+  if (layout == H5D_CHUNKED) {
+    const int filters = Check(H5Pget_nfilters(list.get()), file, object, "read the filters");
+    for (int i = 0; i < filters; ++i) {
+      unsigned flags = 0, config = 0;
+      std::size_t values = 0;
+      if (H5Pget_filter2(list.get(), static_cast<unsigned>(i), &flags, &values, nullptr, 0, nullptr, &config) ==
+          H5Z_FILTER_FLETCHER32) {
+        return;
+      }
+    }
+  }
+  Fail(file, object, "the data has no checksum (not written by this flexmbs)");
+}
+
+}  // namespace flexmbs::h5::detail

@@ -1,0 +1,99 @@
+#include "sid/sid_digest.h"
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/sha256.h"
+#include "sid/sid_layout.h"
+
+namespace flexmbs::sid {
+namespace {
+
+/// Feeds the fields of a body to SHA-256 so that no two different bodies give the same bytes.
+class BodyHasher {
+ public:
+  void Text(std::string_view text) {
+    Integer(static_cast<std::int64_t>(text.size()));
+    sha_.Update(text.data(), text.size());
+  }
+  void Integer(std::int64_t value) { sha_.Update(&value, sizeof value); }
+  void Texts(const std::vector<std::string>& texts) {
+    Integer(static_cast<std::int64_t>(texts.size()));
+    for (const std::string& t : texts) Text(t);
+  }
+  void Indices(const std::vector<int>& indices) {
+    Integer(static_cast<std::int64_t>(indices.size()));
+    for (const int i : indices) Integer(i);
+  }
+  void Matrix(const Eigen::Ref<const Eigen::MatrixXd>& m) {
+    Integer(m.rows());
+    Integer(m.cols());
+    for (Eigen::Index c = 0; c < m.cols(); ++c) {
+      sha_.Update(m.col(c).data(), static_cast<std::size_t>(m.rows()) * sizeof(double));
+    }
+  }
+  void Taylor(std::string_view name, const TaylorMatrix& block) {
+    Text(name);
+    Matrix(block.m0);
+    Integer(static_cast<std::int64_t>(block.m1.size()));
+    for (const Eigen::MatrixXd& m : block.m1) Matrix(m);
+    Integer(static_cast<std::int64_t>(block.m2.size()));
+    for (const Eigen::MatrixXd& m : block.m2) Matrix(m);
+  }
+  std::string HexDigest() { return sha_.HexDigest(); }
+
+ private:
+  Sha256 sha_;
+};
+
+}  // namespace
+
+std::string ContentDigest(const ReducedBody& body) {
+  BodyHasher h;
+  h.Text(body.name);
+  h.Matrix(Eigen::Matrix<double, 1, 1>::Constant(body.mass));
+  h.Matrix(body.center_of_mass);
+  h.Matrix(body.inertia_about_center_of_mass);
+  h.Texts(body.mode_names);
+  h.Texts(body.mode_kinds);
+  h.Matrix(body.frequency_hz);
+  h.Matrix(body.relative_residuals);
+  h.Text(body.damping);
+  for (const layout::InvariantField& field : layout::kInvariants) h.Taylor(field.name, body.*field.member);
+  h.Integer(body.stiffening.empty() ? 0 : 1);
+  if (!body.stiffening.empty()) {
+    for (const Eigen::MatrixXd& K : body.stiffening.K0t) h.Matrix(K);
+    for (const Eigen::MatrixXd& K : body.stiffening.K0r) h.Matrix(K);
+    for (const Eigen::MatrixXd& K : body.stiffening.K0omega) h.Matrix(K);
+  }
+  h.Matrix(body.node_positions);
+  h.Integer(static_cast<std::int64_t>(body.node_sets.size()));
+  for (const auto& [name, indices] : body.node_sets) {
+    h.Text(name);
+    h.Indices(indices);
+  }
+  h.Matrix(body.phi);
+  h.Integer(static_cast<std::int64_t>(body.nodes.size()));
+  for (const Node& node : body.nodes) {
+    h.Text(node.name);
+    h.Indices(node.fe_nodes);
+    h.Text(node.coupling);
+    for (const layout::NodeField& field : layout::kNodeFields) h.Taylor(field.name, node.*field.member);
+  }
+  h.Integer(static_cast<std::int64_t>(body.surfaces.size()));
+  for (const ContactSurface& surface : body.surfaces) {
+    h.Text(surface.name);
+    h.Indices(surface.fe_nodes);
+    h.Matrix(surface.vertices);
+    h.Indices(surface.face_sizes);
+    h.Indices(surface.face_vertices);
+    h.Matrix(surface.face_normals);
+    h.Matrix(surface.phi);
+  }
+  h.Indices(body.visual_surface.face_sizes);
+  h.Indices(body.visual_surface.face_nodes);
+  return h.HexDigest();
+}
+
+}  // namespace flexmbs::sid
