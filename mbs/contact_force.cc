@@ -2,83 +2,95 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Geometry>
 #include <cmath>
 #include <utility>
 
 #include "core/error.h"
 #include "mbs/multibody_system.h"
+#include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
 namespace {
 
-void Require(bool ok, const std::string& element, std::string_view what, double value, std::string_view bound) {
-  if (!ok || !std::isfinite(value)) {
-    throw InputError(fmt::format("force element '{}': {} {} must be finite and {}", element, what, value, bound));
+double CheckedRadius(const std::string& element, std::string_view what, double radius) {
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw InputError(fmt::format("force element '{}': {} {} must be finite and > 0", element, what, radius));
   }
+  return radius;
 }
 
 }  // namespace
 
 SpherePlaneContact::SpherePlaneContact(std::string name, MarkerRef sphere, MarkerRef plane, double radius,
                                        double stiffness, double damping, double exponent)
-    : name_(std::move(name)), sphere_(std::move(sphere)), plane_(std::move(plane)), radius_(radius),
-      stiffness_(stiffness), damping_(damping), exponent_(exponent) {
-  Require(radius > 0.0, name_, "radius [m]", radius, "> 0");
-  Require(stiffness >= 0.0, name_, "stiffness", stiffness, ">= 0");
-  Require(damping >= 0.0, name_, "damping [N s/m]", damping, ">= 0");
-  Require(exponent >= 1.0, name_, "exponent", exponent, ">= 1");
-}
+    : SpherePlaneContact(name, std::move(sphere), std::move(plane), CheckedRadius(name, "radius [m]", radius),
+                         ForElement(name, [&] {
+                           return CompliantContactLaw{contact::LinearLaw(stiffness, damping, exponent), {}};
+                         })) {}
 
-SpherePlaneContact::State SpherePlaneContact::Evaluate(const MultibodySystem& system, const ConstVectorRef& y) const {
-  State state;
-  state.sphere = system.MarkerState(sphere_, y);
-  state.plane = system.MarkerState(plane_, y);
-  const MarkerKinematics& S = state.sphere;
-  const MarkerKinematics& P = state.plane;
-  state.n_W = P.R_WM.col(2);
-  const Eigen::Vector3d p_PS_W = S.p_WM_W - P.p_WM_W;
-  state.penetration = radius_ - state.n_W.dot(p_PS_W);
-  if (!(state.penetration > 0.0)) return state;
-  // The plane's material point under the contact point c = p_S - r n, and n's own turning.
-  const Eigen::Vector3d p_Pc_W = p_PS_W - radius_ * state.n_W;
-  const Eigen::Vector3d v_plane_W = P.v_WM_W + P.w_WM_W.cross(p_Pc_W);
-  state.penetration_rate = -state.n_W.dot(S.v_WM_W - v_plane_W) - P.w_WM_W.cross(state.n_W).dot(p_PS_W);
-  state.force =
-      std::max(0.0, stiffness_ * std::pow(state.penetration, exponent_) + damping_ * state.penetration_rate);
-  return state;
+SpherePlaneContact::SpherePlaneContact(std::string name, MarkerRef sphere, MarkerRef plane, double radius,
+                                       CompliantContactLaw law)
+    : name_(std::move(name)), sphere_(std::move(sphere)), plane_(std::move(plane)),
+      radius_(CheckedRadius(name_, "radius [m]", radius)), contact_(std::move(law), sphere_, plane_) {}
+
+ContactPoint SpherePlaneContact::Geometry(const MultibodySystem& system, const ConstVectorRef& y) const {
+  ContactPoint point;
+  point.a = system.MarkerState(sphere_, y);
+  point.b = system.MarkerState(plane_, y);
+  point.n_W = point.b.R_WM.col(2);
+  point.penetration = radius_ - point.n_W.dot(point.a.p_WM_W - point.b.p_WM_W);
+  point.p_Wc_W = point.a.p_WM_W - radius_ * point.n_W;
+  return point;
 }
 
 void SpherePlaneContact::AddForces(double /*t*/, const MultibodySystem& system, const ConstVectorRef& y,
                                    Eigen::Ref<Eigen::VectorXd> h) const {
-  const State state = Evaluate(system, y);
-  if (state.force == 0.0) return;
-  const Eigen::Vector3d f_W = state.force * state.n_W;
-  const Eigen::Vector3d p_Pc_W = state.sphere.p_WM_W - radius_ * state.n_W - state.plane.p_WM_W;
-  system.AddMarkerLoad(sphere_, state.sphere, f_W, Eigen::Vector3d::Zero(), h);
-  system.AddMarkerLoad(plane_, state.plane, -f_W, p_Pc_W.cross(-f_W), h);
+  contact_.AddForces(system, Geometry(system, y), h);
 }
 
 double SpherePlaneContact::PotentialEnergy(double /*t*/, const MultibodySystem& system, const ConstVectorRef& y) const {
-  const State state = Evaluate(system, y);
-  if (!(state.penetration > 0.0)) return 0.0;
-  return stiffness_ * std::pow(state.penetration, exponent_ + 1.0) / (exponent_ + 1.0);
+  return contact_.PotentialEnergy(Geometry(system, y));
 }
 
 void SpherePlaneContact::AddForceJacobian(double /*t*/, const MultibodySystem& system, const ConstVectorRef& y,
                                           Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
-  if (sphere_.is_ground()) return;
-  const State state = Evaluate(system, y);
-  if (state.force == 0.0) return;
-  const MarkerKinematics& S = state.sphere;
-  // h_S = J_v^T lambda n with d delta = -n^T J_v du (and likewise in x): d h_S = -J_v^T n
-  // (dlambda/ddelta) n^T J_v.
-  const Eigen::MatrixXd n_J = state.n_W.transpose() * S.jacobian.topRows<3>();
-  const Eigen::MatrixXd coupling = n_J.transpose() * n_J;
-  const Eigen::Index at = system.velocity_offset(sphere_.body), size = coupling.rows();
-  const double dlambda_ddelta = exponent_ * stiffness_ * std::pow(state.penetration, exponent_ - 1.0);
-  dh_dx.block(at, at, size, size) -= dlambda_ddelta * coupling;
-  dh_du.block(at, at, size, size) -= damping_ * coupling;
+  contact_.AddForceJacobian(system, Geometry(system, y), dh_dx, dh_du);
+}
+
+SphereSphereContact::SphereSphereContact(std::string name, MarkerRef sphere1, MarkerRef sphere2, double radius1,
+                                         double radius2, CompliantContactLaw law)
+    : name_(std::move(name)), sphere1_(std::move(sphere1)), sphere2_(std::move(sphere2)),
+      radius1_(CheckedRadius(name_, "radius1 [m]", radius1)), radius2_(CheckedRadius(name_, "radius2 [m]", radius2)),
+      contact_(std::move(law), sphere1_, sphere2_) {}
+
+ContactPoint SphereSphereContact::Geometry(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+  ContactPoint point;
+  point.a = system.MarkerState(sphere1_, y);
+  point.b = system.MarkerState(sphere2_, y);
+  const Eigen::Vector3d d = point.a.p_WM_W - point.b.p_WM_W;
+  const double length = d.norm();
+  if (!(length > 0.0)) {
+    throw SimulationError(t, fmt::format("t = {:.9g} s: sphere-sphere contact '{}': the centres meet (no normal)", t, name_));
+  }
+  point.n_W = d / length;
+  point.penetration = radius1_ + radius2_ - length;
+  point.p_Wc_W = point.b.p_WM_W + (radius2_ - 0.5 * point.penetration) * point.n_W;
+  point.n_turning = (Eigen::Matrix3d::Identity() - point.n_W * point.n_W.transpose()) / length;
+  return point;
+}
+
+void SphereSphereContact::AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                    Eigen::Ref<Eigen::VectorXd> h) const {
+  contact_.AddForces(system, Geometry(t, system, y), h);
+}
+
+double SphereSphereContact::PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+  return contact_.PotentialEnergy(Geometry(t, system, y));
+}
+
+void SphereSphereContact::AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                           Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  contact_.AddForceJacobian(system, Geometry(t, system, y), dh_dx, dh_du);
 }
 
 }  // namespace flexmbs::mbs

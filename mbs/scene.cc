@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "mbs/contact_force.h"
 #include "mbs/force_element.h"
 #include "mbs/joint.h"
 #include "mbs/scene_bodies.h"
+#include "mbs/scene_contact.h"
 #include "mbs/scene_values.h"
 
 namespace flexmbs::mbs {
@@ -103,18 +103,11 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
                                        node.Has("damping") ? ReadVector6(node.Required("damping"))
                                                            : Eigen::Matrix<double, 6, 1>::Zero());
     });
-  } else if (type == "sphere_plane_contact") {
-    node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "stiffness", "damping", "exponent"});
-    const MarkerRef sphere = ReadMarkerRef(node.Required("sphere"), *system);
-    const MarkerRef plane = ReadMarkerRef(node.Required("plane"), *system);
-    element = Within(node, [&] {
-      return std::make_unique<SpherePlaneContact>(
-          name, sphere, plane, node.Required("radius").AsDouble(), node.Required("stiffness").AsDouble(),
-          node.Has("damping") ? node.Required("damping").AsDouble() : 0.0,
-          node.Has("exponent") ? node.Required("exponent").AsDouble() : 1.0);
-    });
+  } else if (IsContactForceType(type)) {
+    element = ReadContactForce(node, name, type, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); });
   } else {
-    type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing, sphere_plane_contact", type));
+    type_node.Fail(fmt::format(
+        "'{}' must be one of: point_load, spring_damper, bushing, sphere_plane_contact, sphere_sphere_contact", type));
   }
   Within(node, [&] { return system->AddForceElement(std::move(element)); });
 }

@@ -1,0 +1,147 @@
+#include "mbs/scene_contact.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <initializer_list>
+
+#include "contact/laws/hertz.h"
+#include "core/error.h"
+#include "mbs/compliant_contact.h"
+#include "mbs/contact_force.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+constexpr std::array kLawKinds{contact::NormalLawKind::kLinear, contact::NormalLawKind::kHertz,
+                               contact::NormalLawKind::kHuntCrossley, contact::NormalLawKind::kLankaraniNikravesh,
+                               contact::NormalLawKind::kFlores};
+
+/// Runs `build`, turning an InputError into one at `node` (prefixed with the element's name
+/// unless `element` is empty: the element classes name themselves).
+template <typename Build>
+auto At(const YamlNode& node, const std::string& element, Build build) -> decltype(build()) {
+  try {
+    return build();
+  } catch (const InputError& e) {
+    node.Fail(element.empty() ? std::string(e.what()) : fmt::format("force element '{}': {}", element, e.what()));
+  }
+}
+
+/// What differs between the two element types when their law is read.
+struct ContactShape {
+  std::string_view first, second;  ///< the bodies' names under `materials`
+  bool second_may_be_rigid;        ///< the plane: no material means a rigid flat
+  double effective_radius;         ///< R* [m] (contact/laws/hertz.h)
+};
+
+contact::NormalLawKind ReadLawKind(const YamlNode& node) {
+  if (!node.Has("law")) return contact::NormalLawKind::kLinear;
+  const YamlNode law = node.Required("law");
+  const std::string value = law.AsString();
+  for (const contact::NormalLawKind kind : kLawKinds) {
+    if (value == contact::Name(kind)) return kind;
+  }
+  law.Fail(fmt::format("'{}' must be one of: linear, hertz, hunt_crossley, lankarani_nikravesh, flores", value));
+}
+
+contact::ElasticMaterial ReadMaterial(const YamlNode& node, const std::string& element, std::string_view body) {
+  node.RejectUnknownKeys({"youngs_modulus", "poissons_ratio"});
+  const contact::ElasticMaterial material{node.Required("youngs_modulus").AsDouble(),
+                                          node.Required("poissons_ratio").AsDouble()};
+  At(node, element, [&] { contact::CheckMaterial(std::string(body).c_str(), material); });
+  return material;
+}
+
+/// k = 4/3 E* sqrt(R*) from `materials: {<first>: {youngs_modulus, poissons_ratio}, <second>: ...}`.
+double StiffnessFromMaterials(const YamlNode& node, const std::string& element, const ContactShape& shape) {
+  node.RejectUnknownKeys({shape.first, shape.second});
+  const contact::ElasticMaterial first = ReadMaterial(node.Required(shape.first), element, shape.first);
+  const double modulus = (shape.second_may_be_rigid && !node.Has(shape.second))
+                             ? contact::EffectiveModulusOnRigid(first)
+                             : contact::EffectiveModulus(first, ReadMaterial(node.Required(shape.second), element,
+                                                                             shape.second));
+  return contact::HertzStiffness(modulus, shape.effective_radius);
+}
+
+/// Fails at the first of `keys` that `node` has: it does not belong to law `kind`.
+void RejectKeysOfOtherLaws(const YamlNode& node, contact::NormalLawKind kind, std::initializer_list<std::string_view> keys) {
+  for (const std::string_view key : keys) {
+    if (node.Has(key)) node.Required(key).Fail(fmt::format("not a parameter of law '{}'", contact::Name(kind)));
+  }
+}
+
+contact::NormalLaw ReadNormalLaw(const YamlNode& node, const std::string& element, const ContactShape& shape) {
+  const contact::NormalLawKind kind = ReadLawKind(node);
+  const auto number = [&](std::string_view key) { return node.Required(key).AsDouble(); };
+  if (kind == contact::NormalLawKind::kLinear) {
+    RejectKeysOfOtherLaws(node, kind, {"restitution", "impact_speed", "materials"});
+    return At(node, element, [&] {
+      return contact::LinearLaw(number("stiffness"), node.Has("damping") ? number("damping") : 0.0,
+                                node.Has("exponent") ? number("exponent") : 1.0);
+    });
+  }
+  RejectKeysOfOtherLaws(node, kind, {"damping", "exponent"});
+  if (node.Has("stiffness") == node.Has("materials")) {
+    node.Fail(fmt::format("force element '{}': law '{}' takes one of stiffness, materials", element, contact::Name(kind)));
+  }
+  const double stiffness =
+      node.Has("stiffness") ? number("stiffness") : StiffnessFromMaterials(node.Required("materials"), element, shape);
+  if (kind == contact::NormalLawKind::kHertz) {
+    RejectKeysOfOtherLaws(node, kind, {"restitution", "impact_speed"});
+    return At(node, element, [&] { return contact::HertzLaw(stiffness); });
+  }
+  const double restitution = number("restitution"), impact_speed = number("impact_speed");
+  return At(node, element, [&] {
+    switch (kind) {
+      case contact::NormalLawKind::kHuntCrossley:
+        return contact::HuntCrossleyLaw(stiffness, restitution, impact_speed);
+      case contact::NormalLawKind::kLankaraniNikravesh:
+        return contact::LankaraniNikraveshLaw(stiffness, restitution, impact_speed);
+      default:
+        return contact::FloresLaw(stiffness, restitution, impact_speed);
+    }
+  });
+}
+
+CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, const ContactShape& shape) {
+  CompliantContactLaw law{ReadNormalLaw(node, element, shape), {}};
+  if (node.Has("friction")) {
+    const YamlNode friction = node.Required("friction");
+    friction.RejectUnknownKeys({"coefficient", "regularisation_speed"});
+    const double coefficient = friction.Required("coefficient").AsDouble();
+    const double speed = friction.Has("regularisation_speed") ? friction.Required("regularisation_speed").AsDouble()
+                                                              : contact::RegularisedCoulomb{}.regularisation_speed;
+    law.friction = At(friction, element, [&] { return contact::MakeRegularisedCoulomb(coefficient, speed); });
+  }
+  return law;
+}
+
+}  // namespace
+
+bool IsContactForceType(std::string_view type) {
+  return type == "sphere_plane_contact" || type == "sphere_sphere_contact";
+}
+
+std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
+                                               const std::function<MarkerRef(const YamlNode&)>& read_marker) {
+  if (type == "sphere_plane_contact") {
+    node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
+                            "restitution", "impact_speed", "materials", "friction"});
+    const MarkerRef sphere = read_marker(node.Required("sphere")), plane = read_marker(node.Required("plane"));
+    const double radius = node.Required("radius").AsDouble();
+    CompliantContactLaw law = ReadLaw(node, name, {"sphere", "plane", true, radius});
+    return At(node, "", [&] { return std::make_unique<SpherePlaneContact>(name, sphere, plane, radius, std::move(law)); });
+  }
+  FLEXMBS_CHECK(type == "sphere_sphere_contact", "ReadContactForce: not a contact type");
+  node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "stiffness", "restitution",
+                          "impact_speed", "materials", "friction", "damping", "exponent"});
+  const MarkerRef sphere1 = read_marker(node.Required("sphere1")), sphere2 = read_marker(node.Required("sphere2"));
+  const double radius1 = node.Required("radius1").AsDouble(), radius2 = node.Required("radius2").AsDouble();
+  CompliantContactLaw law = ReadLaw(node, name, {"sphere1", "sphere2", false, contact::EffectiveRadius(radius1, radius2)});
+  return At(node, "", [&] {
+    return std::make_unique<SphereSphereContact>(name, sphere1, sphere2, radius1, radius2, std::move(law));
+  });
+}
+
+}  // namespace flexmbs::mbs

@@ -1,0 +1,26 @@
+#pragma once
+// Reading the compliant contact force elements of a scene file (docs/scene.md, "Contact
+// elements"): `sphere_plane_contact` and `sphere_sphere_contact` with their law, restitution,
+// materials and friction keys.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "core/yaml_node.h"
+#include "mbs/force_element.h"
+#include "mbs/marker_ref.h"
+
+namespace flexmbs::mbs {
+
+/// True for the force-element types ReadContactForce reads.
+bool IsContactForceType(std::string_view type);
+
+/// The contact element `name` of type `type` (IsContactForceType) from its scene entry `node`;
+/// `read_marker` reads one of its marker entries. Every bad key or value is an InputError
+/// "<file>:<line>:<col>: <item>: <problem>" naming the element and the value.
+std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
+                                               const std::function<MarkerRef(const YamlNode&)>& read_marker);
+
+}  // namespace flexmbs::mbs
