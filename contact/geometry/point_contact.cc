@@ -1,0 +1,59 @@
+#include "contact/geometry/point_contact.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace flexmbs::contact {
+namespace {
+
+/// Below this share of r_A + r_B the centres of two spheres count as coincident.
+constexpr double kCoincidentCentres = 1e-12;
+
+PointContactKinematics WithTangents(PointContactKinematics contact) {
+  TangentBasis(contact.n_W, &contact.t1_W, &contact.t2_W);
+  return contact;
+}
+
+}  // namespace
+
+void TangentBasis(const Eigen::Vector3d& n_W, Eigen::Vector3d* t1_W, Eigen::Vector3d* t2_W) {
+  const double sign = std::copysign(1.0, n_W.z());
+  const double a = -1.0 / (sign + n_W.z());
+  const double b = n_W.x() * n_W.y() * a;
+  *t1_W = Eigen::Vector3d(1.0 + sign * n_W.x() * n_W.x() * a, sign * b, -sign * n_W.x());
+  *t2_W = Eigen::Vector3d(b, sign + n_W.y() * n_W.y() * a, -n_W.y());
+}
+
+PointContactKinematics SpherePlane(const Sphere& sphere, const Plane& plane) {
+  FLEXMBS_CHECK(sphere.radius > 0.0, "SpherePlane: the radius must be > 0");
+  FLEXMBS_CHECK(std::abs(plane.n_W.norm() - 1.0) <= 1e-9, "SpherePlane: the plane's normal must be a unit vector");
+  PointContactKinematics contact;
+  contact.n_W = plane.n_W;
+  const double height = plane.n_W.dot(sphere.p_WS_W - plane.p_WP_W);
+  contact.g_N = height - sphere.radius;
+  contact.p_WA_W = sphere.p_WS_W - sphere.radius * plane.n_W;
+  contact.p_WB_W = sphere.p_WS_W - height * plane.n_W;
+  return WithTangents(contact);
+}
+
+PointContactKinematics SphereSphere(const Sphere& a, const Sphere& b) {
+  FLEXMBS_CHECK(a.radius > 0.0 && b.radius > 0.0, "SphereSphere: the radii must be > 0");
+  const Eigen::Vector3d d = a.p_WS_W - b.p_WS_W;
+  const double length = d.norm();
+  if (!(length > kCoincidentCentres * (a.radius + b.radius))) {
+    throw DegenerateContactError(fmt::format(
+        "sphere-sphere contact: the centres coincide (distance {:.3g} m, radii {:g} m and {:g} m): no normal", length,
+        a.radius, b.radius));
+  }
+  PointContactKinematics contact;
+  contact.n_W = d / length;
+  contact.g_N = length - a.radius - b.radius;
+  contact.p_WA_W = a.p_WS_W - a.radius * contact.n_W;
+  contact.p_WB_W = b.p_WS_W + b.radius * contact.n_W;
+  return WithTangents(contact);
+}
+
+}  // namespace flexmbs::contact
