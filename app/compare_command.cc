@@ -140,7 +140,7 @@ Compared CompareWithFullModel(const CompareOptions& options) {
   Compared out;
   out.reference = reduction::ErrorReference::kB;
   const double zero_eigenvalue =
-      reduction::kZeroEigenvalue * system.stiffness.diagonal().sum() / system.mass.diagonal().sum();
+      eigensolvers::kZeroEigenvalue * system.stiffness.diagonal().sum() / system.mass.diagonal().sum();
   reduction::ModeSet reduced;
   try {
     reduced = reduction::SystemModes(a, zero_eigenvalue);
@@ -152,7 +152,7 @@ Compared CompareWithFullModel(const CompareOptions& options) {
   reduction::ModeSet full;
   try {
     const reduction::ReducedBasis basis =
-        reduction::FullModelModes(model, held, count, *reduction::MakeEigensolver(kFullModelEigensolver));
+        reduction::FullModelModes(model, held, count, *eigensolvers::MakeEigensolver(kFullModelEigensolver));
     full = reduction::BasisModes(basis, model);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: full model ({}): {}", options.b, note.held_by, e.what()));

@@ -22,7 +22,7 @@
 #include "reduction/sid_nodes.h"
 #include "reduction/sid_spec.h"
 #include "reduction/reduction_spec.h"
-#include "reduction/slepc_solver.h"
+#include "eigensolvers/distributed/slepc_solver.h"
 #include "sid/body_formats.h"
 
 namespace flexmbs::app {
@@ -37,8 +37,8 @@ struct ReduceOptions {
 
 // The eigen-solve's options the spec asks for (the normal modes; a free-free basis adds the
 // rigid-body modes itself).
-reduction::EigenOptions EigenOptionsOf(const reduction::ReductionSpec& spec) {
-  reduction::EigenOptions eigen;
+eigensolvers::EigenOptions EigenOptionsOf(const reduction::ReductionSpec& spec) {
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = spec.num_modes;
   eigen.max_frequency_hz = spec.max_frequency_hz;
   return eigen;
@@ -56,8 +56,8 @@ reduction::FreeFreeOptions FreeFreeOptionsOf(const reduction::ReductionSpec& spe
 // The basis the spec asks for, before correction modes.
 reduction::ReducedBasis BuildBasis(const reduction::ReductionSpec& spec, const reduction::FeModel& model,
                                    const reduction::BoundaryConditions& conditions,
-                                   const reduction::Eigensolver& solver) {
-  const reduction::EigenOptions eigen = EigenOptionsOf(spec);
+                                   const eigensolvers::Eigensolver& solver) {
+  const eigensolvers::EigenOptions eigen = EigenOptionsOf(spec);
   switch (spec.method) {
     case reduction::ReductionMethod::kFreeFree:
       return reduction::FreeFreeModalBasis(model, FreeFreeOptionsOf(spec), solver);
@@ -89,7 +89,7 @@ struct StageSeconds {
 // The MPI path's accounting (`reduce --json`, key "mpi"; docs/reduction.md, "Under MPI"): the
 // solve's, and what the products and static solves with the kept matrices cost after it.
 nlohmann::json MpiJson(const reduction::DistributedSolveStats& stats, double basis_seconds,
-                       const reduction::DistributedModelStats& after) {
+                       const eigensolvers::DistributedModelStats& after) {
   nlohmann::json ranks = nlohmann::json::array();
   for (const reduction::RankShare& r : stats.ranks) {
     const auto k = static_cast<std::size_t>(r.rank);
@@ -117,7 +117,7 @@ nlohmann::json EigensolverJson(const reduction::EigensolverSummary& s) {
           {"operator_applications", s.operator_applications},
           {"krylov_runs", s.krylov_runs},
           {"restarts", s.restarts},
-          {"missed_mode_check", reduction::MissedModeCheckName(s.missed_mode_check)},
+          {"missed_mode_check", eigensolvers::MissedModeCheckName(s.missed_mode_check)},
           {"factorization", s.factorization},
           {"lanczos_block_size", s.lanczos_block_size}};
 }
@@ -171,7 +171,7 @@ void Report(const ReduceOptions& options, const reduction::ReducedBasis& basis, 
 struct Reduction {
   fem::Mesh mesh;
   fem::SystemMatrices system;
-  std::unique_ptr<reduction::DistributedModel> distributed;
+  std::unique_ptr<eigensolvers::DistributedModel> distributed;
   reduction::BoundaryConditions conditions;
   reduction::ReducedBasis basis;
   StageSeconds seconds;
@@ -212,7 +212,7 @@ bool ReduceOnEveryRank(const fem::BodySpec& body, const reduction::ReductionSpec
   progress.Show(fmt::format("reducing ({}) ...", reduction::MethodName(spec.method)));
   const auto reduction_start = std::chrono::steady_clock::now();
   out->conditions = reduction::ResolveConditions(spec, out->mesh.node_sets);
-  const std::unique_ptr<reduction::Eigensolver> solver = reduction::MakeEigensolver(spec.eigensolver);
+  const std::unique_ptr<eigensolvers::Eigensolver> solver = eigensolvers::MakeEigensolver(spec.eigensolver);
   out->basis = BuildBasis(spec, out->Model(), out->conditions, *solver);
   out->seconds.reduction = SecondsSince(reduction_start);
   return writer;
@@ -225,7 +225,7 @@ bool ReduceOnEveryRank(const fem::BodySpec& body, const reduction::ReductionSpec
 // until rank 0 is done, then return false.
 bool ReduceDistributed(const fem::BodySpec& body, const reduction::ReductionSpec& spec,
                        std::chrono::steady_clock::time_point start, Progress& progress, Reduction* out) {
-  const bool root = reduction::SlepcSession::Rank() == 0;
+  const bool root = eigensolvers::SlepcSession::Rank() == 0;
   const bool free_free = spec.method == reduction::ReductionMethod::kFreeFree;
   std::vector<int> clamped;
   std::string error;
@@ -248,11 +248,11 @@ bool ReduceDistributed(const fem::BodySpec& body, const reduction::ReductionSpec
 
   // The options the basis builder passes to its eigensolver: FreeFreeModalBasis asks for the
   // six rigid-body modes on top of the elastic ones.
-  reduction::EigenOptions eigen = EigenOptionsOf(spec);
+  eigensolvers::EigenOptions eigen = EigenOptionsOf(spec);
   if (free_free && spec.num_modes > 0) eigen.num_modes += 6;
-  progress.Show(fmt::format("assembling and solving on {} ranks ...", reduction::SlepcSession::Size()));
+  progress.Show(fmt::format("assembling and solving on {} ranks ...", eigensolvers::SlepcSession::Size()));
   reduction::DistributedSolveStats& stats = out->solve_stats;
-  reduction::EigenSolution solution;
+  eigensolvers::EigenSolution solution;
   try {
     solution = reduction::SolveModesDistributed(out->mesh, body.mass_matrix, clamped, eigen, &stats, &out->distributed);
   } catch (const InputError& e) {
@@ -287,9 +287,9 @@ void RunReduce(const ReduceOptions& options) {
   const reduction::SidSpec sid_spec =
       reduction::LoadSidSpec(options.body_file, body.node_sets, reduction::InterfaceMarkerNames(spec));
   // Under `mpirun` with the slepc backend every rank runs the command; rank 0 writes and reports.
-  std::optional<reduction::SlepcSession> mpi;
+  std::optional<eigensolvers::SlepcSession> mpi;
   if (spec.eigensolver == "slepc") mpi.emplace();
-  const bool writer = !mpi || reduction::SlepcSession::Rank() == 0;
+  const bool writer = !mpi || eigensolvers::SlepcSession::Rank() == 0;
 
   Reduction r;
   const bool writes = RunsDistributed(spec) ? ReduceDistributed(body, spec, start, progress, &r)

@@ -21,7 +21,7 @@
 
 #include "bench/free_dofs.h"
 
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 
 namespace {
 
@@ -107,12 +107,12 @@ int main(int argc, char** argv) {
   const Eigen::SparseMatrix<double> M = ReadFree(files[1], new_index, n_free, &c);
   cholmod_finish(&c);
 
-  flexmbs::reduction::EigenOptions options;
+  flexmbs::eigensolvers::EigenOptions options;
   options.num_modes = modes;
   options.lanczos_block_size = block;
-  const auto solver = flexmbs::reduction::MakeEigensolver("spectra");
-  const flexmbs::reduction::EigenSolution s = solver->Solve(K, M, options);
-  const std::string check(flexmbs::reduction::MissedModeCheckName(s.missed_mode_check));
+  const auto solver = flexmbs::eigensolvers::MakeEigensolver("spectra");
+  const flexmbs::eigensolvers::EigenSolution s = solver->Solve(K, M, options);
+  const std::string check(flexmbs::eigensolvers::MissedModeCheckName(s.missed_mode_check));
   std::printf(
       "{\"free_dofs\": %ld, \"modes\": %ld, \"seconds\": %.6f, \"factorization_seconds\": %.6f, "
       "\"sturm_seconds\": %.6f, \"krylov_seconds\": %.6f, \"factorizations\": %d, \"operator_applications\": %d, "
@@ -121,6 +121,6 @@ int main(int argc, char** argv) {
       "\"lowest_hz\": %.10g, \"highest_hz\": %.10g}\n",
       n_free, static_cast<long>(s.eigenvalues.size()), s.seconds, s.factorization_seconds, s.sturm_seconds,
       s.krylov_seconds, s.factorizations, s.operator_applications, s.krylov_runs, s.restarts, s.refinement_steps,
-      check.c_str(), s.lanczos_block_size, flexmbs::reduction::FrequenciesHz(s)(0), flexmbs::reduction::FrequenciesHz(s)(s.eigenvalues.size() - 1));
+      check.c_str(), s.lanczos_block_size, flexmbs::eigensolvers::FrequenciesHz(s)(0), flexmbs::eigensolvers::FrequenciesHz(s)(s.eigenvalues.size() - 1));
   return 0;
 }

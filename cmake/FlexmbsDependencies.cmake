@@ -79,7 +79,7 @@ add_library(ext::sundials INTERFACE IMPORTED)
 target_link_libraries(ext::sundials INTERFACE SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
                       SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared)
 
-# The system BLAS (dgemm for tall, thin block products, reduction/tall_products.h): libblas.so.3,
+# The system BLAS (dgemm for tall, thin block products, eigensolvers/tall_products.h): libblas.so.3,
 # which Debian's alternatives point at OpenBLAS (libopenblas0-pthread).
 find_library(BLAS_LIBRARY blas REQUIRED)
 add_library(ext::blas INTERFACE IMPORTED)

@@ -11,7 +11,7 @@ namespace flexmbs::reduction {
 namespace {
 
 // One Cholesky-QR pass: Q = X L^-T with L L^T = X^T M X; returns L^-T (Q = X L^-T).
-Eigen::MatrixXd CholeskyQrStep(const SymmetricOperator& M, Eigen::MatrixXd* X) {
+Eigen::MatrixXd CholeskyQrStep(const eigensolvers::SymmetricOperator& M, Eigen::MatrixXd* X) {
   const Eigen::MatrixXd G = Symmetrized(X->transpose() * M.Times(*X));
   const Eigen::LLT<Eigen::MatrixXd> llt(G);
   FLEXMBS_CHECK(llt.info() == Eigen::Success, "M-orthonormalisation: the basis columns are dependent");
@@ -37,7 +37,7 @@ Eigen::MatrixXd WithLargestEntryPositive(Eigen::MatrixXd V) {
 
 Eigen::MatrixXd Symmetrized(const Eigen::MatrixXd& A) { return 0.5 * (A + A.transpose()); }
 
-RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, const Eigen::MatrixXd& B) {
+RitzResult RayleighRitz(const eigensolvers::SymmetricOperator& K, const eigensolvers::SymmetricOperator& M, const Eigen::MatrixXd& B) {
   RitzResult ritz;
   const Eigen::Index n = B.cols();
   if (n == 0) {
@@ -68,20 +68,20 @@ RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, 
 
 RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                         const Eigen::MatrixXd& B) {
-  return RayleighRitz(SparseOperator(K), SparseOperator(M), B);
+  return RayleighRitz(eigensolvers::SparseOperator(K), eigensolvers::SparseOperator(M), B);
 }
 
-void MOrthogonalizeAgainst(const SymmetricOperator& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
+void MOrthogonalizeAgainst(const eigensolvers::SymmetricOperator& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
   if (Q.cols() == 0 || X->cols() == 0) return;
   const Eigen::MatrixXd MQ = M.Times(Q);
   for (int pass = 0; pass < 2; ++pass) *X -= Q * (MQ.transpose() * *X);
 }
 
 void MOrthogonalizeAgainst(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X) {
-  MOrthogonalizeAgainst(SparseOperator(M), Q, X);
+  MOrthogonalizeAgainst(eigensolvers::SparseOperator(M), Q, X);
 }
 
-Eigen::MatrixXd MOrthonormalized(const SymmetricOperator& M, const Eigen::MatrixXd& X) {
+Eigen::MatrixXd MOrthonormalized(const eigensolvers::SymmetricOperator& M, const Eigen::MatrixXd& X) {
   if (X.cols() == 0) return X;
   const Eigen::MatrixXd MX = M.Times(X);
   Eigen::VectorXd scale(X.cols());
@@ -96,7 +96,7 @@ Eigen::MatrixXd MOrthonormalized(const SymmetricOperator& M, const Eigen::Matrix
 }
 
 Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& X) {
-  return MOrthonormalized(SparseOperator(M), X);
+  return MOrthonormalized(eigensolvers::SparseOperator(M), X);
 }
 
 }  // namespace flexmbs::reduction

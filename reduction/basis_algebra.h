@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "reduction/model_operators.h"
+#include "eigensolvers/model_operators.h"
 
 namespace flexmbs::reduction {
 
@@ -20,19 +20,19 @@ struct RitzResult {
 /// unit M-norm first, then orthonormalised by two Cholesky-QR passes in the M inner product.
 /// Each Ritz vector's sign makes its largest coordinate in that orthonormal basis positive, so a
 /// vector that is mostly one column of B keeps that column's sign, whatever the round-off.
-RitzResult RayleighRitz(const SymmetricOperator& K, const SymmetricOperator& M, const Eigen::MatrixXd& B);
+RitzResult RayleighRitz(const eigensolvers::SymmetricOperator& K, const eigensolvers::SymmetricOperator& M, const Eigen::MatrixXd& B);
 /// The same with K and M held here (SparseOperator).
 RitzResult RayleighRitz(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                         const Eigen::MatrixXd& B);
 
 /// X -= Q (Q^T M X), twice (classical Gram-Schmidt with re-orthogonalisation): X becomes
 /// M-orthogonal to the M-orthonormal columns of Q.
-void MOrthogonalizeAgainst(const SymmetricOperator& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X);
+void MOrthogonalizeAgainst(const eigensolvers::SymmetricOperator& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X);
 /// The same with M held here (SparseOperator).
 void MOrthogonalizeAgainst(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& Q, Eigen::MatrixXd* X);
 
 /// An M-orthonormal basis of span(X) (independent columns, checked) by two Cholesky-QR passes.
-Eigen::MatrixXd MOrthonormalized(const SymmetricOperator& M, const Eigen::MatrixXd& X);
+Eigen::MatrixXd MOrthonormalized(const eigensolvers::SymmetricOperator& M, const Eigen::MatrixXd& X);
 /// The same with M held here (SparseOperator).
 Eigen::MatrixXd MOrthonormalized(const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& X);
 

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "fem/mass_properties.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 
 namespace flexmbs::reduction {
 
@@ -50,7 +50,7 @@ ModeSet SystemModes(const sid::ReducedBody& body, double zero_eigenvalue) {
   const Eigen::MatrixXd& X = eigen.eigenvectors();
   ModeSet out;
   out.shapes = body.phi * X;
-  out.frequency_hz = FrequenciesHz(lambda);
+  out.frequency_hz = eigensolvers::FrequenciesHz(lambda);
   out.participation = X.transpose() * body.Ct.m0;
   out.modal_mass = Eigen::VectorXd::Ones(n);
   int rigid = 0, normal = 0;

@@ -18,7 +18,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& conditions,
-                               const EigenOptions& normal_modes, const Eigensolver& solver) {
+                               const eigensolvers::EigenOptions& normal_modes, const eigensolvers::Eigensolver& solver) {
   ValidateModel(model);
   if (conditions.interfaces.empty()) {
     throw InputError("craig-bampton basis: no interface: Craig-Bampton needs at least one interface (use a "
@@ -48,11 +48,11 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
   HeldModes modes;
   const bool want_normal = normal_modes.num_modes > 0 || normal_modes.max_frequency_hz > 0.0;
   if (want_normal) {
-    EigenOptions options = normal_modes;
+    eigensolvers::EigenOptions options = normal_modes;
     if (!options.shift_hz) options.shift_hz = 0.0;
     modes = SolveHeldModes(solver, interior, factor.get(), options, what + ": fixed-interface modes");
   }
-  const EigenSolution& s = modes.solution;
+  const eigensolvers::EigenSolution& s = modes.solution;
   const Index n_b = t.num_boundary();
   const Index n_n = s.modes.cols();
 
@@ -73,7 +73,7 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
   basis.relative_residuals = Eigen::VectorXd::Constant(n_b + n_n, kNaN);
   basis.residual_floors = Eigen::VectorXd::Constant(n_b + n_n, kNaN);
   if (n_n > 0) {
-    basis.frequency_hz.tail(n_n) = FrequenciesHz(s.eigenvalues);
+    basis.frequency_hz.tail(n_n) = eigensolvers::FrequenciesHz(s.eigenvalues);
     basis.relative_residuals.tail(n_n) = s.relative_residuals;
     basis.residual_floors.tail(n_n) = s.residual_floors;
   }
@@ -94,7 +94,7 @@ ReducedBasis OrthonormalizeBasis(const FeModel& model, const ReducedBasis& input
   }
   if (input.num_modes() == 0) throw InputError("orthonormalise basis: the basis has no columns");
   const RitzResult ritz = RayleighRitz(model.stiffness(), model.mass(), input.Phi);
-  const double zero = kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
+  const double zero = eigensolvers::kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
   const Index n = input.num_modes();
 
   ReducedBasis basis;
@@ -104,7 +104,7 @@ ReducedBasis OrthonormalizeBasis(const FeModel& model, const ReducedBasis& input
   basis.held_factorization = input.held_factorization;
   basis.held_by = input.held_by;
   basis.Phi = ritz.vectors;
-  basis.frequency_hz = FrequenciesHz(ritz.values);
+  basis.frequency_hz = eigensolvers::FrequenciesHz(ritz.values);
   basis.relative_residuals = Eigen::VectorXd::Constant(n, kNaN);
   basis.residual_floors = Eigen::VectorXd::Constant(n, kNaN);
   Index rigid = 0, normal = 0;

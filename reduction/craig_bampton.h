@@ -16,7 +16,7 @@
 // modes carry no force on interior DOF and are K-orthogonal to the normal modes, so K_reduced
 // is block diagonal [Psi^T K Psi, 0; 0, diag(omega_n^2)].
 
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/interface_coupling.h"
 #include "reduction/modal_basis.h"
 
@@ -36,7 +36,7 @@ namespace flexmbs::reduction {
 /// e.g. a node set on one line of an otherwise free body: the message names the interfaces
 /// and why), a band without modes, and the eigensolver's errors (prefixed).
 ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& conditions,
-                               const EigenOptions& normal_modes, const Eigensolver& solver);
+                               const eigensolvers::EigenOptions& normal_modes, const eigensolvers::Eigensolver& solver);
 
 /// The orthonormalised form of a basis (used for Craig-Bampton): the small eigenproblem
 /// K_reduced t = lambda M_reduced t is solved and Phi' = Phi T, so that M_reduced' = I and

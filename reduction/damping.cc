@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "reduction/basis_algebra.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -23,7 +23,7 @@ ReducedDamping ModalDamping(const DampingSpec& damping, const FeModel& model,
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eigen(
       basis.K_reduced, basis.M_reduced, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
   FLEXMBS_CHECK(eigen.info() == Eigen::Success, "the reduced mass matrix is positive definite");
-  const double zero = kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
+  const double zero = eigensolvers::kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
   const Eigen::VectorXd& lambda = eigen.eigenvalues();  // ascending
   const Index num_rigid =
       std::count_if(lambda.begin(), lambda.end(), [&](double l) { return l <= zero; });

@@ -10,8 +10,8 @@
 #include "fem/mesh_partition.h"
 #include "fem/mesh_scatter.h"
 #include "fem/petsc_check.h"
-#include "reduction/slepc_pair_measures.h"
-#include "reduction/slepc_solver.h"
+#include "eigensolvers/distributed/slepc_pair_measures.h"
+#include "eigensolvers/distributed/slepc_solver.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -92,7 +92,7 @@ Eigen::VectorXd GatherDiagonal(Mat A, const std::vector<int>& old_node) {
   Vec diagonal;
   FLEXMBS_PETSC(MatCreateVecs(A, &diagonal, nullptr));
   FLEXMBS_PETSC(MatGetDiagonal(A, diagonal));
-  const Eigen::VectorXd values = GatherVector(diagonal, ModesOn::kRankZero);
+  const Eigen::VectorXd values = eigensolvers::GatherVector(diagonal, eigensolvers::ModesOn::kRankZero);
   FLEXMBS_PETSC(VecDestroy(&diagonal));
   if (values.size() == 0) return values;
   std::vector<int> all(static_cast<std::size_t>(values.size()));
@@ -108,11 +108,11 @@ void ShareRootError(const std::string& error_on_root) {
   if (!chars.empty()) throw InputError(std::string(chars.begin(), chars.end()));
 }
 
-EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
-                                    const std::vector<int>& clamped_dofs, const EigenOptions& options,
-                                    DistributedSolveStats* stats, std::unique_ptr<DistributedModel>* keep) {
-  const int rank = SlepcSession::Rank();
-  const int size = SlepcSession::Size();
+eigensolvers::EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
+                                    const std::vector<int>& clamped_dofs, const eigensolvers::EigenOptions& options,
+                                    DistributedSolveStats* stats, std::unique_ptr<eigensolvers::DistributedModel>* keep) {
+  const int rank = eigensolvers::SlepcSession::Rank();
+  const int size = eigensolvers::SlepcSession::Size();
   auto start = std::chrono::steady_clock::now();
   fem::MeshPartition partition;
   if (rank == 0) partition = fem::PartitionByCoordinateBisection(mesh, size);
@@ -145,25 +145,25 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
   start = std::chrono::steady_clock::now();
   Mat K = matrices.stiffness, M = matrices.mass, M_s = nullptr;
   matrices = {};
-  EigenSolution solution;
+  eigensolvers::EigenSolution solution;
   Eigen::VectorXd K_diagonal, M_diagonal;
   double gather_seconds = 0.0;
   // A held body kept for static solves: the eigen-solve's factorisation of K_oo serves them.
   Mat K_factor = nullptr;
-  std::unique_ptr<SubstructuredFactor> K_substructured;
+  std::unique_ptr<eigensolvers::SubstructuredFactor> K_substructured;
   try {
     if (keep) {
       // What the products after the solve need of the whole matrices: their diagonals and,
       // for a held body, the whole M as M_s (1/9 of its entries).
       K_diagonal = GatherDiagonal(K, old_node);
       M_diagonal = GatherDiagonal(M, old_node);
-      if (!clamped.empty()) M_s = DistributedScalarMass(M);
+      if (!clamped.empty()) M_s = eigensolvers::DistributedScalarMass(M);
     }
     if (!clamped.empty()) {
       K = RemoveClamped(K, clamped);
       M = RemoveClamped(M, clamped);
     }
-    solution = SolveDistributedEigenproblem(K, M, {}, options, ModesOn::kRankZero, &gather_seconds,
+    solution = eigensolvers::SolveDistributedEigenproblem(K, M, {}, options, eigensolvers::ModesOn::kRankZero, &gather_seconds,
                                             keep && !clamped.empty() ? &K_factor : nullptr, &K_substructured);
   } catch (...) {
     if (K_factor != nullptr) MatDestroy(&K_factor);
@@ -178,7 +178,7 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
   }
   if (keep) {
     const bool lumped = mass_kind != fem::MassMatrixKind::kConsistent;
-    *keep = std::make_unique<DistributedModel>(K, M, M_s != nullptr, lumped ? std::move(part) : fem::MeshPart{},
+    *keep = std::make_unique<eigensolvers::DistributedModel>(K, M, M_s != nullptr, lumped ? std::move(part) : fem::MeshPart{},
                                                mass_kind, old_node, clamped, std::move(K_diagonal),
                                                std::move(M_diagonal), K_factor, std::move(K_substructured));
   } else {
@@ -201,7 +201,7 @@ EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind m
     solution.modes = ToMeshNumbering(solution.modes, free_new, old_node);
   }
   stats->gather_seconds = gather_seconds + SecondsSince(start);
-  share.peak_rss_mb = PeakRssMb();
+  share.peak_rss_mb = eigensolvers::PeakRssMb();
   stats->ranks = GatherShares(share);
   return solution;
 }

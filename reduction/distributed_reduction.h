@@ -12,8 +12,8 @@
 
 #include "fem/element_integrator.h"
 #include "fem/mesh.h"
-#include "reduction/distributed_model.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/distributed/distributed_model.h"
+#include "eigensolvers/eigensolver.h"
 
 namespace flexmbs::reduction {
 
@@ -51,9 +51,9 @@ struct DistributedSolveStats {
 /// products and static solves while no rank holds K and M whole. For a held body's lowest modes
 /// the eigen-solve then shifts by 0 and its MUMPS factorisation of K_oo goes to the model too
 /// (SolveDistributedEigenproblem's `K_factor`), where it serves the static solves.
-EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
-                                    const std::vector<int>& clamped_dofs, const EigenOptions& options,
-                                    DistributedSolveStats* stats, std::unique_ptr<DistributedModel>* keep = nullptr);
+eigensolvers::EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::MassMatrixKind mass_kind,
+                                    const std::vector<int>& clamped_dofs, const eigensolvers::EigenOptions& options,
+                                    DistributedSolveStats* stats, std::unique_ptr<eigensolvers::DistributedModel>* keep = nullptr);
 
 /// Collective: if `error_on_root` (rank 0's) is not empty, every rank throws InputError with
 /// it. For errors on rank 0 before a collective step, so that no rank waits for it forever.

@@ -39,7 +39,7 @@ BoundaryConditions RigidConditions(const FullModelConditions& conditions) {
 
 // The lowest `modes` modes of the model with rigid interfaces (FullModelModes).
 ReducedBasis ModesWithRigidInterfaces(const FeModel& model, const FullModelConditions& conditions, Eigen::Index modes,
-                                      const Eigensolver& solver) {
+                                      const eigensolvers::Eigensolver& solver) {
   const Eigen::SparseMatrix<double> T = AdmissibleDisplacements(BuildConstraintTransform(model.nodes,
                                                                                          RigidConditions(conditions)));
   const Eigen::SparseMatrix<double> Tt = T.transpose();
@@ -47,10 +47,10 @@ ReducedBasis ModesWithRigidInterfaces(const FeModel& model, const FullModelCondi
   Eigen::SparseMatrix<double> M_T = Tt * (model.M() * T);
   K_T.prune(0.0);
   M_T.prune(0.0);
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = static_cast<int>(modes);
-  const EigenSolution s = solver.Solve(K_T, M_T, eigen);
-  const double zero = kZeroEigenvalue * model.K().diagonal().sum() / model.M().diagonal().sum();
+  const eigensolvers::EigenSolution s = solver.Solve(K_T, M_T, eigen);
+  const double zero = eigensolvers::kZeroEigenvalue * model.K().diagonal().sum() / model.M().diagonal().sum();
 
   ReducedBasis basis;
   basis.method = "full_model";
@@ -58,7 +58,7 @@ ReducedBasis ModesWithRigidInterfaces(const FeModel& model, const FullModelCondi
   basis.eigensolver_summary = SummarizeEigenSolution(s);
   basis.held_by = RigidConditions(conditions);
   basis.Phi = T * s.modes;
-  basis.frequency_hz = FrequenciesHz(s.eigenvalues);
+  basis.frequency_hz = eigensolvers::FrequenciesHz(s.eigenvalues);
   basis.relative_residuals = s.relative_residuals;
   basis.residual_floors = s.residual_floors;
   int rigid = 0, normal = 0;
@@ -115,7 +115,7 @@ Eigen::Index AvailableModes(const FeModel& model, const FullModelConditions& con
 }
 
 ReducedBasis FullModelModes(const FeModel& model, const FullModelConditions& conditions, Eigen::Index count,
-                            const Eigensolver& solver) {
+                            const eigensolvers::Eigensolver& solver) {
   ValidateModel(model);
   const Eigen::Index modes = std::min(count, AvailableModes(model, conditions));
   if (conditions.held.empty() && modes <= kRigidModes) {
@@ -124,7 +124,7 @@ ReducedBasis FullModelModes(const FeModel& model, const FullModelConditions& con
   }
   if (!conditions.rigid.empty()) return ModesWithRigidInterfaces(model, conditions, modes, solver);
   if (!conditions.held.empty()) {
-    EigenOptions eigen;
+    eigensolvers::EigenOptions eigen;
     eigen.num_modes = static_cast<int>(modes);
     return FixedInterfaceModalBasis(model, conditions.held, eigen, solver);
   }

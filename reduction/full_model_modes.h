@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/interface_coupling.h"
 #include "reduction/modal_basis.h"
 #include "reduction/reduction_spec.h"
@@ -72,6 +72,6 @@ Eigen::Index AvailableModes(const FeModel& model, const FullModelConditions& con
 /// needs an elastic mode), and the builders' and the eigensolver's InputErrors (conditions that
 /// do not hold the body, ...).
 ReducedBasis FullModelModes(const FeModel& model, const FullModelConditions& conditions, Eigen::Index count,
-                            const Eigensolver& solver);
+                            const eigensolvers::Eigensolver& solver);
 
 }  // namespace flexmbs::reduction

@@ -59,7 +59,7 @@ InteriorProblem BuildInteriorProblem(const FeModel& model, const BoundaryConditi
   return p;
 }
 
-bool HasZeroEnergyMode(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& K,
+bool HasZeroEnergyMode(const eigensolvers::ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& K,
                        const Eigen::SparseMatrix<double>& M) {
   constexpr Eigen::Index kProbeVectors = 2;
   constexpr int kSteps = 3;
@@ -79,7 +79,7 @@ bool HasZeroEnergyMode(const ShiftedFactorization& factor, const Eigen::SparseMa
   const Eigen::MatrixXd MX = M * X;
   for (Eigen::Index j = 0; j < kProbeVectors; ++j) {
     const double rayleigh = X.col(j).dot(KX.col(j)) / X.col(j).dot(MX.col(j));
-    if (!(rayleigh > kZeroEigenvalue * scale)) return true;
+    if (!(rayleigh > eigensolvers::kZeroEigenvalue * scale)) return true;
   }
   return false;
 }
@@ -106,13 +106,13 @@ std::optional<std::vector<int>> ClampedDofs(const Eigen::Matrix3Xd& nodes, const
   return clamped;
 }
 
-ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
+eigensolvers::ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
                                         const InteriorProblem& interior) {
-  ShiftedFactorization factor;
+  eigensolvers::ShiftedFactorization factor;
   if (interior.K_oo.rows() == 0) return factor;
   const auto status = factor.Factorize(interior.K_oo, interior.M_oo, 0.0,
-                                       ShiftedFactorization::Method::kSupernodalCholesky);
-  if (status != ShiftedFactorization::Status::kOk || HasZeroEnergyMode(factor, interior.K_oo, interior.M_oo)) {
+                                       eigensolvers::ShiftedFactorization::Method::kSupernodalCholesky);
+  if (status != eigensolvers::ShiftedFactorization::Status::kOk || HasZeroEnergyMode(factor, interior.K_oo, interior.M_oo)) {
     ThrowNotHeld(model, conditions);
   }
   return factor;
@@ -134,12 +134,12 @@ bool FactorizedFor(const HeldFactorization& held, const BoundaryConditions& cond
          std::ranges::equal(held.conditions.interfaces, conditions.interfaces, SameInterface);
 }
 
-bool SharesHeldFactorization(const Eigensolver& solver, const EigenOptions& options) {
+bool SharesHeldFactorization(const eigensolvers::Eigensolver& solver, const eigensolvers::EigenOptions& options) {
   return solver.UsesGivenFactorization() && (!options.shift_hz || *options.shift_hz == 0.0);
 }
 
-HeldModes SolveHeldModes(const Eigensolver& solver, const InteriorProblem& interior, const HeldFactorization* held,
-                         const EigenOptions& options, std::string_view what) {
+HeldModes SolveHeldModes(const eigensolvers::Eigensolver& solver, const InteriorProblem& interior, const HeldFactorization* held,
+                         const eigensolvers::EigenOptions& options, std::string_view what) {
   const bool shared = held != nullptr && SharesHeldFactorization(solver, options);
   HeldModes modes;
   try {

@@ -11,10 +11,10 @@
 #include <string_view>
 #include <vector>
 
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/interface_coupling.h"
 #include "reduction/modal_basis.h"
-#include "reduction/shifted_factorization.h"
+#include "eigensolvers/shifted_factorization.h"
 
 namespace flexmbs::reduction {
 
@@ -39,7 +39,7 @@ std::optional<std::vector<int>> ClampedDofs(const Eigen::Matrix3Xd& nodes, const
 /// The Cholesky factor of K_oo (sigma = 0). Throws a one-line InputError naming the conditions
 /// and the reason if they do not hold the body: K_oo is not positive definite, or has an
 /// eigenvalue at zero to round-off (HasZeroEnergyMode).
-ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
+eigensolvers::ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryConditions& conditions,
                                         const InteriorProblem& interior);
 
 /// The held body factorised once for every solve with its K_oo: the Craig-Bampton constraint
@@ -49,7 +49,7 @@ ShiftedFactorization FactorHeldInterior(const FeModel& model, const BoundaryCond
 struct HeldFactorization {
   BoundaryConditions conditions;  ///< what holds the body
   ConstraintTransform transform;  ///< u = B q_b + G u_o of `conditions`
-  ShiftedFactorization factor;    ///< Cholesky factor of K_oo = G^T K G at sigma = 0 (FactorHeldInterior)
+  eigensolvers::ShiftedFactorization factor;    ///< Cholesky factor of K_oo = G^T K G at sigma = 0 (FactorHeldInterior)
   double seconds = 0.0;           ///< wall-clock time of the factorisation and the held check [s]
 };
 
@@ -66,7 +66,7 @@ bool FactorizedFor(const HeldFactorization& held, const BoundaryConditions& cond
 /// Whether the fixed-interface eigen-solve of the held body can use its factor: `solver` uses a
 /// given factorisation (Eigensolver::UsesGivenFactorization) and `options` asks for no shift
 /// other than 0.
-bool SharesHeldFactorization(const Eigensolver& solver, const EigenOptions& options);
+bool SharesHeldFactorization(const eigensolvers::Eigensolver& solver, const eigensolvers::EigenOptions& options);
 
 /// The fixed-interface normal modes K_oo phi_o = lambda M_oo phi_o of `interior`, with their
 /// summary for ReducedBasis::eigensolver_summary. With `held` (the factor of this interior) and
@@ -74,18 +74,18 @@ bool SharesHeldFactorization(const Eigensolver& solver, const EigenOptions& opti
 /// counted in the summary (one factorisation, its time included); else by Solve with
 /// `options` (`held` may then be null). The solver's InputErrors are prefixed with `what`.
 struct HeldModes {
-  EigenSolution solution;
+  eigensolvers::EigenSolution solution;
   EigensolverSummary summary;
 };
-HeldModes SolveHeldModes(const Eigensolver& solver, const InteriorProblem& interior, const HeldFactorization* held,
-                         const EigenOptions& options, std::string_view what);
+HeldModes SolveHeldModes(const eigensolvers::Eigensolver& solver, const InteriorProblem& interior, const HeldFactorization* held,
+                         const eigensolvers::EigenOptions& options, std::string_view what);
 
 /// Whether the factorised K (sigma = 0) has an eigenvalue at zero to round-off relative to
 /// trace(K)/trace(M): three steps of inverse iteration from two random vectors, then the
 /// Rayleigh quotient of each. A numerically singular K can factorise with round-off pivots;
 /// K^-1 then amplifies its null space by 1e8 or more per step, so a Rayleigh quotient drops to
 /// round-off; for a positive definite K every Rayleigh quotient is >= lambda_1.
-bool HasZeroEnergyMode(const ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& K,
+bool HasZeroEnergyMode(const eigensolvers::ShiftedFactorization& factor, const Eigen::SparseMatrix<double>& K,
                        const Eigen::SparseMatrix<double>& M);
 
 /// Throws the one-line InputError "<conditions> do(es) not hold the body: ... (reason)", the

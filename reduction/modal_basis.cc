@@ -17,8 +17,8 @@ namespace {
 using Index = Eigen::Index;
 
 // The eigensolver, its InputErrors prefixed with what was being solved.
-EigenSolution SolveOrExplain(const Eigensolver& solver, const Eigen::SparseMatrix<double>& K,
-                             const Eigen::SparseMatrix<double>& M, const EigenOptions& options,
+eigensolvers::EigenSolution SolveOrExplain(const eigensolvers::Eigensolver& solver, const Eigen::SparseMatrix<double>& K,
+                             const Eigen::SparseMatrix<double>& M, const eigensolvers::EigenOptions& options,
                              const std::string& what) {
   try {
     return solver.Solve(K, M, options);
@@ -27,7 +27,7 @@ EigenSolution SolveOrExplain(const Eigensolver& solver, const Eigen::SparseMatri
   }
 }
 
-void RequireSomeModes(const EigenOptions& eigen, const std::string& what) {
+void RequireSomeModes(const eigensolvers::EigenOptions& eigen, const std::string& what) {
   if (eigen.num_modes < 0) throw InputError(fmt::format("{}: number of modes {} must be >= 0", what, eigen.num_modes));
   if (eigen.num_modes == 0 && !(eigen.max_frequency_hz > 0.0)) {
     throw InputError(fmt::format("{}: no modes asked for: set the number of modes or a maximum frequency", what));
@@ -38,7 +38,7 @@ constexpr Index kRigid = 6;
 
 // Checks the model and the options of a free-free basis; the eigensolver's options (the six
 // rigid-body modes on top of the elastic ones).
-EigenOptions FreeFreeEigenOptions(const FeModel& model, const FreeFreeOptions& options, const std::string& what) {
+eigensolvers::EigenOptions FreeFreeEigenOptions(const FeModel& model, const FreeFreeOptions& options, const std::string& what) {
   ValidateModel(model);
   RequireSomeModes(options.eigen, what);
   const Index n = model.num_dofs();
@@ -46,14 +46,14 @@ EigenOptions FreeFreeEigenOptions(const FeModel& model, const FreeFreeOptions& o
     throw InputError(fmt::format("{}: {} elastic modes asked for, but the model has {} DOF ({} elastic modes)", what,
                                  options.eigen.num_modes, n, n - kRigid));
   }
-  EigenOptions eigen = options.eigen;
+  eigensolvers::EigenOptions eigen = options.eigen;
   if (eigen.num_modes > 0) eigen.num_modes += kRigid;
   return eigen;
 }
 
 // The number of elastic modes of a free-free solution; throws unless exactly six are at zero.
-Index CheckRigidModeCount(const FeModel& model, const EigenSolution& s, const std::string& what) {
-  const double zero = kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
+Index CheckRigidModeCount(const FeModel& model, const eigensolvers::EigenSolution& s, const std::string& what) {
+  const double zero = eigensolvers::kZeroEigenvalue * model.stiffness().Diagonal().sum() / model.mass().Diagonal().sum();
   const Index num_zero = (s.eigenvalues.array().abs() <= zero).count();
   if (num_zero != kRigid) {
     throw InputError(fmt::format("{}: the body has {}{} zero-frequency modes, expected 6 rigid-body modes: {}", what,
@@ -113,7 +113,7 @@ ModeCounts ReducedBasis::Counts() const {
   return counts;
 }
 
-EigensolverSummary SummarizeEigenSolution(const EigenSolution& solution) {
+EigensolverSummary SummarizeEigenSolution(const eigensolvers::EigenSolution& solution) {
   EigensolverSummary summary;
   summary.seconds = solution.seconds;
   summary.factorization_seconds = solution.factorization_seconds;
@@ -158,7 +158,7 @@ void ComputeReducedMatrices(const FeModel& model, ReducedBasis* basis) {
 
 Eigen::MatrixXd MOrthonormalRigidModes(const FeModel& model) {
   ValidateModel(model);
-  const fem::MassProperties mass = MassPropertiesOf(model.mass(), model.nodes);
+  const fem::MassProperties mass = eigensolvers::MassPropertiesOf(model.mass(), model.nodes);
   if (!(mass.mass_kg > 0.0)) throw InputError(fmt::format("model: mass {} kg must be > 0", mass.mass_kg));
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(mass.I_Cm_B);
   const Index n = model.nodes.cols();
@@ -174,7 +174,7 @@ Eigen::MatrixXd MOrthonormalRigidModes(const FeModel& model) {
 namespace {
 
 // The free-free basis of the eigenpairs `s` (6 rigid-body modes, then num_elastic elastic ones).
-ReducedBasis FreeFreeBasisFrom(const FeModel& model, const FreeFreeOptions& options, const EigenSolution& s,
+ReducedBasis FreeFreeBasisFrom(const FeModel& model, const FreeFreeOptions& options, const eigensolvers::EigenSolution& s,
                                Index num_elastic) {
   ReducedBasis basis;
   basis.method = "free_free_modal";
@@ -186,7 +186,7 @@ ReducedBasis FreeFreeBasisFrom(const FeModel& model, const FreeFreeOptions& opti
   basis.residual_floors.resize(kRigid + num_elastic);
   if (options.rigid_modes == RigidModes::kComputed) {
     basis.Phi = s.modes;
-    basis.frequency_hz = FrequenciesHz(s.eigenvalues);
+    basis.frequency_hz = eigensolvers::FrequenciesHz(s.eigenvalues);
     basis.relative_residuals = s.relative_residuals;
     basis.residual_floors = s.residual_floors;
     for (Index k = 0; k < kRigid; ++k) basis.names.push_back(fmt::format("rigid_{}", k + 1));
@@ -195,11 +195,11 @@ ReducedBasis FreeFreeBasisFrom(const FeModel& model, const FreeFreeOptions& opti
     Eigen::MatrixXd E = s.modes.rightCols(num_elastic);
     MOrthogonalizeAgainst(model.mass(), R, &E);
     const RitzResult ritz = RayleighRitz(model.stiffness(), model.mass(), E);
-    const PairResiduals rigid =
-        ComputeResiduals(model.stiffness(), model.mass(), Eigen::VectorXd::Zero(kRigid), R, s.shift);
-    const PairResiduals elastic = ComputeResiduals(model.stiffness(), model.mass(), ritz.values, ritz.vectors, s.shift);
+    const eigensolvers::PairResiduals rigid =
+        eigensolvers::ComputeResiduals(model.stiffness(), model.mass(), Eigen::VectorXd::Zero(kRigid), R, s.shift);
+    const eigensolvers::PairResiduals elastic = eigensolvers::ComputeResiduals(model.stiffness(), model.mass(), ritz.values, ritz.vectors, s.shift);
     basis.Phi << R, ritz.vectors;
-    basis.frequency_hz << Eigen::VectorXd::Zero(kRigid), FrequenciesHz(ritz.values);
+    basis.frequency_hz << Eigen::VectorXd::Zero(kRigid), eigensolvers::FrequenciesHz(ritz.values);
     basis.relative_residuals << rigid.relative, elastic.relative;
     basis.residual_floors << rigid.floor, elastic.floor;
     for (const char* name : {"rigid_tx", "rigid_ty", "rigid_tz", "rigid_r1", "rigid_r2", "rigid_r3"}) {
@@ -219,25 +219,25 @@ ReducedBasis FreeFreeBasisFrom(const FeModel& model, const FreeFreeOptions& opti
 
 }  // namespace
 
-ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const Eigensolver& solver) {
+ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const eigensolvers::Eigensolver& solver) {
   const std::string what = "free-free modal basis";
-  const EigenOptions eigen = FreeFreeEigenOptions(model, options, what);
-  const EigenSolution s = SolveOrExplain(solver, model.K(), model.M(), eigen, what);
+  const eigensolvers::EigenOptions eigen = FreeFreeEigenOptions(model, options, what);
+  const eigensolvers::EigenSolution s = SolveOrExplain(solver, model.K(), model.M(), eigen, what);
   const Index num_elastic = CheckRigidModeCount(model, s, what);
   if (num_elastic == 0) {
-    EigenOptions next = options.eigen;
+    eigensolvers::EigenOptions next = options.eigen;
     next.num_modes = kRigid + 1;
     next.max_frequency_hz = 0.0;
-    const EigenSolution lowest = SolveOrExplain(solver, model.K(), model.M(), next, what);
+    const eigensolvers::EigenSolution lowest = SolveOrExplain(solver, model.K(), model.M(), next, what);
     throw InputError(fmt::format("{}: no elastic mode below max_frequency_hz = {:g} Hz: the lowest is at {:g} Hz", what,
-                                 options.eigen.max_frequency_hz, FrequenciesHz(lowest.eigenvalues)(kRigid)));
+                                 options.eigen.max_frequency_hz, eigensolvers::FrequenciesHz(lowest.eigenvalues)(kRigid)));
   }
   return FreeFreeBasisFrom(model, options, s, num_elastic);
 }
 
-ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const EigenSolution& solution) {
+ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const eigensolvers::EigenSolution& solution) {
   const std::string what = "free-free modal basis";
-  const EigenOptions eigen = FreeFreeEigenOptions(model, options, what);
+  const eigensolvers::EigenOptions eigen = FreeFreeEigenOptions(model, options, what);
   if (solution.modes.rows() != model.num_dofs() || solution.modes.cols() != solution.eigenvalues.size()) {
     throw InputError(fmt::format("{}: the eigenpairs given have {} rows and {} modes for {} eigenvalues, the model {} "
                                  "DOF", what, solution.modes.rows(), solution.modes.cols(),
@@ -259,7 +259,7 @@ namespace {
 
 // Checks a fixed-interface request (a valid model, some conditions, some modes) and returns its
 // description for errors: "fixed-interface modal basis held by <conditions>".
-std::string ValidateHeldRequest(const FeModel& model, const BoundaryConditions& conditions, const EigenOptions& eigen) {
+std::string ValidateHeldRequest(const FeModel& model, const BoundaryConditions& conditions, const eigensolvers::EigenOptions& eigen) {
   const std::string what = "fixed-interface modal basis";
   ValidateModel(model);
   if (conditions.empty()) {
@@ -270,7 +270,7 @@ std::string ValidateHeldRequest(const FeModel& model, const BoundaryConditions& 
 }
 
 // Throws InputError `held`: ... when no interior DOF is free or fewer than the modes asked for.
-void RequireFreeDofs(const std::string& held, Index n_o, const EigenOptions& eigen) {
+void RequireFreeDofs(const std::string& held, Index n_o, const eigensolvers::EigenOptions& eigen) {
   if (n_o == 0) throw InputError(fmt::format("{}: no DOF is left free", held));
   if (eigen.num_modes > n_o) {
     throw InputError(fmt::format("{}: {} modes asked for, but only {} interior DOF are free", held, eigen.num_modes, n_o));
@@ -279,7 +279,7 @@ void RequireFreeDofs(const std::string& held, Index n_o, const EigenOptions& eig
 
 // The fixed-interface basis of the held body's eigenpairs `s`, Phi their modes on all DOF.
 ReducedBasis FixedInterfaceBasisFrom(const FeModel& model, const BoundaryConditions& conditions,
-                                     const EigenSolution& s, Eigen::MatrixXd Phi, const EigensolverSummary& summary,
+                                     const eigensolvers::EigenSolution& s, Eigen::MatrixXd Phi, const EigensolverSummary& summary,
                                      std::shared_ptr<const HeldFactorization> factor) {
   ReducedBasis basis;
   basis.method = "fixed_interface_modal";
@@ -290,7 +290,7 @@ ReducedBasis FixedInterfaceBasisFrom(const FeModel& model, const BoundaryConditi
   basis.Phi = std::move(Phi);
   basis.kinds.assign(static_cast<std::size_t>(s.modes.cols()), ModeKind::kNormal);
   for (Index k = 0; k < s.modes.cols(); ++k) basis.names.push_back(fmt::format("normal_{}", k + 1));
-  basis.frequency_hz = FrequenciesHz(s.eigenvalues);
+  basis.frequency_hz = eigensolvers::FrequenciesHz(s.eigenvalues);
   basis.relative_residuals = s.relative_residuals;
   basis.residual_floors = s.residual_floors;
   ComputeReducedMatrices(model, &basis);
@@ -303,7 +303,7 @@ ReducedBasis FixedInterfaceBasisFrom(const FeModel& model, const BoundaryConditi
 }  // namespace
 
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
-                                      const EigenOptions& eigen, const Eigensolver& solver) {
+                                      const eigensolvers::EigenOptions& eigen, const eigensolvers::Eigensolver& solver) {
   const std::string held = ValidateHeldRequest(model, conditions, eigen);
   const InteriorProblem interior = BuildInteriorProblem(model, conditions);
   RequireFreeDofs(held, interior.K_oo.rows(), eigen);
@@ -312,14 +312,14 @@ ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryCondit
   const std::shared_ptr<const HeldFactorization> factor =
       SharesHeldFactorization(solver, eigen) ? FactorHeldBody(model, conditions, interior) : nullptr;
   const HeldModes modes = SolveHeldModes(solver, interior, factor.get(), eigen, held);
-  const EigenSolution& s = modes.solution;
-  const double zero = kZeroEigenvalue * interior.K_oo.diagonal().sum() / interior.M_oo.diagonal().sum();
+  const eigensolvers::EigenSolution& s = modes.solution;
+  const double zero = eigensolvers::kZeroEigenvalue * interior.K_oo.diagonal().sum() / interior.M_oo.diagonal().sum();
   if (s.eigenvalues.size() > 0 && std::abs(s.eigenvalues(0)) <= zero) ThrowNotHeld(model, conditions);
   return FixedInterfaceBasisFrom(model, conditions, s, interior.transform.G * s.modes, modes.summary, factor);
 }
 
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
-                                      const EigenOptions& eigen, const EigenSolution& solution) {
+                                      const eigensolvers::EigenOptions& eigen, const eigensolvers::EigenSolution& solution) {
   const std::string held = ValidateHeldRequest(model, conditions, eigen);
   const std::optional<std::vector<int>> clamped = ClampedDofs(model.nodes, conditions);
   if (!clamped) {
@@ -349,7 +349,7 @@ ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryCondit
     trace_k += K_diagonal(dof);
     trace_m += M_diagonal(dof);
   }
-  const double zero = kZeroEigenvalue * trace_k / trace_m;
+  const double zero = eigensolvers::kZeroEigenvalue * trace_k / trace_m;
   if (solution.eigenvalues.size() > 0 && std::abs(solution.eigenvalues(0)) <= zero) ThrowNotHeld(model, conditions);
   return FixedInterfaceBasisFrom(model, conditions, solution, solution.modes, SummarizeEigenSolution(solution), nullptr);
 }

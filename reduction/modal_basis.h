@@ -15,9 +15,9 @@
 #include <string_view>
 #include <vector>
 
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/interface_coupling.h"
-#include "reduction/model_operators.h"
+#include "eigensolvers/model_operators.h"
 
 namespace flexmbs::reduction {
 
@@ -59,13 +59,13 @@ class FeModel {
   FeModel(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M, const Eigen::Matrix3Xd& p_BoN_B)
       : nodes(p_BoN_B), K_(K), M_(M) {}
   /// K and M known by `operators` only.
-  FeModel(const ModelOperators& operators, const Eigen::Matrix3Xd& p_BoN_B) : nodes(p_BoN_B), operators_(&operators) {}
+  FeModel(const eigensolvers::ModelOperators& operators, const Eigen::Matrix3Xd& p_BoN_B) : nodes(p_BoN_B), operators_(&operators) {}
 
   const Eigen::Matrix3Xd& nodes;
 
   /// Products with K and M (either way).
-  const SymmetricOperator& stiffness() const { return operators_ ? operators_->stiffness() : *K_; }
-  const SymmetricOperator& mass() const { return operators_ ? operators_->mass() : *M_; }
+  const eigensolvers::SymmetricOperator& stiffness() const { return operators_ ? operators_->stiffness() : *K_; }
+  const eigensolvers::SymmetricOperator& mass() const { return operators_ ? operators_->mass() : *M_; }
   /// The number of rows of K (3 x the number of nodes if the model is valid: ValidateModel).
   Eigen::Index num_dofs() const { return stiffness().rows(); }
   /// Whether K and M are assembled here; K() and M() are those matrices (InternalError if not).
@@ -73,11 +73,11 @@ class FeModel {
   const Eigen::SparseMatrix<double>& K() const;
   const Eigen::SparseMatrix<double>& M() const;
   /// The operators of a model that is not assembled here; null if it is.
-  const ModelOperators* operators() const { return operators_; }
+  const eigensolvers::ModelOperators* operators() const { return operators_; }
 
  private:
-  std::optional<SparseOperator> K_, M_;
-  const ModelOperators* operators_ = nullptr;
+  std::optional<eigensolvers::SparseOperator> K_, M_;
+  const eigensolvers::ModelOperators* operators_ = nullptr;
 };
 
 /// Throws InputError unless K and M are square, of size 3 x (number of nodes), and non-empty.
@@ -98,13 +98,13 @@ struct EigensolverSummary {
   int operator_applications = 0;       ///< solves with the factorisation, one per right-hand side
   int krylov_runs = 0;                 ///< Krylov (Lanczos / Krylov-Schur) runs
   int restarts = 0;                    ///< restarts over all runs
-  MissedModeCheck missed_mode_check = MissedModeCheck::kNone;  ///< the check made against missed modes
+  eigensolvers::MissedModeCheck missed_mode_check = eigensolvers::MissedModeCheck::kNone;  ///< the check made against missed modes
   std::string factorization;  ///< slepc: "mumps" or "substructured" (EigenSolution::factorization)
   int lanczos_block_size = 0;  ///< spectra: columns per Lanczos solve (EigenSolution::lanczos_block_size)
 };
 
 /// The summary of `solution` (its fields of the same names).
-EigensolverSummary SummarizeEigenSolution(const EigenSolution& solution);
+EigensolverSummary SummarizeEigenSolution(const eigensolvers::EigenSolution& solution);
 
 /// A reduced basis with its reduced matrices and what each column is.
 struct ReducedBasis {
@@ -178,7 +178,7 @@ struct FreeFreeOptions {
   /// The eigensolver settings. `num_modes` counts the ELASTIC modes: the lowest `num_modes`
   /// elastic modes, or with `max_frequency_hz` all elastic modes below it (num_modes then caps
   /// their number). The six rigid-body modes come on top.
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   RigidModes rigid_modes = RigidModes::kExact;
 };
 
@@ -188,12 +188,12 @@ struct FreeFreeOptions {
 /// Throws a one-line InputError for: a bad model, no modes asked for, more elastic modes than
 /// DOF - 6, a band with no elastic mode, a number of zero-frequency modes other than 6 (a
 /// disconnected part or a mechanism), and the eigensolver's own errors (prefixed).
-ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const Eigensolver& solver);
+ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const eigensolvers::Eigensolver& solver);
 /// The same from eigenpairs computed elsewhere (the distributed solve of `reduce`): `solution`
 /// holds the pairs the solver would have returned for `options` (the six rigid-body modes
 /// included, full length). Works on a model known by its products. Throws as above; with no
 /// elastic mode in the band, without naming the lowest one (that needs another solve).
-ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const EigenSolution& solution);
+ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& options, const eigensolvers::EigenSolution& solution);
 
 /// Fixed-interface normal modes: the eigenmodes of the body with every support clamped and
 /// every interface held (node-set and rigid interfaces: their node DOF fixed; averaging
@@ -209,13 +209,13 @@ ReducedBasis FreeFreeModalBasis(const FeModel& model, const FreeFreeOptions& opt
 /// BuildConstraintTransform), no modes asked for, more modes than interior DOF, conditions
 /// that do not hold the body (a zero-frequency mode remains), a band with no modes.
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
-                                      const EigenOptions& eigen, const Eigensolver& solver);
+                                      const eigensolvers::EigenOptions& eigen, const eigensolvers::Eigensolver& solver);
 /// The same from the held body's eigenpairs computed elsewhere (the distributed solve of
 /// `reduce`), for conditions that clamp whole node DOF (ClampedDofs; else InputError):
 /// `solution` holds the pairs of K_oo, M_oo that `eigen` asks for, with the modes full length
 /// and zero at the clamped DOF, and their residuals. Works on a model known by its products;
 /// no factorisation is made or kept.
 ReducedBasis FixedInterfaceModalBasis(const FeModel& model, const BoundaryConditions& conditions,
-                                      const EigenOptions& eigen, const EigenSolution& solution);
+                                      const eigensolvers::EigenOptions& eigen, const eigensolvers::EigenSolution& solution);
 
 }  // namespace flexmbs::reduction

@@ -6,7 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "core/yaml_node.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/spec_support.h"
 
 namespace flexmbs::reduction {
@@ -88,7 +88,7 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
   if (section.Has("eigensolver")) {
     const YamlNode solver = section.Required("eigensolver");
     spec.eigensolver = solver.AsString();
-    const std::vector<std::string> available = AvailableEigensolvers();
+    const std::vector<std::string> available = eigensolvers::AvailableEigensolvers();
     if (std::find(available.begin(), available.end(), spec.eigensolver) == available.end()) {
       solver.Fail(fmt::format("unknown eigensolver '{}' (available: {})", spec.eigensolver, fmt::join(available, ", ")));
     }

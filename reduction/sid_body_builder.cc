@@ -126,17 +126,17 @@ sid::ReducedBody BuildReducedBody(const fem::Mesh& mesh, const FeModel& model, f
   const Eigen::Index n = basis.num_modes();
   // The invariants need the consistent mass matrix even where the modes used a lumped one.
   std::optional<fem::SystemMatrices> consistent;
-  std::optional<SparseOperator> consistent_mass;
+  std::optional<eigensolvers::SparseOperator> consistent_mass;
   if (model.assembled() && mass_matrix != fem::MassMatrixKind::kConsistent) {
     consistent = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
     consistent_mass.emplace(consistent->mass);
   }
-  const SymmetricOperator& M = consistent_mass        ? *consistent_mass
+  const eigensolvers::SymmetricOperator& M = consistent_mass        ? *consistent_mass
                                : model.operators()    ? model.operators()->consistent_mass()
                                                       : model.mass();
 
   sid::ReducedBody out;
-  const fem::MassProperties props = MassPropertiesOf(M, mesh.nodes);
+  const fem::MassProperties props = eigensolvers::MassPropertiesOf(M, mesh.nodes);
   out.mass = props.mass_kg;
   out.center_of_mass = props.p_BoCm_B;
   out.inertia_about_center_of_mass = props.I_Cm_B;

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "reduction/mass_operator.h"
+#include "eigensolvers/mass_operator.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -61,7 +61,7 @@ sid::TaylorMatrix Order0(MatrixXd m0) { return {std::move(m0), {}, {}}; }
 }  // namespace
 
 Eigen::SparseMatrix<double> ScalarMassMatrix(const Eigen::SparseMatrix<double>& M) {
-  std::optional<ScalarMassSplit> split = SplitScalarMass(M);
+  std::optional<eigensolvers::ScalarMassSplit> split = eigensolvers::SplitScalarMass(M);
   FLEXMBS_CHECK(split.has_value(), "mass matrix must be 3N x 3N");
   FLEXMBS_CHECK(split->max_deviation <= kKroneckerTolerance * split->max_entry,
                 fmt::format("the SID integrals need M = M_s (x) I_3: an entry deviates by {:.3g}, the largest "
@@ -214,7 +214,7 @@ InertiaInvariants ComputeInertiaInvariants(const Eigen::SparseMatrix<double>& M,
   return InvariantsFromMoments(ComputePositionMoments(M_s, nodes, S), ComputeModeProducts(M_s, S));
 }
 
-InertiaInvariants ComputeInertiaInvariants(const SymmetricOperator& M, const Eigen::Matrix3Xd& nodes,
+InertiaInvariants ComputeInertiaInvariants(const eigensolvers::SymmetricOperator& M, const Eigen::Matrix3Xd& nodes,
                                            const Eigen::MatrixXd& Phi) {
   const Index N = nodes.cols();
   FLEXMBS_CHECK(M.rows() == 3 * N && Phi.rows() == M.rows(), "invariants: M, the nodes and the basis disagree in size");

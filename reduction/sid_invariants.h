@@ -31,7 +31,7 @@
 #include <array>
 
 #include "core/centrifugal.h"  // CentrifugalBasis, AngularVelocityProducts (Oe's columns)
-#include "reduction/model_operators.h"
+#include "eigensolvers/model_operators.h"
 #include "sid/taylor.h"
 
 namespace flexmbs::reduction {
@@ -109,7 +109,7 @@ InertiaInvariants ComputeInertiaInvariants(const Eigen::SparseMatrix<double>& M,
 /// The same with M known by its products (ModelOperators: the distributed path of `reduce`):
 /// the position moments from M times the fields 1, x, y, z on the x DOF, the mode products from
 /// S^T (M Phi). Requires M = M_s (x) I_3 (not checked here). Agrees with the M_s form to round-off.
-InertiaInvariants ComputeInertiaInvariants(const SymmetricOperator& M, const Eigen::Matrix3Xd& nodes,
+InertiaInvariants ComputeInertiaInvariants(const eigensolvers::SymmetricOperator& M, const Eigen::Matrix3Xd& nodes,
                                            const Eigen::MatrixXd& Phi);
 
 }  // namespace flexmbs::reduction

@@ -10,7 +10,7 @@
 #include "reduction/basis_algebra.h"
 #include "reduction/dof_constraints.h"
 #include "reduction/interior_problem.h"
-#include "reduction/shifted_factorization.h"
+#include "eigensolvers/shifted_factorization.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -58,16 +58,16 @@ Eigen::MatrixXd InertiaReliefResponses(const FeModel& model, const Eigen::Matrix
   const Eigen::MatrixXd F_e = F - MR * (R.transpose() * F);
   const std::array<Index, 6> fixed = DeterminateSupport(model.nodes, what);
   Eigen::MatrixXd X;
-  if (const ModelOperators* operators = model.operators()) {
+  if (const eigensolvers::ModelOperators* operators = model.operators()) {
     // The free-free basis found exactly six zero-frequency modes, which the 3-2-1 support holds.
     X = operators->SolveFixed(fixed, F_e);
   } else {
     const FreeDofMap map(model.num_dofs(), fixed);
     const Eigen::SparseMatrix<double> K_ff = map.Restrict(model.K());
     const Eigen::SparseMatrix<double> M_ff = map.Restrict(model.M());
-    ShiftedFactorization factor;
-    if (factor.Factorize(K_ff, M_ff, 0.0, ShiftedFactorization::Method::kSupernodalCholesky) !=
-            ShiftedFactorization::Status::kOk ||
+    eigensolvers::ShiftedFactorization factor;
+    if (factor.Factorize(K_ff, M_ff, 0.0, eigensolvers::ShiftedFactorization::Method::kSupernodalCholesky) !=
+            eigensolvers::ShiftedFactorization::Status::kOk ||
         HasZeroEnergyMode(factor, K_ff, M_ff)) {
       throw InputError(fmt::format("{}: inertia relief: the free body's stiffness is singular beyond its six "
                                    "rigid-body modes (a part of the mesh not connected to the rest, or a mechanism)",

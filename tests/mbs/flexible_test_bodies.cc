@@ -5,27 +5,27 @@
 
 #include "fem/assembly.h"
 #include "reduction/craig_bampton.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/sid_body_builder.h"
-#include "tests/reduction/test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::mbs::testing {
 namespace {
 
 using Eigen::Index;
 
-const reduction::Eigensolver& Solver() {
-  static const std::unique_ptr<reduction::Eigensolver> solver = reduction::MakeEigensolver("spectra");
+const eigensolvers::Eigensolver& Solver() {
+  static const std::unique_ptr<eigensolvers::Eigensolver> solver = eigensolvers::MakeEigensolver("spectra");
   return *solver;
 }
 
 /// The meshed beam with its node sets "root", "tip", "mid", "corner" and matrices.
 FeReducedBody MeshedBeam(bool stiffening) {
   FeReducedBody fe;
-  fe.mesh = reduction::testing::HexBox(Eigen::Vector3i(6, 2, 2), kBeamSize, reduction::testing::Steel());
-  fe.mesh.node_sets["root"] = reduction::testing::NodesOnPlane(fe.mesh, 0, 0.0);
-  fe.mesh.node_sets["tip"] = reduction::testing::NodesOnPlane(fe.mesh, 0, kBeamSize.x());
-  fe.mesh.node_sets["mid"] = reduction::testing::NodesOnPlane(fe.mesh, 0, 0.5 * kBeamSize.x());
+  fe.mesh = testing::HexBox(Eigen::Vector3i(6, 2, 2), kBeamSize, testing::Steel());
+  fe.mesh.node_sets["root"] = testing::NodesOnPlane(fe.mesh, 0, 0.0);
+  fe.mesh.node_sets["tip"] = testing::NodesOnPlane(fe.mesh, 0, kBeamSize.x());
+  fe.mesh.node_sets["mid"] = testing::NodesOnPlane(fe.mesh, 0, 0.5 * kBeamSize.x());
   for (Index k = 0; k < fe.mesh.num_nodes(); ++k) {
     if ((fe.mesh.nodes.col(k) - Eigen::Vector3d(0.5 * kBeamSize.x(), kBeamSize.y(), kBeamSize.z())).norm() < 1e-12) {
       fe.mesh.node_sets["corner"] = {static_cast<int>(k)};
@@ -57,7 +57,7 @@ FeReducedBody CraigBampton(bool supported, int normal_modes, bool stiffening) {
   reduction::BoundaryConditions conditions;
   if (supported) conditions.supports.push_back({"root", fe.mesh.node_sets.at("root")});
   conditions.interfaces.push_back(TipInterface(fe.mesh));
-  reduction::EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = normal_modes;
   fe.basis = reduction::CraigBamptonBasis({fe.K, fe.M, fe.mesh.nodes}, conditions, eigen, Solver());
   fe.body = Reduce(fe, fe.basis);

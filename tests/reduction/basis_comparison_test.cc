@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "fem/assembly.h"
 #include "fem/mass_properties.h"
-#include "tests/reduction/test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {

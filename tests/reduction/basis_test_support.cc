@@ -8,11 +8,11 @@
 
 #include "core/error.h"
 #include "fem/assembly.h"
-#include "reduction/shifted_factorization.h"
-#include "test_problems.h"
+#include "eigensolvers/shifted_factorization.h"
+#include "tests/support/test_problems.h"
 #include "tests/fem/test_meshes.h"
 
-namespace flexmbs::reduction::testing {
+namespace flexmbs::testing {
 
 Body AssembleBody(fem::Mesh mesh) {
   fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
@@ -78,32 +78,32 @@ std::vector<int> NodesWhere(const fem::Mesh& mesh, const std::function<bool(cons
   return nodes;
 }
 
-const Eigensolver& Spectra() {
-  static const std::unique_ptr<Eigensolver> solver = MakeEigensolver("spectra");
+const eigensolvers::Eigensolver& Spectra() {
+  static const std::unique_ptr<eigensolvers::Eigensolver> solver = eigensolvers::MakeEigensolver("spectra");
   return *solver;
 }
 
 namespace {
 
-class FactorisingItself final : public Eigensolver {
+class FactorisingItself final : public eigensolvers::Eigensolver {
  public:
   std::string_view name() const override { return "spectra"; }
-  EigenSolution Solve(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options) const override {
+  eigensolvers::EigenSolution Solve(const SparseMatrix& K, const SparseMatrix& M, const eigensolvers::EigenOptions& options) const override {
     return Spectra().Solve(K, M, options);
   }
 };
 
 }  // namespace
 
-const Eigensolver& SpectraFactorisingItself() {
+const eigensolvers::Eigensolver& SpectraFactorisingItself() {
   static const FactorisingItself solver;
   return solver;
 }
 
 long FactorizationsDuring(const std::function<void()>& f) {
-  const long before = ShiftedFactorization::NumericFactorizations();
+  const long before = eigensolvers::ShiftedFactorization::NumericFactorizations();
   f();
-  return ShiftedFactorization::NumericFactorizations() - before;
+  return eigensolvers::ShiftedFactorization::NumericFactorizations() - before;
 }
 
 void ExpectConsistentSummary(const EigensolverSummary& s) {
@@ -164,4 +164,4 @@ void ExpectInputError(const std::function<void()>& f, const std::vector<std::str
   }
 }
 
-}  // namespace flexmbs::reduction::testing
+}  // namespace flexmbs::testing

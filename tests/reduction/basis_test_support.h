@@ -15,11 +15,11 @@
 #include "fem/element_type.h"
 #include "fem/material.h"
 #include "fem/mesh.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/modal_basis.h"
-#include "tests/reduction/test_problems.h"
+#include "tests/support/test_problems.h"
 
-namespace flexmbs::reduction::testing {
+namespace flexmbs::testing {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
@@ -45,11 +45,11 @@ std::vector<int> NodesAt(const fem::Mesh& mesh, int axis, double value);
 std::vector<int> NodesWhere(const fem::Mesh& mesh, const std::function<bool(const Eigen::Vector3d&)>& inside);
 
 /// The serial eigensolver.
-const Eigensolver& Spectra();
+const eigensolvers::Eigensolver& Spectra();
 /// The serial eigensolver behind the base class's SolveFactorized, which ignores a given
 /// factorisation and factorises on its own (as a backend without UsesGivenFactorization does):
 /// the path on which nothing is shared, to compare the shared one with.
-const Eigensolver& SpectraFactorisingItself();
+const eigensolvers::Eigensolver& SpectraFactorisingItself();
 
 /// Numeric factorisations made by `f` (ShiftedFactorization::NumericFactorizations).
 long FactorizationsDuring(const std::function<void()>& f);
@@ -81,4 +81,4 @@ double Lambda(double hz);
 /// Expects `f` to throw InputError whose message is one line and contains every string of `parts`.
 void ExpectInputError(const std::function<void()>& f, const std::vector<std::string>& parts);
 
-}  // namespace flexmbs::reduction::testing
+}  // namespace flexmbs::testing

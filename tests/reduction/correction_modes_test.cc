@@ -57,7 +57,7 @@ TEST(StaticCorrectionModes, HeldAtTheInterfaceTheBasisReproducesTheStaticDeflect
   const std::vector<int> root = testing::NodesAt(b.mesh, 0, 0.0);
   BoundaryConditions conditions;
   conditions.interfaces.push_back({"root", root, Coupling::kNodes, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 4;
   const ReducedBasis modal = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::Spectra());
   const LoadSet tip{"tip", testing::NodesAt(b.mesh, 0, 0.4), Eigen::Vector3d(0.0, 0.3, 1.0),
@@ -88,7 +88,7 @@ TEST(StaticCorrectionModes, CraigBamptonWithCorrectionReproducesTheStaticDeflect
   BoundaryConditions conditions;
   conditions.supports.push_back({"root", root});
   conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.4), Coupling::kNodes, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 3;
   const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
   // A pad on the top face at mid-span, loaded in x, y and z; and the interface face itself.

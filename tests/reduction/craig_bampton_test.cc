@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "reduction/correction_modes.h"
 #include "reduction/interior_problem.h"
-#include "test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -41,7 +41,7 @@ constexpr double kDiagonalBound = 1e-10;
 
 const fem::IsotropicMaterial kSteel = testing::Steel();
 
-double Shift(const Body& b) { return FreeBodyShift(b.K, b.M); }
+double Shift(const Body& b) { return eigensolvers::FreeBodyShift(b.K, b.M); }
 
 // Eigenvalues of the reduced pair, ascending, in shift-invert form (accurate low eigenvalues).
 Eigen::VectorXd ReducedEigenvalues(const ReducedBasis& basis, double sigma) {
@@ -57,7 +57,7 @@ TEST(CraigBampton, ConstraintModesGiveUnitDisplacementAtTheirOwnBoundaryDofAndNo
   BoundaryConditions conditions;
   const std::vector<int> face = testing::NodesAt(b.mesh, 0, 0.0);
   conditions.interfaces.push_back(NodeInterface("root", face));
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 4;
   const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
   const Eigen::Index n_b = 3 * static_cast<Eigen::Index>(face.size());
@@ -119,7 +119,7 @@ TEST_P(CraigBamptonConvergence, FrequenciesApproachTheFullModelFromAboveAndEqual
               first + 1, first + kCompared);
   for (const Eigen::Index k : {Eigen::Index{0}, Eigen::Index{2}, Eigen::Index{5}, Eigen::Index{10}, Eigen::Index{20},
                                n_interior}) {
-    EigenOptions eigen;
+    eigensolvers::EigenOptions eigen;
     eigen.num_modes = static_cast<int>(k);
     const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
     ASSERT_EQ(cb.Counts(), (ModeCounts{0, k, 27, 0}));
@@ -150,7 +150,7 @@ TEST(CraigBampton, OrthonormalizedHasIdentityMassDiagonalStiffnessAndTheSameEige
   BoundaryConditions conditions;
   conditions.interfaces.push_back(NodeInterface("root", testing::NodesAt(b.mesh, 0, 0.0)));
   conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.3), Coupling::kRigid, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 6;
   const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
   const ReducedBasis orth = OrthonormalizeBasis(b.model(), cb);
@@ -183,7 +183,7 @@ TEST(CraigBampton, WithoutNormalModesIsGuyanStaticCondensation) {
   const Body b = testing::MakeBox(ElementType::kHex8, {2, 1, 1}, {0.2, 0.1, 0.1}, kSteel);
   BoundaryConditions conditions;
   conditions.interfaces.push_back({"end", testing::NodesAt(b.mesh, 0, 0.2), Coupling::kRigid, std::nullopt, {}});
-  const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, EigenOptions{}, testing::Spectra());
+  const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigensolvers::EigenOptions{}, testing::Spectra());
   EXPECT_EQ(cb.Counts(), (ModeCounts{0, 0, 6, 0}));
   EXPECT_EQ(cb.names[3], "constraint_end_rx");
   EXPECT_TRUE(cb.eigensolver.empty());
@@ -198,9 +198,9 @@ TEST(CraigBampton, OneFactorisationOfTheHeldBodyServesConstraintModesNormalModes
   BoundaryConditions conditions;
   conditions.interfaces.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0), Coupling::kRigid, std::nullopt, {}});
   conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.6), Coupling::kRigid, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 6;
-  eigen.check_missed_modes = MissedModeCheck::kDeflatedLanczos;
+  eigen.check_missed_modes = eigensolvers::MissedModeCheck::kDeflatedLanczos;
   ReducedBasis shared, own;
   EXPECT_EQ(testing::FactorizationsDuring([&] { shared = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra()); }), 1);
   ASSERT_TRUE(shared.eigensolver_summary.has_value());
@@ -242,8 +242,8 @@ TEST(CraigBampton, OneFactorisationOfTheHeldBodyServesConstraintModesNormalModes
 TEST(CraigBamptonBadInput, GivesOneLineInputErrors) {
   const Body b = testing::MakeBox(ElementType::kHex8, {2, 1, 1}, {0.2, 0.1, 0.1}, kSteel);
   const FeModel model = b.model();
-  const Eigensolver& solver = testing::Spectra();
-  EigenOptions eigen;
+  const eigensolvers::Eigensolver& solver = testing::Spectra();
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 2;
   testing::ExpectInputError([&] { CraigBamptonBasis(model, {}, eigen, solver); }, {"craig-bampton", "no interface"});
   // A node set on one line of a free body: the body can still rotate about it.

@@ -92,7 +92,7 @@ ReducedBasis ClampedCraigBampton(const testing::Body& b) {
   conditions.supports.push_back({"clamp", testing::NodesAt(b.mesh, 0, 0.0)});
   conditions.interfaces.push_back(
       {"tip", testing::NodesAt(b.mesh, 0, 0.6), Coupling::kRigid, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 5;
   return CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
 }
@@ -160,7 +160,7 @@ TEST(Damping, RigidBodyModesOfAFreeCraigBamptonBasisAreNotDamped) {
   BoundaryConditions conditions;  // one rigid interface, otherwise free: six rigid-body modes
   conditions.interfaces.push_back(
       {"root", testing::NodesAt(b.mesh, 0, 0.0), Coupling::kRigid, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 4;
   const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
   ASSERT_EQ(cb.num_modes(), 10);

@@ -14,8 +14,8 @@
 #include "fem/mesh_scatter.h"
 #include "reduction/distributed_reduction.h"
 #include "reduction/dof_constraints.h"
-#include "reduction/slepc_solver.h"
-#include "tests/reduction/test_problems.h"
+#include "eigensolvers/distributed/slepc_solver.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -31,8 +31,8 @@ constexpr double kMaxShare = 0.6;
 // An 8 x 3 x 2 hex8 steel bar 0.4 m long, clamped at x = 0.
 fem::Mesh Bar() { return testing::HexBox({8, 3, 2}, {0.4, 0.15, 0.1}, testing::Steel()); }
 
-int Rank() { return SlepcSession::Rank(); }
-int Size() { return SlepcSession::Size(); }
+int Rank() { return eigensolvers::SlepcSession::Rank(); }
+int Size() { return eigensolvers::SlepcSession::Size(); }
 
 TEST(MeshPartition, CoordinateBisectionCutsABarAcrossItsLength) {
   const fem::Mesh mesh = Bar();
@@ -118,16 +118,16 @@ TEST(SolveModesDistributed, HeldBarEqualsSpectraOnTheSerialMatrices) {
   for (int node : clamp) {
     for (int i = 0; i < 3; ++i) clamped.push_back(3 * node + i);
   }
-  EigenOptions options;
+  eigensolvers::EigenOptions options;
   options.num_modes = 8;
   DistributedSolveStats stats;
   const fem::Mesh empty;
-  const EigenSolution distributed = SolveModesDistributed(Rank() == 0 ? mesh : empty, fem::MassMatrixKind::kConsistent,
+  const eigensolvers::EigenSolution distributed = SolveModesDistributed(Rank() == 0 ? mesh : empty, fem::MassMatrixKind::kConsistent,
                                                           Rank() == 0 ? clamped : std::vector<int>{}, options, &stats);
   const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
   const FreeDofMap free = FreeDofMap::ClampNodes(mesh.num_nodes(), clamp);
-  const EigenSolution spectra =
-      MakeEigensolver("spectra")->Solve(free.Restrict(system.stiffness), free.Restrict(system.mass), options);
+  const eigensolvers::EigenSolution spectra =
+      eigensolvers::MakeEigensolver("spectra")->Solve(free.Restrict(system.stiffness), free.Restrict(system.mass), options);
   ASSERT_EQ(distributed.eigenvalues.size(), spectra.eigenvalues.size());
   for (Eigen::Index j = 0; j < spectra.eigenvalues.size(); ++j) {
     EXPECT_NEAR(distributed.eigenvalues(j), spectra.eigenvalues(j), kBackendAgreement * spectra.eigenvalues(j));

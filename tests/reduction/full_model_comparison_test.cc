@@ -16,7 +16,7 @@
 #include "reduction/basis_comparison.h"
 #include "reduction/craig_bampton.h"
 #include "reduction/sid_body_builder.h"
-#include "test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -63,7 +63,7 @@ sid::ReducedBody Reduced(const Body& b, const ReducedBasis& basis) {
 }
 
 // The zero-eigenvalue threshold of `compare`: kZeroEigenvalue trace(K) / trace(M).
-double ZeroEigenvalue(const Body& b) { return kZeroEigenvalue * b.K.diagonal().sum() / b.M.diagonal().sum(); }
+double ZeroEigenvalue(const Body& b) { return eigensolvers::kZeroEigenvalue * b.K.diagonal().sum() / b.M.diagonal().sum(); }
 
 // The admissible displacements of the full model, built directly: a unit vector per DOF of the
 // nodes neither clamped nor on the rigid face, and the six rigid-body motions of the face's
@@ -83,8 +83,8 @@ Eigen::MatrixXd AdmissibleBasis(const Body& b, const std::vector<int>& clamped, 
 // The full model's frequencies [Hz] by the dense shift-invert solve on the admissible space.
 Eigen::VectorXd DenseFrequencies(const Body& b, const std::vector<int>& clamped, const std::vector<int>& rigid = {}) {
   const testing::DenseModes dense =
-      testing::DenseModesOn(b.K, b.M, AdmissibleBasis(b, clamped, rigid), FreeBodyShift(b.K, b.M));
-  return FrequenciesHz(dense.values);
+      testing::DenseModesOn(b.K, b.M, AdmissibleBasis(b, clamped, rigid), eigensolvers::FreeBodyShift(b.K, b.M));
+  return eigensolvers::FrequenciesHz(dense.values);
 }
 
 // Expects the full model's modes to have the dense solve's frequencies (elastic ones relative,
@@ -189,7 +189,7 @@ TEST(FullModelComparison, CraigBamptonSystemModesBoundTheFullModelFromAboveAndCo
   Eigen::VectorXd previous;
   std::printf("[ numbers  ] CB bar against its full model, f_A / f_B - 1 of modes 1 and %td:", kLowModes);
   for (const int k : {2, 6, 12}) {
-    EigenOptions eigen;
+    eigensolvers::EigenOptions eigen;
     eigen.num_modes = k;
     const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
     const SystemComparison s = CompareWithFullModel(b, ReductionMethod::kCraigBampton, conditions, cb, 10);
@@ -243,7 +243,7 @@ TEST_P(CompleteCraigBampton, SystemModesEqualTheFullModel) {
   // A rigid tip's 4 nodes (12 DOF) move with its marker's 6 DOF.
   const Eigen::Index boundary = rigid_tip ? 6 : 12;
   const Eigen::Index admissible = b.K.rows() - 3 * static_cast<Eigen::Index>(clamped.size()) - 12 + boundary;
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = static_cast<int>(admissible - boundary);  // every interior mode
   const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
   const SystemComparison s = CompareWithFullModel(b, ReductionMethod::kCraigBampton, conditions, cb, 6);
@@ -329,7 +329,7 @@ TEST(FullModelComparison, FixedInterfaceSystemModesAreTheHeldFullModelsModes) {
   BoundaryConditions conditions;
   conditions.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
   conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.4), Coupling::kRigid, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 6;
   const ReducedBasis modal = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::Spectra());
   const SystemComparison s = CompareWithFullModel(b, ReductionMethod::kFixedInterface, conditions, modal, 6);

@@ -130,8 +130,8 @@ double EulerLoad() {
   return std::pow(std::numbers::pi, 2) * kSteel.youngs_modulus_pa * I / (4.0 * kColumnLength * kColumnLength);
 }
 
-reduction::testing::Body Column() {
-  return reduction::testing::MakeBox(ElementType::kHex20, {16, 2, 2}, {kColumnLength, kColumnSide, kColumnSide},
+testing::Body Column() {
+  return testing::MakeBox(ElementType::kHex20, {16, 2, 2}, {kColumnLength, kColumnSide, kColumnSide},
                                      kSteel);
 }
 
@@ -145,7 +145,7 @@ double LowestBucklingLoad(const Eigen::MatrixXd& K, const Eigen::MatrixXd& K_G1)
 TEST(ColumnBuckling, UniaxialPrestressGivesTheEulerLoad) {
   // The exact field of a unit axial tension, u = (x, -nu y, -nu z) / (E A), gives the uniform
   // stress sigma_xx = 1 / A through the element stress; K with it buckles at P_E.
-  const reduction::testing::Body b = Column();
+  const testing::Body b = Column();
   const double strain = 1.0 / (kSteel.youngs_modulus_pa * kColumnSide * kColumnSide);
   Eigen::VectorXd u(b.mesh.num_dofs());
   for (Index n = 0; n < b.mesh.num_nodes(); ++n) {
@@ -156,7 +156,7 @@ TEST(ColumnBuckling, UniaxialPrestressGivesTheEulerLoad) {
   // The root face slides: u_x = 0 on it, u_y = 0 on its line y = h/2 and u_z = 0 on z = h/2
   // (the symmetry lines of the section, which stay put when it contracts).
   std::vector<Index> fixed;
-  for (const int n : reduction::testing::NodesAt(b.mesh, 0, 0.0)) {
+  for (const int n : testing::NodesAt(b.mesh, 0, 0.0)) {
     fixed.push_back(3 * n);
     for (int axis : {1, 2}) {
       if (std::abs(b.mesh.nodes(axis, n) - 0.5 * kColumnSide) < 1e-12) fixed.push_back(3 * n + axis);
@@ -175,15 +175,15 @@ TEST(ColumnBuckling, TipForceStiffeningOfAReducedColumnGivesTheEulerLoad) {
   // reduced column buckles where Ke - P K0F_x turns singular. Rayleigh-Ritz on a subspace: P is
   // an upper bound of the full model's P_cr with the same prestress (the static response to
   // the same nodal load).
-  const reduction::testing::Body b = Column();
-  const std::vector<int> root = reduction::testing::NodesAt(b.mesh, 0, 0.0);
+  const testing::Body b = Column();
+  const std::vector<int> root = testing::NodesAt(b.mesh, 0, 0.0);
   reduction::BoundaryConditions clamp;
   clamp.supports.push_back({"root", root});
-  reduction::EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 10;
   const reduction::ReducedBasis basis =
-      reduction::FixedInterfaceModalBasis(b.model(), clamp, eigen, reduction::testing::Spectra());
-  const reduction::InterfaceSpec tip{"tip", reduction::testing::NodesAt(b.mesh, 0, kColumnLength),
+      reduction::FixedInterfaceModalBasis(b.model(), clamp, eigen, testing::Spectra());
+  const reduction::InterfaceSpec tip{"tip", testing::NodesAt(b.mesh, 0, kColumnLength),
                                      reduction::Coupling::kAveraging, std::nullopt, {}};
   const reduction::StiffeningResult s =
       reduction::ComputeGeometricStiffening(b.mesh, b.model(), clamp, basis.Phi, std::span(&tip, 1));
@@ -213,7 +213,7 @@ TEST(StiffeningLoads, BodyForceLoadsHaveTheResultantsOfTheMassProperties) {
   // -int r x W_l r dm.
   fem::Mesh mesh = fem::testing::StructuredBox(ElementType::kTet10, {3, 2, 2}, {0.3, 0.1, 0.2}).mesh;
   fem::testing::Transform(&mesh, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.2, -0.1, 0.05));
-  const reduction::testing::Body b = reduction::testing::AssembleBody(mesh);
+  const testing::Body b = testing::AssembleBody(mesh);
   const fem::MassProperties props = fem::IntegrateMassProperties(b.mesh);
   const double m = props.mass_kg;
   const Eigen::Vector3d mc = m * props.p_BoCm_B;
@@ -223,7 +223,7 @@ TEST(StiffeningLoads, BodyForceLoadsHaveTheResultantsOfTheMassProperties) {
                             m * props.p_BoCm_B * props.p_BoCm_B.transpose();
   const Eigen::Matrix3d J_o = S.trace() * Eigen::Matrix3d::Identity() - S;
 
-  const reduction::InterfaceSpec marker{"m", reduction::testing::NodesAt(b.mesh, 0, 0.5),
+  const reduction::InterfaceSpec marker{"m", testing::NodesAt(b.mesh, 0, 0.5),
                                         reduction::Coupling::kRigid, Eigen::Vector3d(0.6, 0.0, 0.1), {}};
   const Eigen::MatrixXd F = reduction::BuildStiffeningLoads(b.model(), std::span(&marker, 1));
   ASSERT_EQ(F.cols(), 18);
@@ -273,13 +273,13 @@ TEST(StiffeningLoads, BodyForceLoadsHaveTheResultantsOfTheMassProperties) {
 }
 
 TEST(GeometricStiffening, LoadsCarriedByTheHoldOrBalancedByInertiaReliefCauseNoStiffening) {
-  const reduction::testing::Body b = Column();
-  const std::vector<int> root = reduction::testing::NodesAt(b.mesh, 0, 0.0);
-  const std::vector<int> tip_nodes = reduction::testing::NodesAt(b.mesh, 0, kColumnLength);
+  const testing::Body b = Column();
+  const std::vector<int> root = testing::NodesAt(b.mesh, 0, 0.0);
+  const std::vector<int> tip_nodes = testing::NodesAt(b.mesh, 0, kColumnLength);
   const reduction::InterfaceSpec tip{"tip", tip_nodes, reduction::Coupling::kRigid, std::nullopt, {}};
   const reduction::InterfaceSpec corner{"corner", {tip_nodes.front()}, reduction::Coupling::kNodes, std::nullopt, {}};
   const reduction::InterfaceSpec nodes[] = {tip, corner};
-  reduction::EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 4;
 
   // Held at the root (support) and the tip (interface): the tip's loads go into the hold.
@@ -287,7 +287,7 @@ TEST(GeometricStiffening, LoadsCarriedByTheHoldOrBalancedByInertiaReliefCauseNoS
   held.supports.push_back({"root", root});
   held.interfaces.push_back(tip);
   const reduction::ReducedBasis fixed =
-      reduction::FixedInterfaceModalBasis(b.model(), held, eigen, reduction::testing::Spectra());
+      reduction::FixedInterfaceModalBasis(b.model(), held, eigen, testing::Spectra());
   const reduction::StiffeningResult s = reduction::ComputeGeometricStiffening(b.mesh, b.model(), held, fixed.Phi, nodes);
   const double scale = s.body.K0omega[1].norm();  // centrifugal load of spin about y: bends nothing, stretches
   ASSERT_GT(scale, 0.0);
@@ -304,7 +304,7 @@ TEST(GeometricStiffening, LoadsCarriedByTheHoldOrBalancedByInertiaReliefCauseNoS
   reduction::FreeFreeOptions options;
   options.eigen.num_modes = 4;
   const reduction::ReducedBasis free =
-      reduction::FreeFreeModalBasis(b.model(), options, reduction::testing::Spectra());
+      reduction::FreeFreeModalBasis(b.model(), options, testing::Spectra());
   const reduction::StiffeningResult f =
       reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, free.Phi, std::span(&tip, 1));
   const double free_scale = f.body.K0omega[1].norm();
@@ -324,23 +324,23 @@ TEST(GeometricStiffening, ReusesTheBasisFactorisationOfTheHeldBodyWithTheSameRes
   // The same factor either way (CHOLMOD is deterministic): the same matrices up to round-off
   // (measured: 0).
   constexpr double kSameComputation = 1e-13;
-  const reduction::testing::Body b = Column();
+  const testing::Body b = Column();
   reduction::BoundaryConditions held;
-  held.supports.push_back({"root", reduction::testing::NodesAt(b.mesh, 0, 0.0)});
-  const reduction::InterfaceSpec tip{"tip", reduction::testing::NodesAt(b.mesh, 0, kColumnLength),
+  held.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
+  const reduction::InterfaceSpec tip{"tip", testing::NodesAt(b.mesh, 0, kColumnLength),
                                      reduction::Coupling::kAveraging, std::nullopt, {}};
-  reduction::EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 4;
   const reduction::ReducedBasis basis =
-      reduction::FixedInterfaceModalBasis(b.model(), held, eigen, reduction::testing::Spectra());
+      reduction::FixedInterfaceModalBasis(b.model(), held, eigen, testing::Spectra());
   ASSERT_NE(basis.held_factorization, nullptr);
   reduction::StiffeningResult shared, own;
-  EXPECT_EQ(reduction::testing::FactorizationsDuring([&] {
+  EXPECT_EQ(testing::FactorizationsDuring([&] {
               shared = reduction::ComputeGeometricStiffening(b.mesh, b.model(), held, basis.Phi, std::span(&tip, 1),
                                                              basis.held_factorization.get());
             }),
             0);
-  EXPECT_EQ(reduction::testing::FactorizationsDuring([&] {
+  EXPECT_EQ(testing::FactorizationsDuring([&] {
               own = reduction::ComputeGeometricStiffening(b.mesh, b.model(), held, basis.Phi, std::span(&tip, 1));
             }),
             1);
@@ -363,17 +363,17 @@ TEST(GeometricStiffening, ReusesTheBasisFactorisationOfTheHeldBodyWithTheSameRes
 }
 
 TEST(GeometricStiffening, RejectsBadNodesAndSizes) {
-  const reduction::testing::Body b = Column();
+  const testing::Body b = Column();
   const Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(b.mesh.num_dofs(), 2);
   const reduction::InterfaceSpec two{"pad", {1, 2}, reduction::Coupling::kNodes, std::nullopt, {}};
-  reduction::testing::ExpectInputError(
+  testing::ExpectInputError(
       [&] { reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, Phi, std::span(&two, 1)); },
       {"node 'pad': a node-set node must have exactly one FE node, not 2"});
   const reduction::InterfaceSpec outside{"pad", {1, 999999}, reduction::Coupling::kAveraging, std::nullopt, {}};
-  reduction::testing::ExpectInputError(
+  testing::ExpectInputError(
       [&] { reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, Phi, std::span(&outside, 1)); },
       {"node 'pad': FE node 999999 is outside the mesh's node range"});
-  reduction::testing::ExpectInputError(
+  testing::ExpectInputError(
       [&] { reduction::ComputeGeometricStiffening(b.mesh, b.model(), {}, Eigen::MatrixXd::Zero(6, 2)); },
       {"geometric stiffening: the basis has 6 rows"});
 }

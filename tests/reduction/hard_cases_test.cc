@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "reduction/craig_bampton.h"
 #include "reduction/modal_basis.h"
-#include "test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -47,12 +47,12 @@ constexpr double kThinPlateAccuracy = 1e-2;
 // locking of the linear elements grows with the element aspect ratio, 31 here).
 constexpr double kLockingFactor = 1.5;
 
-double Shift(const Body& b) { return FreeBodyShift(b.K, b.M); }
+double Shift(const Body& b) { return eigensolvers::FreeBodyShift(b.K, b.M); }
 
 void ExpectResidualsWithinBound(const ReducedBasis& basis) {
   for (Eigen::Index j = 0; j < basis.num_modes(); ++j) {
     if (std::isnan(basis.relative_residuals(j))) continue;
-    EXPECT_LE(basis.relative_residuals(j), std::max(kResidualBound, kResidualFloorFactor * basis.residual_floors(j)))
+    EXPECT_LE(basis.relative_residuals(j), std::max(kResidualBound, eigensolvers::kResidualFloorFactor * basis.residual_floors(j)))
         << basis.names[static_cast<std::size_t>(j)];
   }
 }
@@ -102,7 +102,7 @@ TEST(HardCases, ThinPlateQuadraticElementsMatchKirchhoffAndLinearElementsLock) {
     const Body plate = testing::MakeBox(type, {16, 2, 1}, {L, b, t}, material);
     BoundaryConditions clamp;
     clamp.supports.push_back({"root", testing::NodesAt(plate.mesh, 0, 0.0)});
-    EigenOptions eigen;
+    eigensolvers::EigenOptions eigen;
     eigen.num_modes = 2;
     const ReducedBasis basis = FixedInterfaceModalBasis(plate.model(), clamp, eigen, testing::Spectra());
     ExpectResidualsWithinBound(basis);
@@ -145,7 +145,7 @@ TEST(HardCases, NearlyIncompressibleFreeFreeAndCraigBamptonMatchDense) {
   // Craig-Bampton with a face interface: all fixed-interface modes reproduce the full spectrum.
   BoundaryConditions face;
   face.interfaces.push_back({"root", testing::NodesAt(body.mesh, 0, 0.0), Coupling::kNodes, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 10;
   const ReducedBasis cb = CraigBamptonBasis(body.model(), face, eigen, testing::Spectra());
   ExpectResidualsWithinBound(cb);
@@ -209,7 +209,7 @@ TEST(HardCases, StiffnessRatioOfAMillionConvergesAndMatchesDense) {
   // modes against the dense clamped model.
   BoundaryConditions face;
   face.interfaces.push_back({"root", testing::NodesAt(body.mesh, 0, 0.0), Coupling::kNodes, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 8;
   const ReducedBasis cb = CraigBamptonBasis(body.model(), face, eigen, testing::Spectra());
   ExpectResidualsWithinBound(cb);

@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "reduction/craig_bampton.h"
 #include "reduction/modal_basis.h"
-#include "test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -80,7 +80,7 @@ TEST(RigidCoupling, ConstraintModesMoveTheInterfaceNodesRigidlyWithTheMarker) {
   const InterfaceSpec tip = beam.With(Coupling::kRigid).interfaces[0];
   const Eigen::Vector3d marker = MarkerPosition(beam.body.mesh.nodes, tip);
   EXPECT_LE((marker - Eigen::Vector3d(0.4, 0.025, 0.02)).norm(), 1e-15);
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 3;
   const ReducedBasis cb = CraigBamptonBasis(beam.body.model(), beam.With(Coupling::kRigid), eigen, testing::Spectra());
   ASSERT_EQ(cb.Counts(), (ModeCounts{0, 3, 6, 0}));
@@ -105,7 +105,7 @@ TEST(AveragingCoupling, RigidFitOfEachConstraintModeIsTheUnitMarkerMotionAndTheF
   const Beam& beam = TheBeam();
   const BoundaryConditions conditions = beam.With(Coupling::kAveraging);
   const Eigen::Vector3d marker = MarkerPosition(beam.body.mesh.nodes, conditions.interfaces[0]);
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 3;
   const ReducedBasis cb = CraigBamptonBasis(beam.body.model(), conditions, eigen, testing::Spectra());
   ASSERT_EQ(cb.Counts(), (ModeCounts{0, 3, 6, 0}));
@@ -165,7 +165,7 @@ DenseAveraging MakeDenseAveraging(const Beam& beam) {
 TEST(AveragingCoupling, FixedInterfaceModesMatchADenseNullSpaceSolve) {
   const Beam& beam = TheBeam();
   const BoundaryConditions conditions = beam.With(Coupling::kAveraging);
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 8;
   const ReducedBasis basis = FixedInterfaceModalBasis(beam.body.model(), conditions, eigen, testing::Spectra());
   const DenseAveraging d = MakeDenseAveraging(beam);

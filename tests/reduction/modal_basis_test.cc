@@ -11,7 +11,7 @@
 #include "basis_test_support.h"
 #include "core/error.h"
 #include "fem/mass_properties.h"
-#include "test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -44,7 +44,7 @@ constexpr double kRigidStrain = 1e-12;
 
 const fem::IsotropicMaterial kSteel = testing::Steel();
 
-double FreeFreeShift(const Body& b) { return FreeBodyShift(b.K, b.M); }
+double FreeFreeShift(const Body& b) { return eigensolvers::FreeBodyShift(b.K, b.M); }
 
 double MaxOffDiagonal(const Eigen::MatrixXd& A) {
   Eigen::MatrixXd off = A;
@@ -145,7 +145,7 @@ TEST(FixedInterfaceModalBasis, ClampedBoxMatchesTheDenseClampedModel) {
   const std::vector<int> clamp = testing::NodesAt(b.mesh, 0, 0.0);
   BoundaryConditions conditions;
   conditions.interfaces.push_back({"root", clamp, Coupling::kNodes, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 8;
   const ReducedBasis basis = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::Spectra());
   EXPECT_EQ(basis.Counts(), (ModeCounts{0, 8, 0, 0}));
@@ -172,16 +172,16 @@ TEST(FixedInterfaceModalBasis, FactorisesTheHeldBodyOnceAndKeepsTheFactorForTheS
   const Body b = testing::MakeBox(ElementType::kHex20, {4, 1, 1}, {0.4, 0.05, 0.04}, kSteel);
   BoundaryConditions conditions;
   conditions.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 5;
-  eigen.check_missed_modes = MissedModeCheck::kDeflatedLanczos;  // a Sturm count factorises on its own
+  eigen.check_missed_modes = eigensolvers::MissedModeCheck::kDeflatedLanczos;  // a Sturm count factorises on its own
   ReducedBasis shared, own;
   EXPECT_EQ(testing::FactorizationsDuring(
                 [&] { shared = FixedInterfaceModalBasis(b.model(), conditions, eigen, testing::Spectra()); }),
             1);
   ASSERT_TRUE(shared.eigensolver_summary.has_value());
   EXPECT_EQ(shared.eigensolver_summary->factorizations, 1);
-  EXPECT_EQ(shared.eigensolver_summary->missed_mode_check, MissedModeCheck::kDeflatedLanczos);
+  EXPECT_EQ(shared.eigensolver_summary->missed_mode_check, eigensolvers::MissedModeCheck::kDeflatedLanczos);
   testing::ExpectConsistentSummary(*shared.eigensolver_summary);
   ASSERT_NE(shared.held_factorization, nullptr);
 
@@ -218,7 +218,7 @@ TEST(ModeKind, NamesRoundTrip) {
 TEST(ModalBasisBadInput, GivesOneLineInputErrors) {
   const Body b = testing::MakeBox(ElementType::kHex8, {2, 1, 1}, {0.2, 0.1, 0.1}, kSteel);
   const FeModel model = b.model();
-  const Eigensolver& solver = testing::Spectra();
+  const eigensolvers::Eigensolver& solver = testing::Spectra();
   FreeFreeOptions options;
   testing::ExpectInputError([&] { FreeFreeModalBasis(model, options, solver); }, {"free-free", "no modes asked for"});
   options.eigen.num_modes = 100;  // 36 DOF
@@ -229,7 +229,7 @@ TEST(ModalBasisBadInput, GivesOneLineInputErrors) {
   testing::ExpectInputError([&] { FreeFreeModalBasis(model, options, solver); },
                             {"no elastic mode below max_frequency_hz = 1 Hz", "the lowest is at"});
 
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 3;
   testing::ExpectInputError([&] { FixedInterfaceModalBasis(model, {}, eigen, solver); },
                             {"fixed-interface", "no interface or support"});

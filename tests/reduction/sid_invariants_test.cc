@@ -23,7 +23,7 @@
 #include "fem/assembly.h"
 #include "fem/mass_properties.h"
 #include "tests/fem/test_meshes.h"
-#include "tests/reduction/test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
 namespace {

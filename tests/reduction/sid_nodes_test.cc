@@ -136,7 +136,7 @@ TEST(MarkerNodes, CraigBamptonConstraintModesMoveTheirOwnInterfaceMarkerByOne) {
       {"root", testing::NodesAt(b.mesh, 0, 0.0), Coupling::kRigid, std::nullopt, {}});
   conditions.interfaces.push_back(
       {"tip", testing::NodesAt(b.mesh, 0, 0.4), Coupling::kAveraging, std::nullopt, {}});
-  EigenOptions eigen;
+  eigensolvers::EigenOptions eigen;
   eigen.num_modes = 3;
   const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
   ASSERT_EQ(cb.num_modes(), 15);

@@ -12,7 +12,7 @@
 #include "fem/body_spec.h"
 #include "fem/mass_properties.h"
 #include "reduction/dof_constraints.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "tests/fem/test_meshes.h"
 
 namespace flexmbs {
@@ -41,11 +41,11 @@ Eigen::VectorXd Frequencies(const fem::Mesh& mesh, int num_modes, bool clamped) 
   const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
   const auto free = clamped ? reduction::FreeDofMap::ClampNodes(mesh.num_nodes(), mesh.node_sets.at("clamp"))
                             : reduction::FreeDofMap(mesh.num_dofs());
-  reduction::EigenOptions options;
+  eigensolvers::EigenOptions options;
   options.num_modes = num_modes;
-  const reduction::EigenSolution solution = reduction::MakeEigensolver("spectra")->Solve(
+  const eigensolvers::EigenSolution solution = eigensolvers::MakeEigensolver("spectra")->Solve(
       free.Restrict(system.stiffness), free.Restrict(system.mass), options);
-  return reduction::FrequenciesHz(solution);
+  return eigensolvers::FrequenciesHz(solution);
 }
 
 // Observed order p of a sequence converging as C h^p on meshes halving h, from the ratio of
@@ -76,9 +76,9 @@ TEST(CantileverEffectiveMass, BendingPairsCarryTheEulerBernoulliShareOfTheMass) 
   fem::Mesh mesh = fem::BuildBodyMesh(spec);
   const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
   const auto free = reduction::FreeDofMap::ClampNodes(mesh.num_nodes(), mesh.node_sets.at("clamp"));
-  reduction::EigenOptions options;
+  eigensolvers::EigenOptions options;
   options.num_modes = 8;
-  const reduction::EigenSolution solution = reduction::MakeEigensolver("spectra")->Solve(
+  const eigensolvers::EigenSolution solution = eigensolvers::MakeEigensolver("spectra")->Solve(
       free.Restrict(system.stiffness), free.Restrict(system.mass), options);
   const Eigen::MatrixXd phi = free.Expand(solution.modes);  // M-orthonormal
   const Eigen::MatrixXd gamma = phi.transpose() * (system.mass * fem::RigidBodyModes(mesh.nodes));
@@ -127,11 +127,11 @@ double SlidingBoxFrequency(fem::ElementType type, int r, const Eigen::Vector3d& 
   }
   const fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
   const reduction::FreeDofMap free(mesh.num_dofs(), fixed);
-  reduction::EigenOptions options;
+  eigensolvers::EigenOptions options;
   options.num_modes = 1;
-  const reduction::EigenSolution solution = reduction::MakeEigensolver("spectra")->Solve(
+  const eigensolvers::EigenSolution solution = eigensolvers::MakeEigensolver("spectra")->Solve(
       free.Restrict(system.stiffness), free.Restrict(system.mass), options);
-  return reduction::FrequenciesHz(solution)(0);
+  return eigensolvers::FrequenciesHz(solution)(0);
 }
 
 TEST(SlidingBoxFrequency, ConvergesToTheAnalyticModeAtEachElementsTheoreticalRate) {

@@ -23,11 +23,11 @@
 #include "mbs/rigid_body.h"
 #include "mbs/simulation.h"
 #include "mbs/time_function.h"
-#include "reduction/eigensolver.h"
+#include "eigensolvers/eigensolver.h"
 #include "reduction/sid_body_builder.h"
 #include "reduction/sid_spec.h"
 #include "tests/fem/test_meshes.h"
-#include "tests/reduction/test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::validation {
 namespace {
@@ -88,9 +88,9 @@ FeLink BuildLink(const LinkGeometry& geometry) {
   for (fem::ElementBlock& block : link.mesh.blocks) block.material = fem::testing::Steel();
   // The root face centred on Bo.
   fem::testing::Transform(&link.mesh, Matrix3d::Identity(), Vector3d(0.0, -0.5 * size.y(), -0.5 * size.z()));
-  const std::vector<int> root = reduction::testing::NodesOnPlane(link.mesh, 0, 0.0);
+  const std::vector<int> root = testing::NodesOnPlane(link.mesh, 0, 0.0);
   link.mesh.node_sets["root"] = root;
-  link.mesh.node_sets["tip"] = reduction::testing::NodesOnPlane(link.mesh, 0, geometry.length);
+  link.mesh.node_sets["tip"] = testing::NodesOnPlane(link.mesh, 0, geometry.length);
   fem::SystemMatrices system = fem::AssembleSystem(link.mesh, fem::MassMatrixKind::kConsistent);
   link.K = std::move(system.stiffness);
   link.M = std::move(system.mass);
@@ -105,7 +105,7 @@ FeLink BuildLink(const LinkGeometry& geometry) {
   const Eigen::SparseMatrix<double> K_oo = fem::testing::Submatrix(link.K, link.free_dofs, link.free_dofs);
   const Eigen::SparseMatrix<double> M_oo = fem::testing::Submatrix(link.M, link.free_dofs, link.free_dofs);
   // The clamped K_oo is positive definite: shift 0.
-  const reduction::testing::DenseEigen eigen = reduction::testing::SolveDense(K_oo, M_oo, 0.0);
+  const testing::DenseEigen eigen = testing::SolveDense(K_oo, M_oo, 0.0);
   link.eigenvalues = eigen.values;
 
   reduction::ReducedBasis& basis = link.basis;
@@ -118,8 +118,8 @@ FeLink BuildLink(const LinkGeometry& geometry) {
     basis.kinds.push_back(reduction::ModeKind::kNormal);
     basis.names.push_back(fmt::format("normal_{}", k + 1));
   }
-  basis.frequency_hz = reduction::FrequenciesHz(eigen.values);
-  const reduction::PairResiduals residuals = reduction::ComputeResiduals(K_oo, M_oo, eigen.values, eigen.vectors, 0.0);
+  basis.frequency_hz = eigensolvers::FrequenciesHz(eigen.values);
+  const eigensolvers::PairResiduals residuals = eigensolvers::ComputeResiduals(K_oo, M_oo, eigen.values, eigen.vectors, 0.0);
   basis.relative_residuals = residuals.relative;
   basis.residual_floors = residuals.floor;
   basis.held_by.supports.push_back({"root", root});

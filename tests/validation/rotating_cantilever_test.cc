@@ -100,9 +100,9 @@ const ReducedBeam& Beam() {
     for (Index n = 0; n < b.mesh.num_nodes(); ++n) {
       if (b.mesh.nodes(0, n) == 0.0) clamp.supports[0].nodes.push_back(static_cast<int>(n));
     }
-    reduction::EigenOptions eigen;
+    eigensolvers::EigenOptions eigen;
     eigen.num_modes = kModes;
-    b.basis = reduction::FixedInterfaceModalBasis(model, clamp, eigen, *reduction::MakeEigensolver("spectra"));
+    b.basis = reduction::FixedInterfaceModalBasis(model, clamp, eigen, *eigensolvers::MakeEigensolver("spectra"));
     const reduction::StiffeningResult stiffening =
         reduction::ComputeGeometricStiffening(b.mesh, model, clamp, b.basis.Phi);
     // Kw_3 = Phi^T M (W_3 Phi), W_3 = diag(-1, -1, 0) on every node.

@@ -21,7 +21,7 @@
 #include "reduction/sid_body_builder.h"
 #include "reduction/sid_spec.h"
 #include "tests/fem/test_meshes.h"
-#include "tests/reduction/test_problems.h"
+#include "tests/support/test_problems.h"
 
 namespace flexmbs::validation {
 namespace {
@@ -71,7 +71,7 @@ SliderCrankRod BuildRod(const SliderCrankData& data, const Eigen::Vector3i& cell
   geometry.cells = cells;
   SliderCrankRod rod{BuildLink(geometry), {}};
   fem::Mesh& mesh = rod.link.mesh;
-  mesh.node_sets["mid"] = reduction::testing::NodesOnPlane(mesh, 0, 0.5 * data.rod_length);
+  mesh.node_sets["mid"] = testing::NodesOnPlane(mesh, 0, 0.5 * data.rod_length);
 
   const std::vector<Index> mirror = MirrorNodes(mesh);
   const Eigen::MatrixXd& Phi = rod.link.basis.Phi;

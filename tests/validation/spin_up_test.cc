@@ -106,10 +106,10 @@ const ReducedBeam& Beam() {
       if (mesh.nodes(0, n) == 0.0) clamp.supports[0].nodes.push_back(static_cast<int>(n));
       if (std::abs(mesh.nodes(0, n) - kLength) < 1e-9) tip_nodes.push_back(n);
     }
-    reduction::EigenOptions eigen;
+    eigensolvers::EigenOptions eigen;
     eigen.num_modes = kComputedModes;
     const reduction::ReducedBasis basis =
-        reduction::FixedInterfaceModalBasis(model, clamp, eigen, *reduction::MakeEigensolver("spectra"));
+        reduction::FixedInterfaceModalBasis(model, clamp, eigen, *eigensolvers::MakeEigensolver("spectra"));
     const reduction::SidSpec sid;  // defaults: geometric stiffening computed
     sid::ReducedBody data = reduction::BuildReducedBody({mesh, system, fem::MassMatrixKind::kConsistent, sid}, basis);
     data.name = "beam";

@@ -1,0 +1,543 @@
+#include "eigensolvers/distributed/slepc_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <numeric>
+#include <optional>
+#include <slepceps.h>
+
+#include "core/error.h"
+#include "fem/petsc_check.h"
+#include "eigensolvers/blas_threads.h"
+#include "eigensolvers/distributed/petsc_block_space.h"
+#include "eigensolvers/distributed/slepc_pair_measures.h"
+#include "eigensolvers/distributed/slepc_ritz_gap.h"
+#include "eigensolvers/distributed/slepc_shifted_matrix.h"
+#include "eigensolvers/distributed/substructured_factor.h"
+
+namespace flexmbs::eigensolvers {
+namespace {
+
+// The shell preconditioner's apply: x = (K - sigma M)^-1 b by the SubstructuredFactor in its
+// context.
+PetscErrorCode ApplySubstructured(PC pc, Vec b, Vec x) {
+  void* context = nullptr;
+  PetscErrorCode error = PCShellGetContext(pc, &context);
+  if (error != 0) return error;
+  try {
+    static_cast<const SubstructuredFactor*>(context)->Solve(b, x);
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+// Configures `eps` for K, M: Krylov-Schur, shift-and-invert at sigma, MUMPS Cholesky, the `nev`
+// pairs nearest sigma. Purification (one more solve per pair, removing components in M's null
+// space) only where fixed DOF make M singular: with M positive definite the shift-inverted
+// operator has no such components to remove. The ST factorises `shifted` (K - sigma M, owned by
+// the caller, who refactorises it for the Sturm count) instead of a copy of its own, or,
+// `shifted` null at sigma = 0, K itself (no copy: SLEPc's ST_MATMODE_COPY uses K when the shift
+// is 0). MUMPS gets ICNTL(13) = 1 before its analysis: without it (the root node on ScaLAPACK)
+// it does not report the inertia on more than one rank (the ST prefixes its factor's options).
+// With `substructured` (K - sigma M factorised by substructuring) the ST's solves are its solves
+// instead (a shell preconditioner under KSPPREONLY) and `shifted` is not used.
+void Configure(EPS eps, Mat K, Mat M, Mat shifted, double sigma, const EigenOptions& options, PetscInt nev,
+               bool singular_mass, const SubstructuredFactor* substructured) {
+  ST st;
+  KSP ksp;
+  PC pc;
+  FLEXMBS_PETSC(EPSSetOperators(eps, K, M));
+  FLEXMBS_PETSC(EPSSetProblemType(eps, EPS_GHEP));
+  FLEXMBS_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
+  FLEXMBS_PETSC(EPSSetTolerances(eps, options.tolerance, options.max_iterations));
+  FLEXMBS_PETSC(EPSSetPurify(eps, singular_mass ? PETSC_TRUE : PETSC_FALSE));
+  FLEXMBS_PETSC(PetscOptionsSetValue(nullptr, "-st_mat_mumps_icntl_13", "1"));
+  FLEXMBS_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  FLEXMBS_PETSC(EPSSetTarget(eps, sigma));
+  FLEXMBS_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  FLEXMBS_PETSC(EPSGetST(eps, &st));
+  FLEXMBS_PETSC(STSetType(st, STSINVERT));
+  if (substructured) {
+    FLEXMBS_PETSC(STSetMatMode(st, ST_MATMODE_SHELL));
+    FLEXMBS_PETSC(STGetKSP(st, &ksp));
+    FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
+    FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
+    FLEXMBS_PETSC(PCSetType(pc, PCSHELL));
+    FLEXMBS_PETSC(PCShellSetContext(pc, const_cast<SubstructuredFactor*>(substructured)));
+    FLEXMBS_PETSC(PCShellSetApply(pc, ApplySubstructured));
+    return;
+  }
+  if (shifted) {
+    FLEXMBS_PETSC(STSetPreconditionerMat(st, shifted));
+    FLEXMBS_PETSC(STSetMatMode(st, ST_MATMODE_SHELL));
+  }
+  FLEXMBS_PETSC(STGetKSP(st, &ksp));
+  FLEXMBS_PETSC(KSPSetType(ksp, KSPPREONLY));
+  FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
+  FLEXMBS_PETSC(PCSetType(pc, PCCHOLESKY));
+  FLEXMBS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+}
+
+// Zeroes the rows and columns of `fixed_dofs` (K diagonal 1, M diagonal 0).
+void RemoveFixedDofs(Mat K, Mat M, const std::vector<int>& fixed_dofs) {
+  PetscInt begin = 0, end = 0;
+  FLEXMBS_PETSC(MatGetOwnershipRange(K, &begin, &end));
+  std::vector<PetscInt> owned;
+  for (int dof : fixed_dofs) {
+    if (dof >= begin && dof < end) owned.push_back(dof);
+  }
+  const auto count = static_cast<PetscInt>(owned.size());
+  FLEXMBS_PETSC(MatZeroRowsColumns(K, count, owned.data(), 1.0, nullptr, nullptr));
+  FLEXMBS_PETSC(MatZeroRowsColumns(M, count, owned.data(), 0.0, nullptr, nullptr));
+  for (Mat A : {K, M}) FLEXMBS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+}
+
+// The converged pairs of `eps`, lowest first, at most `limit` (0 = all), M-normalised: the
+// eigenvalues into `solution`, the eigenvectors as distributed vectors into `x` (the caller
+// owns them).
+void ExtractPairs(EPS eps, Mat K, Mat M, int limit, EigenSolution* solution, std::vector<Vec>* x) {
+  PetscInt converged = 0;
+  FLEXMBS_PETSC(EPSGetConverged(eps, &converged));
+  std::vector<double> lambdas(static_cast<std::size_t>(converged));
+  for (PetscInt i = 0; i < converged; ++i) {
+    FLEXMBS_PETSC(EPSGetEigenvalue(eps, i, &lambdas[static_cast<std::size_t>(i)], nullptr));
+  }
+  std::vector<PetscInt> order(lambdas.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) {
+    return lambdas[static_cast<std::size_t>(a)] < lambdas[static_cast<std::size_t>(b)];
+  });
+  if (limit > 0 && static_cast<int>(order.size()) > limit) order.resize(static_cast<std::size_t>(limit));
+  const auto count = static_cast<Eigen::Index>(order.size());
+  solution->eigenvalues.resize(count);
+  Vec mx;
+  FLEXMBS_PETSC(MatCreateVecs(K, nullptr, &mx));
+  for (Eigen::Index j = 0; j < count; ++j) {
+    const PetscInt i = order[static_cast<std::size_t>(j)];
+    Vec xj;
+    FLEXMBS_PETSC(VecDuplicate(mx, &xj));
+    x->push_back(xj);
+    FLEXMBS_PETSC(EPSGetEigenvector(eps, i, xj, nullptr));
+    PetscScalar xmx = 0.0;
+    FLEXMBS_PETSC(MatMult(M, xj, mx));
+    FLEXMBS_PETSC(VecDot(xj, mx, &xmx));
+    FLEXMBS_PETSC(VecScale(xj, 1.0 / std::sqrt(xmx)));
+    solution->eigenvalues(j) = lambdas[static_cast<std::size_t>(i)];
+  }
+  FLEXMBS_PETSC(VecDestroy(&mx));
+}
+
+// Distributed vectors destroyed with their owner (also when an exception passes).
+struct OwnedVectors {
+  std::vector<Vec> v;
+  OwnedVectors() = default;
+  OwnedVectors(const OwnedVectors&) = delete;
+  OwnedVectors& operator=(const OwnedVectors&) = delete;
+  ~OwnedVectors() { Clear(); }
+  void Clear() {
+    for (Vec& x : v) VecDestroy(&x);
+    v.clear();
+  }
+  // Keeps the first `count` vectors.
+  void Truncate(std::size_t count) {
+    for (std::size_t j = count; j < v.size(); ++j) VecDestroy(&v[j]);
+    v.resize(std::min(count, v.size()));
+  }
+};
+
+// The factored matrix of the shift-and-invert's MUMPS instance (after EPSSetUp).
+Mat ShiftInvertFactor(EPS eps) {
+  ST st;
+  KSP ksp;
+  PC pc;
+  Mat factor;
+  FLEXMBS_PETSC(EPSGetST(eps, &st));
+  FLEXMBS_PETSC(STGetKSP(st, &ksp));
+  FLEXMBS_PETSC(KSPGetPC(ksp, &pc));
+  FLEXMBS_PETSC(PCFactorGetMatrix(pc, &factor));
+  return factor;
+}
+
+// The number of eigenvalues of K phi = lambda M phi below `cut`: the negative inertia of
+// K - cut M (Sylvester; M positive semi-definite, fixed DOF have K = 1, M = 0 and count as
+// positive), from the LDL^T factorisation of the shift-invert's own MUMPS instance. `shifted`
+// (which the ST of `eps` factorised) becomes K - cut M and is refactorised numerically: MUMPS
+// keeps its analysis (ordering, symbolic factorisation), which the same sparsity allows. The
+// ST's factor is then that of K - cut M: call after the pairs are extracted.
+PetscInt EigenvaluesBelow(EPS eps, ShiftedMatrix* shifted, double cut) {
+  const Mat factor = ShiftInvertFactor(eps);
+  shifted->MoveShift(cut);
+  MatFactorInfo info;
+  FLEXMBS_PETSC(MatFactorInfoInitialize(&info));
+  FLEXMBS_PETSC(MatCholeskyFactorNumeric(factor, shifted->get(), &info));
+  PetscInt negative = 0;  // zero and positive counts would need null-pivot detection (ICNTL(24))
+  FLEXMBS_PETSC(MatGetInertia(factor, &negative, nullptr, nullptr));
+  return negative;
+}
+
+// An EPS destroyed with its owner (also when an exception passes).
+struct OwnedEps {
+  EPS eps = nullptr;
+  OwnedEps() { FLEXMBS_PETSC(EPSCreate(PETSC_COMM_WORLD, &eps)); }
+  OwnedEps(const OwnedEps&) = delete;
+  OwnedEps& operator=(const OwnedEps&) = delete;
+  ~OwnedEps() { EPSDestroy(&eps); }
+};
+
+// Seconds since *since, which moves to now.
+double SecondsSince(std::chrono::steady_clock::time_point* since) {
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - *since).count();
+  *since = now;
+  return seconds;
+}
+
+// Above this many flops of the shift-invert's factorisation (MUMPS RINFOG(3)) the automatic
+// missed-mode check is the block Krylov check: the Sturm count's own factorisation costs about
+// as much again, the check about 60 solved columns in blocks of 8 and 20 M products.
+constexpr double kBlockCheckFromFlops = 1e10;
+
+// The missed-mode check this backend makes: the block Krylov check (eigensolvers/block_krylov_check.h)
+// where the factorisation that a Sturm count would add costs more than kBlockCheckFromFlops
+// (`flops`: the shift-invert's, MUMPS's RINFOG(3) or the substructured factor's) or where asked,
+// else the Sturm count. Not with `fixed_dofs` (their rows of M are zero, so diag(M) cannot
+// scale the start block).
+MissedModeCheck ChooseCheck(const EigenOptions& options, double flops, bool fixed_dofs) {
+  if (fixed_dofs) return MissedModeCheck::kSturmCount;
+  if (options.check_missed_modes == MissedModeCheck::kBlockKrylov) return MissedModeCheck::kBlockKrylov;
+  if (options.check_missed_modes != MissedModeCheck::kAuto) return MissedModeCheck::kSturmCount;
+  return flops > kBlockCheckFromFlops ? MissedModeCheck::kBlockKrylov : MissedModeCheck::kSturmCount;
+}
+
+// The flops of the shift-invert's factorisation: the substructured factor's, else MUMPS's.
+double FactorizationFlops(EPS eps, const SubstructuredFactor* substructured) {
+  if (substructured) return substructured->flops();
+  PetscReal flops = 0.0;
+  FLEXMBS_PETSC(MatMumpsGetRinfog(ShiftInvertFactor(eps), 3, &flops));
+  return flops;
+}
+
+// The number of eigenvalues below `cut` that the block Krylov check establishes for the pairs
+// `x` (all converged, M-orthonormal) with the shift-invert factorisation (`substructured`, else
+// that of `eps`): those found below the cut plus those it found missing; -1 if it could not
+// decide (the caller counts).
+PetscInt BlockCheckedCount(EPS eps, const SubstructuredFactor* substructured, Mat M, const std::vector<Vec>& x,
+                           double cut, const EigenOptions& options, int attempt, EigenSolution* solution) {
+  auto phase = std::chrono::steady_clock::now();
+  const PetscBlockSpace space = substructured ? PetscBlockSpace(*substructured, M, solution->shift)
+                                              : PetscBlockSpace(ShiftInvertFactor(eps), M, solution->shift);
+  const Eigen::MatrixXd found = LocalRows(x, space.local_rows());
+  BlockCheckOptions block;
+  block.tolerance = options.tolerance;
+  block.seed = kBlockCheckSeed + static_cast<std::uint64_t>(attempt);
+  const BlockCheckResult result = CheckForMissedModes(space, found, cut, block);
+  solution->operator_applications += static_cast<int>(result.columns);
+  ++solution->krylov_runs;
+  solution->krylov_seconds += SecondsSince(&phase);
+  const auto below = static_cast<PetscInt>((solution->eigenvalues.array() < cut).count());
+  switch (result.verdict) {
+    case BlockCheckVerdict::kNoneMissed:
+      return below;
+    case BlockCheckVerdict::kMissed:
+      return below + static_cast<PetscInt>(result.missed_values.size());
+    case BlockCheckVerdict::kUndecided:
+      break;
+  }
+  return -1;
+}
+
+// Solves with the shift-invert factorisation so far (KSPPREONLY: one per right-hand side),
+// eigenvector purifications included.
+int OperatorApplications(EPS eps) {
+  ST st;
+  KSP ksp;
+  FLEXMBS_PETSC(EPSGetST(eps, &st));
+  FLEXMBS_PETSC(STGetKSP(st, &ksp));
+  PetscInt solves = 0;
+  FLEXMBS_PETSC(KSPGetTotalIterations(ksp, &solves));
+  return static_cast<int>(solves);
+}
+
+// Copies this rank's block of rows of the full matrix A into a new PETSc AIJ matrix.
+Mat ToPetsc(const Eigen::SparseMatrix<double>& A) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = A;
+  Mat out;
+  FLEXMBS_PETSC(MatCreate(PETSC_COMM_WORLD, &out));
+  FLEXMBS_PETSC(MatSetSizes(out, PETSC_DECIDE, PETSC_DECIDE, static_cast<PetscInt>(A.rows()),
+                            static_cast<PetscInt>(A.cols())));
+  FLEXMBS_PETSC(MatSetType(out, MATAIJ));
+  FLEXMBS_PETSC(MatSetUp(out));
+  PetscInt begin = 0, end = 0;
+  FLEXMBS_PETSC(MatGetOwnershipRange(out, &begin, &end));
+  // Exact preallocation from the row counts of the owned block.
+  std::vector<PetscInt> diagonal(static_cast<std::size_t>(end - begin), 0), off(diagonal.size(), 0);
+  for (PetscInt r = begin; r < end; ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, r); it; ++it) {
+      const bool in_block = it.col() >= begin && it.col() < end;
+      ++(in_block ? diagonal : off)[static_cast<std::size_t>(r - begin)];
+    }
+  }
+  FLEXMBS_PETSC(MatXAIJSetPreallocation(out, 1, diagonal.data(), off.data(), nullptr, nullptr));
+  for (PetscInt r = begin; r < end; ++r) {
+    const auto start = rows.outerIndexPtr()[r];
+    const auto count = static_cast<PetscInt>(rows.outerIndexPtr()[r + 1] - start);
+    std::vector<PetscInt> cols(rows.innerIndexPtr() + start, rows.innerIndexPtr() + start + count);
+    FLEXMBS_PETSC(MatSetValues(out, 1, &r, count, cols.data(), rows.valuePtr() + start, INSERT_VALUES));
+  }
+  FLEXMBS_PETSC(MatAssemblyBegin(out, MAT_FINAL_ASSEMBLY));
+  FLEXMBS_PETSC(MatAssemblyEnd(out, MAT_FINAL_ASSEMBLY));
+  return out;
+}
+
+class SlepcEigensolver final : public Eigensolver {
+ public:
+  std::string_view name() const override { return "slepc"; }
+
+  EigenSolution Solve(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                      const EigenOptions& options) const override {
+    ValidateEigenInputs(K, M, options);
+    // PETSc (and MPI) can be initialised once per process: keep it for the process lifetime
+    // (a session the caller opened first owns it instead).
+    static const SlepcSession session;
+    Mat K_petsc = ToPetsc(K);
+    Mat M_petsc = ToPetsc(M);
+    try {
+      EigenSolution solution = SolveDistributedEigenproblem(K_petsc, M_petsc, {}, options);
+      MatDestroy(&K_petsc);
+      MatDestroy(&M_petsc);
+      return solution;
+    } catch (...) {
+      MatDestroy(&K_petsc);
+      MatDestroy(&M_petsc);
+      throw;
+    }
+  }
+};
+
+}  // namespace
+
+SlepcSession::SlepcSession() {
+  PetscBool initialized = PETSC_FALSE;
+  FLEXMBS_PETSC(SlepcInitialized(&initialized));
+  if (!initialized) {
+    FLEXMBS_PETSC(SlepcInitializeNoArguments());
+    owns_ = true;
+    ShareBlasThreadsAmongRanks();
+  }
+}
+
+SlepcSession::~SlepcSession() {
+  if (owns_) SlepcFinalize();
+}
+
+int SlepcSession::Rank() {
+  PetscMPIInt rank = 0;
+  FLEXMBS_PETSC(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  return rank;
+}
+
+int SlepcSession::Size() {
+  PetscMPIInt size = 1;
+  FLEXMBS_PETSC(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  return size;
+}
+
+EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>& fixed_dofs,
+                                           const EigenOptions& options, ModesOn modes_on,
+                                           double* gather_seconds, Mat* K_factor,
+                                           std::unique_ptr<SubstructuredFactor>* K_substructured) {
+  const auto start = std::chrono::steady_clock::now();
+  RemoveFixedDofs(K, M, fixed_dofs);
+  PetscScalar trace_k = 0.0, trace_m = 0.0;
+  FLEXMBS_PETSC(MatGetTrace(K, &trace_k));
+  FLEXMBS_PETSC(MatGetTrace(M, &trace_m));
+  // A held body for a caller that keeps the factorisation: K itself at sigma = 0, factorised as
+  // positive definite, later serves the caller's static solves.
+  const bool keep = K_factor != nullptr && (!options.shift_hz || *options.shift_hz == 0.0);
+  if (K_factor) *K_factor = nullptr;
+  EigenSolution solution;
+  solution.backend = "slepc";
+  solution.factorization = "mumps";
+  if (keep) {
+    solution.shift = 0.0;
+  } else if (options.shift_hz) {
+    solution.shift = ShiftFromHz(*options.shift_hz);
+  } else {
+    solution.shift = -1e-6 * trace_k / trace_m;
+  }
+  // A band: its size, the number of eigenvalues below its upper end, is counted first (the inertia
+  // of K - top M); then the lowest `wanted` modes are found as for num_modes, and when that is the
+  // whole band, the count at its end is their Sturm check. (Not SLEPc's spectrum slicing: it ran
+  // Krylov-Schur at the band's upper end, and the modes near zero, a free body's rigid modes, came
+  // out with errors of about tolerance x top: residuals up to 6e-6 of their shift's scale.)
+  const bool band = options.max_frequency_hz > 0.0;
+  const double top = band ? ShiftFromHz(options.max_frequency_hz) : 0.0;
+  PetscInt wanted = options.num_modes;
+  PetscInt band_count = -1;  // the eigenvalues below `top` when the whole band is wanted
+  if (band) {
+    auto phase = std::chrono::steady_clock::now();
+    const PetscInt in_band = EigenvaluesBelow(K, M, top);
+    ++solution.factorizations;
+    solution.sturm_seconds += SecondsSince(&phase);
+    if (in_band == 0) throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+    wanted = options.num_modes > 0 ? std::min<PetscInt>(options.num_modes, in_band) : in_band;
+    if (wanted == in_band) band_count = in_band;
+  }
+  // Exactly the wanted pairs; the Ritz values beyond them locate the gap where the Sturm cut goes
+  // (see RitzLowerBounds).
+  PetscInt nev = wanted;
+  OwnedVectors x;
+  bool not_positive_definite = false;
+  OwnedMat held_factor;  // kept: the factor of K (sigma = 0)
+  // On more than one rank K - sigma M may be factorised once by substructuring (every attempt's
+  // solves use it); it must be positive definite: K itself when held, else sigma < 0.
+  std::unique_ptr<SubstructuredFactor> substructured;
+  if (keep || solution.shift < 0.0) {
+    auto phase = std::chrono::steady_clock::now();
+    substructured = MaybeSubstructured(K, M, keep, solution.shift, options.distributed_factorization);
+    if (substructured) {
+      ++solution.factorizations;
+      solution.factorization_seconds += SecondsSince(&phase);
+      solution.factorization = "substructured";
+      if (keep && !substructured->positive_definite()) not_positive_definite = true;
+      if (!keep && !substructured->positive_definite()) {
+        substructured.reset();  // MUMPS's LDL^T decides
+        solution.factorization = "mumps";
+      }
+    }
+  }
+  for (int attempt = 0; !not_positive_definite; ++attempt) {
+    x.Clear();
+    auto phase = std::chrono::steady_clock::now();
+    std::optional<ShiftedMatrix> shifted;
+    if (!keep && !substructured) shifted.emplace(K, M, solution.shift);
+    // At sigma = 0 the ST factorises K itself: as positive definite (MUMPS SYM = 1, no pivoting).
+    if (keep) FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_TRUE));
+    RitzLowerBounds ritz;
+    OwnedEps eps;
+    Configure(eps.eps, K, M, shifted ? shifted->get() : nullptr, solution.shift, options, nev, !fixed_dofs.empty(),
+              substructured.get());
+    FLEXMBS_PETSC(EPSGetST(eps.eps, &ritz.st));
+    FLEXMBS_PETSC(EPSSetTrackAll(eps.eps, PETSC_TRUE));  // error estimates of every Ritz value
+    FLEXMBS_PETSC(EPSMonitorSet(eps.eps, RecordRitzLowerBounds, &ritz, nullptr));
+    FLEXMBS_PETSC(EPSSetUp(eps.eps));  // K - sigma M factorised
+    solution.factorization_seconds += SecondsSince(&phase);
+    if (keep && !substructured && !FactoredPositiveDefinite(ShiftInvertFactor(eps.eps))) {
+      ++solution.factorizations;
+      not_positive_definite = true;
+      break;
+    }
+    FLEXMBS_PETSC(EPSSolve(eps.eps));
+    PetscInt converged = 0, iterations = 0;
+    FLEXMBS_PETSC(EPSGetConverged(eps.eps, &converged));
+    FLEXMBS_PETSC(EPSGetIterationNumber(eps.eps, &iterations));
+    ++solution.krylov_runs;
+    solution.restarts += static_cast<int>(iterations);
+    if (!substructured) ++solution.factorizations;
+    if (converged < nev) {
+      throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations", converged, nev,
+                                   iterations));
+    }
+    ExtractPairs(eps.eps, K, M, 0, &solution, &x.v);
+    solution.operator_applications += OperatorApplications(eps.eps);
+    solution.krylov_seconds += SecondsSince(&phase);
+    if (keep && !(solution.eigenvalues(0) > kZeroEigenvalue * trace_k / trace_m)) {
+      not_positive_definite = true;  // singular to round-off: not held
+      break;
+    }
+    // Sturm check: every eigenvalue below the cut after the wanted ones must have been found. The
+    // whole band's cut is its end, counted before the run.
+    double cut = top;
+    PetscInt count = band_count;
+    if (band_count < 0) {
+      cut = SturmCutAfter(ValuesForTheCut(solution.eigenvalues, ritz.lambda), wanted, solution.shift);
+      FLEXMBS_CHECK(cut > solution.eigenvalues(wanted - 1), "Sturm cut below the last wanted mode");
+      solution.missed_mode_check =
+          ChooseCheck(options, FactorizationFlops(eps.eps, substructured.get()), !fixed_dofs.empty());
+      if (solution.missed_mode_check == MissedModeCheck::kBlockKrylov) {
+        count = BlockCheckedCount(eps.eps, substructured.get(), M, x.v, cut, options, attempt, &solution);
+      }
+      if (count < 0) {
+        phase = std::chrono::steady_clock::now();
+        solution.missed_mode_check = MissedModeCheck::kSturmCount;
+        count = shifted ? EigenvaluesBelow(eps.eps, &*shifted, cut) : EigenvaluesBelow(K, M, cut);
+        ++solution.factorizations;
+        solution.sturm_seconds += SecondsSince(&phase);
+        solution.sturm_count = static_cast<int>(count);
+        solution.sturm_cut = cut;
+      }
+    } else {
+      solution.missed_mode_check = MissedModeCheck::kSturmCount;
+      solution.sturm_count = static_cast<int>(count);
+      solution.sturm_cut = cut;
+    }
+    const auto found = static_cast<PetscInt>((solution.eigenvalues.array() < cut).count());
+    solution.checked_cut = cut;
+    if (count == found) {
+      solution.eigenvalues.conservativeResize(wanted);
+      x.Truncate(static_cast<std::size_t>(wanted));
+      if (keep && !substructured) {
+        // The factor of K outlives the EPS, which resets its solver at the end of this scope.
+        held_factor.A = ShiftInvertFactor(eps.eps);
+        FLEXMBS_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(held_factor.A)));
+      }
+      break;
+    }
+    if (count < found || attempt > 0) {
+      throw InputError(fmt::format("eigenproblem: SLEPc found {} modes below {:.6g} Hz but the {} is {}", found,
+                                   FrequenciesHz(Eigen::VectorXd::Constant(1, cut))(0),
+                                   solution.missed_mode_check == MissedModeCheck::kSturmCount
+                                       ? "Sturm count"
+                                       : "block Krylov check's count",
+                                   count));
+    }
+    // SLEPc missed modes: once more, every mode below the cut converged and GuardPairs more.
+    nev = count + static_cast<PetscInt>(GuardPairs(count));
+  }
+  if (not_positive_definite) {
+    // K is not positive definite (a body the conditions do not hold): the usual negative shift,
+    // no factorisation kept; this attempt's work counted.
+    x.Clear();
+    FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_FALSE));
+    EigenSolution again = SolveDistributedEigenproblem(K, M, fixed_dofs, options, modes_on, gather_seconds);
+    again.factorizations += solution.factorizations;
+    again.factorization_seconds += solution.factorization_seconds;
+    again.operator_applications += solution.operator_applications;
+    again.krylov_runs += solution.krylov_runs;
+    again.restarts += solution.restarts;
+    again.krylov_seconds += solution.krylov_seconds;
+    again.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return again;
+  }
+  MeasurePairs(K, M, x.v, &solution);
+  const auto gather_start = std::chrono::steady_clock::now();
+  for (std::size_t j = 0; j < x.v.size(); ++j) {
+    Eigen::VectorXd mode = GatherVector(x.v[j], modes_on);
+    if (j == 0) solution.modes.resize(mode.size(), static_cast<Eigen::Index>(x.v.size()));
+    solution.modes.col(static_cast<Eigen::Index>(j)) = mode;
+  }
+  x.Clear();
+  if (gather_seconds) {
+    *gather_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
+  }
+  const PairResiduals residuals{solution.relative_residuals, solution.residual_floors};
+  Eigen::Index worst = 0;
+  if (!residuals.Accepted(options.residual_tolerance, &worst)) {
+    throw InputError(fmt::format("eigenproblem: mode {} ({:.6g} Hz) has relative residual {:.3g} above "
+                                 "max({:g}, {:g} x its round-off floor {:.3g})",
+                                 worst, FrequenciesHz(solution.eigenvalues)(worst),
+                                 solution.relative_residuals(worst), options.residual_tolerance,
+                                 kResidualFloorFactor, solution.residual_floors(worst)));
+  }
+  if (keep) *K_factor = held_factor.Release();
+  if (keep && substructured && K_substructured) *K_substructured = std::move(substructured);
+  solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return solution;
+}
+
+std::unique_ptr<Eigensolver> MakeSlepcEigensolver() { return std::make_unique<SlepcEigensolver>(); }
+
+}  // namespace flexmbs::eigensolvers
