@@ -1,5 +1,7 @@
 #include "contact/complementarity/friction_newton.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/LU>
@@ -11,17 +13,19 @@
 namespace flexmbs::contact {
 namespace {
 
-// Alart-Curnier's function of every contact at r, with its Jacobian blocks D_i.
-struct GlobalFunction {
+// Alart-Curnier's function of the proximal subproblem (W + sigma I, q - sigma c) at r: its
+// velocities are u + sigma (r - c) with u = W r + q. D holds the Jacobian blocks D_i.
+struct ProximalFunction {
   Eigen::VectorXd phi;
   std::vector<LocalMatrix> D;
   double merit = 0.0;  // ||phi||^2
 };
 
-GlobalFunction Evaluate(const FrictionContactProblem& problem, const Eigen::VectorXd& rho, const Eigen::VectorXd& r) {
+ProximalFunction Evaluate(const FrictionContactProblem& problem, const Eigen::VectorXd& rho, double sigma,
+                          const Eigen::VectorXd& centre, const Eigen::VectorXd& r) {
   const int d = problem.dimension;
-  const Eigen::VectorXd u = problem.W * r + problem.q;
-  GlobalFunction f{Eigen::VectorXd(r.size()), std::vector<LocalMatrix>(problem.contacts()), 0.0};
+  const Eigen::VectorXd u = problem.W * r + problem.q + sigma * (r - centre);
+  ProximalFunction f{Eigen::VectorXd(r.size()), std::vector<LocalMatrix>(problem.contacts()), 0.0};
   for (int i = 0; i < problem.contacts(); ++i) {
     AlartCurnierContact c = AlartCurnier(r.segment(d * i, d), u.segment(d * i, d), problem.mu(i), rho(i));
     f.phi.segment(d * i, d) = c.phi;
@@ -32,8 +36,8 @@ GlobalFunction Evaluate(const FrictionContactProblem& problem, const Eigen::Vect
 }
 
 // J = I - D + rho D (W + sigma I), D block diagonal.
-Eigen::MatrixXd Jacobian(const FrictionContactProblem& problem, const Eigen::VectorXd& rho, const GlobalFunction& f,
-                         double sigma) {
+Eigen::MatrixXd Jacobian(const FrictionContactProblem& problem, const Eigen::VectorXd& rho, double sigma,
+                         const ProximalFunction& f) {
   const int d = problem.dimension;
   const Eigen::Index n = problem.q.size();
   Eigen::MatrixXd J(n, n);
@@ -54,32 +58,43 @@ FrictionContactSolution SolveFrictionNewton(const FrictionContactProblem& proble
   const Eigen::Index n = problem.q.size();
   FLEXMBS_CHECK(options.initial_r.size() == 0 || options.initial_r.size() == n,
                 "Newton: the initial r must have d n entries");
-  FLEXMBS_CHECK(options.proximal > 0.0, "Newton: the proximal weight must be > 0");
+  FLEXMBS_CHECK(options.proximal > 0.0 && options.min_proximal > 0.0, "Newton: the proximal weights must be > 0");
   Eigen::VectorXd rho(problem.contacts());
   for (int i = 0; i < problem.contacts(); ++i) rho(i) = AlartCurnierRho(problem.W.block(d * i, d * i, d, d));
   const double w_scale = n > 0 && problem.W.diagonal().mean() > 0.0 ? problem.W.diagonal().mean() : 1.0;
   double sigma = options.proximal * w_scale;
+  double sigma_floor = options.min_proximal * w_scale;
 
   FrictionContactSolution s;
   s.r = options.initial_r.size() == n ? options.initial_r : Eigen::VectorXd::Zero(n);
-  GlobalFunction f = Evaluate(problem, rho, s.r);
+  Eigen::VectorXd centre = s.r;
+  ProximalFunction f = Evaluate(problem, rho, sigma, centre, s.r);
+  double merit_at_centre = f.merit;
   s.error = FrictionContactError(problem, s.r);
   while (s.error > options.tolerance && s.iterations < options.max_iterations) {
     ++s.iterations;
-    const Eigen::VectorXd step = Jacobian(problem, rho, f, sigma).partialPivLu().solve(-f.phi);
+    const Eigen::VectorXd step = Jacobian(problem, rho, sigma, f).partialPivLu().solve(-f.phi);
     bool accepted = false;
     double alpha = 1.0;
     for (int halving = 0; halving < 20 && !accepted && step.allFinite(); ++halving, alpha *= 0.5) {
       const Eigen::VectorXd trial = s.r + alpha * step;
-      GlobalFunction trial_f = Evaluate(problem, rho, trial);
+      ProximalFunction trial_f = Evaluate(problem, rho, sigma, centre, trial);
       if (trial_f.merit <= (1.0 - 1e-4 * alpha) * f.merit) {
         s.r = trial;
         f = std::move(trial_f);
         accepted = true;
       }
     }
-    sigma = accepted ? std::max(0.1 * sigma, 1e-12 * w_scale) : 10.0 * sigma;
-    if (accepted) s.error = FrictionContactError(problem, s.r);
+    s.error = FrictionContactError(problem, s.r);
+    // Subproblem solved well enough (or Newton stuck on it): move the centre, adapt sigma.
+    const bool solved = accepted && f.merit <= options.subproblem_reduction * merit_at_centre;
+    if (solved || !accepted) {
+      if (!accepted) sigma_floor = 10.0 * sigma;  // Newton stalls at this sigma: stay above it
+      sigma = solved ? std::max(0.1 * sigma, sigma_floor) : sigma_floor;
+      centre = s.r;
+      f = Evaluate(problem, rho, sigma, centre, s.r);
+      merit_at_centre = f.merit;
+    }
   }
   s.u = problem.W * s.r + problem.q;
   s.converged = s.error <= options.tolerance;

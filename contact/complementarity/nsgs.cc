@@ -9,10 +9,7 @@
 #include "core/error.h"
 
 namespace flexmbs::contact {
-namespace {
-
-// One sweep; returns the sum over contacts of ||r_i^new - r_i^old||^2.
-double Sweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W_t, Eigen::VectorXd& r) {
+double NsgsSweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W_t, Eigen::VectorXd& r) {
   const int d = problem.dimension;
   double change = 0.0;
   for (int i = 0; i < problem.contacts(); ++i) {
@@ -39,8 +36,6 @@ double Sweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W_t, 
   return change;
 }
 
-}  // namespace
-
 FrictionContactSolution SolveFrictionNsgs(const FrictionContactProblem& problem, const NsgsOptions& options) {
   CheckFrictionContact(problem);
   const Eigen::Index n = problem.q.size();
@@ -52,7 +47,7 @@ FrictionContactSolution SolveFrictionNsgs(const FrictionContactProblem& problem,
   double light_tolerance = options.tolerance;
   s.error = FrictionContactError(problem, s.r);
   while (s.error > options.tolerance && s.iterations < options.max_iterations) {
-    const double change = std::sqrt(Sweep(problem, W_t, s.r));
+    const double change = std::sqrt(NsgsSweep(problem, W_t, s.r));
     ++s.iterations;
     const double norm_r = s.r.norm();
     const double light_error = norm_r > 0.0 ? change / norm_r : change;

@@ -71,31 +71,43 @@ GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, do
     for (int k = dimension; k < body_dof; ++k) g.M(body_dof * b + k, body_dof * b + k) = m * (0.1 + 0.2 * (unit(rng) + 1.0));
   }
   for (int c = 0; c < contacts; ++c) {
-    const int b = c % bodies;
+    // Even contacts touch the ground; odd ones rest body a on body b = a + 1 (the last body on the
+    // ground), which sees the same point one unit above its centre. No cycles: lifting body k at
+    // speed bodies - k opens every contact, so the impact problem is feasible.
+    const int a = c % bodies;
+    const int b = c % 2 == 1 && a + 1 < bodies ? a + 1 : -1;
     const int row = dimension * c;
-    const int col = body_dof * b;
     if (dimension == 2) {
-      // frame (n, t); point p below the body's centre; planar velocity of p: v + w x p.
+      // frame (n, t); point p below a's centre; planar velocity of p: v + w x p = v + w perp(p).
       const double tilt = max_tilt * unit(rng);
       const Eigen::Vector2d n(std::sin(tilt), std::cos(tilt));
       const Eigen::Vector2d t(n.y(), -n.x());
       const Eigen::Vector2d p(unit(rng), -1.0 + 0.2 * unit(rng));
-      const Eigen::Vector2d perp(-p.y(), p.x());
-      g.G.block(row, col, 1, 2) = n.transpose();
-      g.G(row, col + 2) = n.dot(perp);
-      g.G.block(row + 1, col, 1, 2) = t.transpose();
-      g.G(row + 1, col + 2) = t.dot(perp);
+      Eigen::Matrix2d C;
+      C << n, t;
+      const auto point_rows = [&](const Eigen::Vector2d& x) {
+        Eigen::Matrix<double, 2, 3> rows;
+        rows << C.transpose(), C.transpose() * Eigen::Vector2d(-x.y(), x.x());
+        return rows;
+      };
+      g.G.block(row, body_dof * a, 2, 3) += point_rows(p);
+      if (b >= 0) g.G.block(row, body_dof * b, 2, 3) -= point_rows(p + Eigen::Vector2d(0.0, 1.0));
     } else {
       const double tilt = max_tilt * (unit(rng) + 1.0) / 2.0;
       const double azimuth = std::numbers::pi * unit(rng);
       const Eigen::Vector3d n(std::sin(tilt) * std::cos(azimuth), std::sin(tilt) * std::sin(azimuth), std::cos(tilt));
       const Eigen::Vector3d t1 = n.unitOrthogonal();
-      const Eigen::Vector3d t2 = n.cross(t1);
       Eigen::Matrix3d C;
-      C << n, t1, t2;
+      C << n, t1, n.cross(t1);
       const Eigen::Vector3d p(unit(rng), unit(rng), -1.0 + 0.2 * unit(rng));
-      g.G.block(row, col, 3, 3) = C.transpose();
-      g.G.block(row, col + 3, 3, 3) = -C.transpose() * Skew(p);
+      // velocity of the point x (from the centre): v + w x x = v - Skew(x) w
+      const auto point_rows = [&](const Eigen::Vector3d& x) {
+        Eigen::Matrix<double, 3, 6> rows;
+        rows << C.transpose(), -C.transpose() * Skew(x);
+        return rows;
+      };
+      g.G.block(row, body_dof * a, 3, 6) += point_rows(p);
+      if (b >= 0) g.G.block(row, body_dof * b, 3, 6) -= point_rows(p + Eigen::Vector3d(0.0, 0.0, 1.0));
     }
   }
   Eigen::VectorXd v_free = Eigen::VectorXd::Zero(dof);

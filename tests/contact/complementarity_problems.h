@@ -24,11 +24,12 @@ struct KnownLcp {
 };
 KnownLcp DegenerateLcp(int n, unsigned seed);
 
-/// A friction-contact problem from rigid bodies resting on the ground: bodies bodies (3 DOF
-/// planar, 6 spatial) of random mass and inertia, each with contacts/bodies contact points on its
-/// underside with normals tilted up to 30 degrees from vertical; W = G M^-1 G^T, q = G v_free with
-/// a free velocity pointing down and sideways. More contact coordinates than DOF (d contacts >
-/// DOF) makes W rank-deficient. G and M are kept to compare the generalised impulse G^T r.
+/// A friction-contact problem from a stack of rigid bodies on the ground: `bodies` bodies (3 DOF
+/// planar, 6 spatial) of random mass and inertia; contact c sits under body c mod bodies, on the
+/// ground for even c and on body c mod bodies + 1 (if any) for odd c, with its normal tilted up to 30 degrees from
+/// vertical; W = G M^-1 G^T, q = G v_free with a free velocity pointing down and sideways. More
+/// contact coordinates than DOF (d contacts > DOF) makes W rank-deficient. G and M are kept to
+/// compare the generalised impulse G^T r.
 struct GeometricProblem {
   FrictionContactProblem problem;
   Eigen::MatrixXd G;  ///< d n x DOF contact Jacobian

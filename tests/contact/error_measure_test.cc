@@ -1,10 +1,14 @@
 #include <cmath>
+#include <cstdio>
+#include <random>
 
 #include <gtest/gtest.h>
 
 #include "contact/complementarity/coulomb_cone.h"
 #include "contact/complementarity/friction_contact_problem.h"
 #include "contact/complementarity/lcp_problem.h"
+#include "contact/complementarity/siconos_solvers.h"
+#include "tests/contact/complementarity_problems.h"
 
 namespace flexmbs::contact {
 namespace {
@@ -45,6 +49,33 @@ TEST(FrictionContactError, IsZeroForStickSlideAndTakeOff) {
   EXPECT_NEAR(FrictionContactError(problem, Eigen::VectorXd::Zero(3)), 0.0, kRoundOff);
   // A wrong answer has a positive error.
   EXPECT_GT(FrictionContactError(problem, r), 0.1);
+}
+
+// |a - b| / b.
+double Relative(double a, double b) { return std::abs(a - b) / b; }
+
+// Our error measures are Siconos' formulas evaluated in another order: they agree to round-off.
+constexpr double kSameFormula = 5e-15;  // measured 4.5e-16 (LCP), 1.6e-16 (2-D), 0 (3-D)
+
+TEST(ErrorMeasures, AgreeWithSiconosAtArbitraryPoints) {
+  std::mt19937 rng(2);
+  std::normal_distribution<double> normal;
+  double worst_lcp = 0.0, worst_fc[2] = {0.0, 0.0};
+  for (int n : {1, 10, 100}) {
+    const LcpProblem lcp = testing::RandomPositiveDefiniteLcp(n, 1);
+    const Eigen::VectorXd z = Eigen::VectorXd::NullaryExpr(n, [&] { return normal(rng); });
+    worst_lcp = std::max(worst_lcp, Relative(LcpError(lcp, z), SiconosLcpError(lcp, z)));
+    for (int d : {2, 3}) {
+      const FrictionContactProblem fc = testing::RigidBodiesOnGround(d, 3, n, 0.3, 1).problem;
+      const Eigen::VectorXd r = Eigen::VectorXd::NullaryExpr(d * n, [&] { return normal(rng); });
+      worst_fc[d - 2] = std::max(worst_fc[d - 2], Relative(FrictionContactError(fc, r), SiconosFrictionContactError(fc, r)));
+    }
+  }
+  std::printf("[measured] error measures against Siconos': LCP %.3g, 2-D %.3g, 3-D %.3g\n", worst_lcp, worst_fc[0],
+              worst_fc[1]);
+  EXPECT_LT(worst_lcp, kSameFormula);
+  EXPECT_LT(worst_fc[0], kSameFormula);
+  EXPECT_LT(worst_fc[1], kSameFormula);
 }
 
 }  // namespace

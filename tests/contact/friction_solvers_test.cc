@@ -1,0 +1,203 @@
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "contact/complementarity/friction_newton.h"
+#include "contact/complementarity/lemke.h"
+#include "contact/complementarity/nsgs.h"
+#include "contact/complementarity/siconos_solvers.h"
+#include "tests/contact/complementarity_problems.h"
+
+namespace flexmbs::contact {
+namespace {
+
+using testing::GeometricProblem;
+using testing::RigidBodiesOnGround;
+
+double Difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / (1.0 + b.norm()); }
+
+void Report(const char* what, double value) { std::printf("[measured] %s: %.3g\n", what, value); }
+
+constexpr double kTolerance = 1e-10;
+
+// Agreement bounds on Difference(), about 10x the largest value measured on this machine (the
+// tests print each measurement as "[measured] ...").
+// Every solver stops at FrictionContactError <= 1e-10, so solutions differ by about that much.
+constexpr double kSingleContact = 1.5e-11;          // measured 1.5e-12 against the analytic r
+constexpr double kRegularAgreement = 2e-8;          // measured 2.0e-9 (u, G^T r and r)
+constexpr double kRankDeficientAgreement = 8e-8;    // measured 8.0e-9 (u), 2.2e-9 (G^T r)
+constexpr double kFrictionlessAgainstLcp = 3e-11;   // measured 2.8e-12: NSGS r_N against Lemke
+
+NsgsOptions Nsgs(int max_iterations = 100000) {
+  NsgsOptions options;
+  options.tolerance = kTolerance;
+  options.max_iterations = max_iterations;
+  return options;
+}
+
+FrictionNewtonOptions Newton(int max_iterations = 200) {
+  FrictionNewtonOptions options;
+  options.tolerance = kTolerance;
+  options.max_iterations = max_iterations;
+  return options;
+}
+
+SiconosOptions Siconos(int max_iterations = 100000) {
+  SiconosOptions options;
+  options.tolerance = kTolerance;
+  options.max_iterations = max_iterations;
+  return options;
+}
+
+// Every solver of the problem's dimension, ours first.
+std::vector<FrictionContactSolution> SolveAll(const FrictionContactProblem& problem) {
+  std::vector<FrictionContactSolution> all{SolveFrictionNsgs(problem, Nsgs()), SolveFrictionNewton(problem, Newton()),
+                                           SiconosFrictionNsgs(problem, Siconos())};
+  if (problem.dimension == 3) {
+    all.push_back(SiconosFrictionAlartCurnier(problem, Siconos(1000)));
+    all.push_back(SiconosFrictionProximal(problem, Siconos(1000)));
+  }
+  return all;
+}
+
+// One contact with W = diag(w_n, w_t[, w_t]): the normal decouples, r_N = max(0, -q_N / w_n); the
+// tangent sticks (r_T = -q_T / w_t) when ||q_T|| <= mu r_N w_t and slides otherwise
+// (r_T = -mu r_N q_T / ||q_T||).
+Eigen::VectorXd AnalyticSingleContact(double w_n, double w_t, const Eigen::VectorXd& q, double mu) {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(q.size());
+  r(0) = std::max(0.0, -q(0) / w_n);
+  const Eigen::VectorXd q_t = q.tail(q.size() - 1);
+  if (q_t.norm() <= mu * r(0) * w_t) {
+    r.tail(q.size() - 1) = -q_t / w_t;
+  } else if (q_t.norm() > 0.0) {
+    r.tail(q.size() - 1) = -mu * r(0) * q_t / q_t.norm();
+  }
+  return r;
+}
+
+TEST(FrictionContact, EverySolverFindsTheAnalyticTakeOffStickAndSlide) {
+  const double w_n = 2.0, w_t = 3.0;
+  double worst = 0.0;
+  for (int d : {2, 3}) {
+    for (double mu : {0.0, 0.3, 1.0}) {
+      // Tangential direction of q: along t1 in the plane, oblique in space.
+      Eigen::VectorXd direction = Eigen::VectorXd::Zero(d - 1);
+      direction(0) = 1.0;
+      if (d == 3) direction << 0.6, -0.8;
+      const double r_n = 0.5;  // q_N = -1
+      // take-off; stick at half the friction limit (mu = 0: no tangential load); slide at 2x + 1.
+      std::vector<Eigen::VectorXd> loads;
+      for (double q_n_t : {0.5 * mu * r_n * w_t, 2.0 * mu * r_n * w_t + 1.0}) {
+        Eigen::VectorXd q(d);
+        q << -1.0, q_n_t * direction;
+        loads.push_back(q);
+      }
+      Eigen::VectorXd take_off(d);
+      take_off << 0.5, direction;
+      loads.push_back(take_off);
+      for (const Eigen::VectorXd& q : loads) {
+        FrictionContactProblem problem{d, Eigen::MatrixXd::Identity(d, d) * w_t, q, Eigen::VectorXd::Constant(1, mu)};
+        problem.W(0, 0) = w_n;
+        const Eigen::VectorXd r_star = AnalyticSingleContact(w_n, w_t, q, mu);
+        for (const FrictionContactSolution& s : SolveAll(problem)) {
+          EXPECT_TRUE(s.converged) << s.message << " d = " << d << " mu = " << mu;
+          worst = std::max(worst, Difference(s.r, r_star));
+        }
+      }
+    }
+  }
+  Report("single contact: all solvers against the analytic r", worst);
+  EXPECT_LT(worst, kSingleContact);
+}
+
+// The largest differences between the converged solvers and the reference on a set of problems.
+struct Agreement {
+  double u = 0.0;        // local velocities
+  double impulse = 0.0;  // generalised impulses G^T r
+  double r = 0.0;        // reactions (regular W only: unique there)
+};
+
+// Every solver on stacks of rigid bodies, mu in {0, 0.3, 1}, two seeds. The reference is the first
+// converged Siconos solver. Each solver's converged flag must match its error; our Newton must
+// converge; our NSGS must converge exactly when Siconos' NSGS does (the same algorithm).
+Agreement CompareOnGeometry(int d, int bodies, int contacts, bool regular) {
+  Agreement worst;
+  int unconverged_nsgs = 0;
+  for (double mu : {0.0, 0.3, 1.0}) {
+    for (unsigned seed = 0; seed < 2; ++seed) {
+      const GeometricProblem g = RigidBodiesOnGround(d, bodies, contacts, mu, seed);
+      const std::vector<FrictionContactSolution> all = SolveAll(g.problem);
+      const std::string where = " d = " + std::to_string(d) + " mu = " + std::to_string(mu) + " seed " +
+                                std::to_string(seed);
+      for (const FrictionContactSolution& s : all) EXPECT_EQ(s.converged, s.error <= kTolerance) << s.message << where;
+      EXPECT_TRUE(all[1].converged) << all[1].message << where;
+      EXPECT_EQ(all[0].converged, all[2].converged) << all[0].message << " / " << all[2].message << where;
+      unconverged_nsgs += all[0].converged ? 0 : 1;
+      const auto reference = std::find_if(all.begin() + 2, all.end(), [](const auto& s) { return s.converged; });
+      if (reference == all.end()) {
+        ADD_FAILURE() << "no Siconos solver converged" << where;
+        continue;
+      }
+      for (const FrictionContactSolution& s : all) {
+        if (!s.converged) continue;
+        worst.u = std::max(worst.u, Difference(s.u, reference->u));
+        worst.impulse =
+            std::max(worst.impulse, Difference(g.G.transpose() * s.r, g.G.transpose() * reference->r));
+        if (regular) worst.r = std::max(worst.r, Difference(s.r, reference->r));
+      }
+    }
+  }
+  const std::string what = std::to_string(d) + "-D, " + std::to_string(contacts) + " contacts on " +
+                           std::to_string(bodies) + " bodies: ";
+  Report((what + "u against Siconos").c_str(), worst.u);
+  Report((what + "G^T r against Siconos").c_str(), worst.impulse);
+  if (regular) Report((what + "r against Siconos").c_str(), worst.r);
+  Report((what + "NSGS runs without convergence (ours and Siconos')").c_str(), unconverged_nsgs);
+  return worst;
+}
+
+TEST(FrictionContact, SolversAgreeWithSiconosOnRegularDelassusOperators) {
+  for (const Agreement& a : {CompareOnGeometry(2, 10, 10, true), CompareOnGeometry(3, 10, 10, true)}) {
+    EXPECT_LT(a.u, kRegularAgreement);
+    EXPECT_LT(a.impulse, kRegularAgreement);
+    EXPECT_LT(a.r, kRegularAgreement);
+  }
+}
+
+TEST(FrictionContact, SolversAgreeWithSiconosOnRankDeficientDelassusOperators) {
+  for (const Agreement& a : {CompareOnGeometry(2, 2, 20, false), CompareOnGeometry(3, 3, 20, false)}) {
+    EXPECT_LT(a.u, kRankDeficientAgreement);
+    EXPECT_LT(a.impulse, kRankDeficientAgreement);
+  }
+}
+
+TEST(FrictionContact, FrictionlessPlanarContactIsTheNormalLcp) {
+  const GeometricProblem g = RigidBodiesOnGround(2, 10, 10, 0.0, 4);
+  std::vector<int> normal;
+  for (int i = 0; i < g.problem.contacts(); ++i) normal.push_back(2 * i);
+  const LcpSolution lcp = SolveLcpLemke({g.problem.W(normal, normal), g.problem.q(normal)});
+  ASSERT_TRUE(lcp.converged) << lcp.message;
+  const FrictionContactSolution nsgs = SolveFrictionNsgs(g.problem, Nsgs());
+  ASSERT_TRUE(nsgs.converged) << nsgs.message;
+  Report("mu = 0 planar NSGS r_N against Lemke on W_NN", Difference(nsgs.r(normal), lcp.z));
+  EXPECT_LT(Difference(nsgs.r(normal), lcp.z), kFrictionlessAgainstLcp);
+}
+
+TEST(FrictionContact, NonConvergenceIsReported) {
+  const GeometricProblem g = RigidBodiesOnGround(3, 2, 20, 0.3, 1);
+  const FrictionContactSolution nsgs = SolveFrictionNsgs(g.problem, Nsgs(2));
+  EXPECT_FALSE(nsgs.converged);
+  EXPECT_EQ(nsgs.iterations, 2);
+  EXPECT_NE(nsgs.message.find("no convergence"), std::string::npos) << nsgs.message;
+  const FrictionContactSolution newton = SolveFrictionNewton(g.problem, Newton(1));
+  EXPECT_FALSE(newton.converged);
+  EXPECT_NE(newton.message.find("no convergence"), std::string::npos) << newton.message;
+  const FrictionContactSolution siconos = SiconosFrictionNsgs(g.problem, Siconos(2));
+  EXPECT_FALSE(siconos.converged) << siconos.message;
+}
+
+}  // namespace
+}  // namespace flexmbs::contact
