@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "contact/laws/law_checks.h"
@@ -77,6 +78,20 @@ NormalForce Evaluate(const NormalLaw& law, double penetration, double penetratio
   if (!(force > 0.0)) return {};
   // d(k delta^n)/d delta = n k delta^(n-1) = n spring / delta.
   return {force, law.exponent * spring / penetration * hysteresis, law.hysteresis * spring + law.damping};
+}
+
+double ImpactRestitution(const NormalLaw& law, double impact_speed) {
+  FLEXMBS_CHECK(law.damping == 0.0, "ImpactRestitution: a linear dashpot has no closed form");
+  const double a = law.hysteresis * impact_speed;
+  if (a == 0.0) return 1.0;
+  // g(e) = -a e - ln(1 - a e) is increasing on (0, min(1, 1/a)); bisection to round-off.
+  const double target = a - std::log1p(a);
+  double lo = 0.0, hi = std::min(1.0, (1.0 - 1e-15) / a);
+  for (int k = 0; k < 200 && hi - lo > 1e-16; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (-a * mid - std::log1p(-a * mid) > target ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 double ElasticEnergy(const NormalLaw& law, double penetration) {

@@ -68,6 +68,13 @@ NormalLaw FloresLaw(double stiffness, double restitution, double impact_speed);
 /// derivatives for delta <= 0 and where the law would pull.
 NormalForce Evaluate(const NormalLaw& law, double penetration, double penetration_rate);
 
+/// The restitution e_eff = v_out / v0 the law gives on a single-DOF impact at approach speed
+/// v0 > 0 [m/s], exactly: m v dv / (1 + chi v) = -k delta^n d delta integrates over the impact
+/// (delta from 0 back to 0) to chi v_out - ln(1 + chi v_out) = chi v0 - ln(1 + chi v0) with
+/// v_out = -e_eff v0, a function of chi v0 alone (the law never clips on the way, since
+/// 1 + chi v > 0 throughout). 1 for Hertz. Precondition: no linear dashpot (damping == 0).
+double ImpactRestitution(const NormalLaw& law, double impact_speed);
+
 /// The energy stored in the law's spring, k delta^(n+1) / (n+1) [J] for delta > 0, else 0.
 double ElasticEnergy(const NormalLaw& law, double penetration);
 
