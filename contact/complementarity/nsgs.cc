@@ -9,7 +9,11 @@
 #include "core/error.h"
 
 namespace flexmbs::contact {
-double NsgsSweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W_t, Eigen::VectorXd& r) {
+namespace {
+
+// One sweep over the contacts in order, updating r in place; W_t is W transposed (its column
+// blocks are W's row blocks, contiguous). Returns sum_i ||change of r_i||^2.
+double Sweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W_t, Eigen::VectorXd& r) {
   const int d = problem.dimension;
   double change = 0.0;
   for (int i = 0; i < problem.contacts(); ++i) {
@@ -36,6 +40,8 @@ double NsgsSweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W
   return change;
 }
 
+}  // namespace
+
 FrictionContactSolution SolveFrictionNsgs(const FrictionContactProblem& problem, const NsgsOptions& options) {
   CheckFrictionContact(problem);
   const Eigen::Index n = problem.q.size();
@@ -47,7 +53,7 @@ FrictionContactSolution SolveFrictionNsgs(const FrictionContactProblem& problem,
   double light_tolerance = options.tolerance;
   s.error = FrictionContactError(problem, s.r);
   while (s.error > options.tolerance && s.iterations < options.max_iterations) {
-    const double change = std::sqrt(NsgsSweep(problem, W_t, s.r));
+    const double change = std::sqrt(Sweep(problem, W_t, s.r));
     ++s.iterations;
     const double norm_r = s.r.norm();
     const double light_error = norm_r > 0.0 ? change / norm_r : change;

@@ -14,10 +14,6 @@ struct NsgsOptions {
   Eigen::VectorXd initial_r;  ///< warm start, d n entries; empty: r = 0
 };
 
-/// One NSGS sweep over the contacts in order (see SolveFrictionNsgs), updating r in place; W_t is
-/// W transposed (its column blocks are W's row blocks, contiguous). Returns sum_i ||change of r_i||^2.
-double NsgsSweep(const FrictionContactProblem& problem, const Eigen::MatrixXd& W_t, Eigen::VectorXd& r);
-
 /// Non-smooth Gauss-Seidel (Moreau 1994; Jean 1999, "The non-smooth contact dynamics method"):
 /// sweeps the contacts in order, solving each contact's problem
 ///   u_i = W_ii r_i + (q_i + sum_{j != i} W_ij r_j)
