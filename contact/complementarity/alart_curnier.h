@@ -2,12 +2,9 @@
 
 #include <Eigen/Core>
 
-namespace flexmbs::contact {
+#include "contact/complementarity/friction_contact_problem.h"
 
-/// A vector of one contact's local coordinates (d = 2 or 3 entries, no heap allocation).
-using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
-/// A d x d matrix of one contact (d = 2 or 3, no heap allocation).
-using LocalMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, 3>;
+namespace flexmbs::contact {
 
 /// One contact's Alart-Curnier function and an element of its generalised Jacobian.
 struct AlartCurnierContact {

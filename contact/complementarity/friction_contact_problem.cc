@@ -21,8 +21,8 @@ void CheckFrictionContact(const FrictionContactProblem& problem) {
                 "friction contact: W, q and mu must be finite");
 }
 
-double ContactNaturalMapErrorSquared(const Eigen::VectorXd& r_i, const Eigen::VectorXd& u_i, double mu) {
-  Eigen::VectorXd x = r_i - u_i;
+double ContactNaturalMapErrorSquared(const LocalVector& r_i, const LocalVector& u_i, double mu) {
+  LocalVector x = r_i - u_i;
   x(0) -= mu * u_i.tail(u_i.size() - 1).norm();
   ProjectOnCoulombCone(x, mu);
   return (r_i - x).squaredNorm();

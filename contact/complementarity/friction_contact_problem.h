@@ -4,6 +4,11 @@
 
 namespace flexmbs::contact {
 
+/// A vector of one contact's local coordinates (d = 2 or 3 entries, no heap allocation).
+using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
+/// A d x d matrix of one contact (d = 2 or 3, no heap allocation).
+using LocalMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, 3>;
+
 /// The friction-contact problem in Siconos' FrictionContact convention (Acary & Brogliato 2008,
 /// §13.4): n contacts in dimension d = 2 (planar: normal, tangent) or 3 (normal, two tangents),
 /// each contact's local coordinates contiguous with the normal first. Find reactions r and local
@@ -34,6 +39,6 @@ double FrictionContactError(const FrictionContactProblem& problem, const Eigen::
 
 /// ||r_i - P_K(r_i - û_i)||^2 for one contact: its term in FrictionContactError. r_i and u_i have
 /// d entries.
-double ContactNaturalMapErrorSquared(const Eigen::VectorXd& r_i, const Eigen::VectorXd& u_i, double mu);
+double ContactNaturalMapErrorSquared(const LocalVector& r_i, const LocalVector& u_i, double mu);
 
 }  // namespace flexmbs::contact

@@ -24,8 +24,9 @@ Eigen::Vector2d SolvePlanarContact(const Eigen::Matrix2d& W, const Eigen::Vector
   if (q(0) >= 0.0) return Eigen::Vector2d::Zero();
   std::array<Eigen::Vector2d, 3> candidates;
   int count = 0;
-  const Eigen::Vector2d stick = W.fullPivLu().solve(-q);
-  if (stick.allFinite()) {
+  const double det = W(0, 0) * W(1, 1) - W(0, 1) * W(1, 0);
+  if (std::abs(det) > kSlack * W.squaredNorm()) {
+    const Eigen::Vector2d stick = Eigen::Vector2d(W(0, 1) * q(1) - W(1, 1) * q(0), W(1, 0) * q(0) - W(0, 0) * q(1)) / det;
     if (InCone(stick, mu)) return stick;
     candidates[count++] = stick;
   }
