@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "contact/geometry/point_contact.h"
 #include "core/error.h"
 #include "mbs/multibody_system.h"
 #include "mbs/simulation_error.h"
@@ -37,9 +38,11 @@ ContactPoint SpherePlaneContact::Geometry(const MultibodySystem& system, const C
   ContactPoint point;
   point.a = system.MarkerState(sphere_, y);
   point.b = system.MarkerState(plane_, y);
-  point.n_W = point.b.R_WM.col(2);
-  point.penetration = radius_ - point.n_W.dot(point.a.p_WM_W - point.b.p_WM_W);
-  point.p_Wc_W = point.a.p_WM_W - radius_ * point.n_W;
+  const contact::PointContactKinematics kinematics =
+      contact::SpherePlane({point.a.p_WM_W, radius_}, {point.b.p_WM_W, point.b.R_WM.col(2)});
+  point.n_W = kinematics.n_W;
+  point.penetration = -kinematics.g_N;
+  point.p_Wc_W = kinematics.p_WA_W;  // the sphere's lowest point
   return point;
 }
 
@@ -67,14 +70,16 @@ ContactPoint SphereSphereContact::Geometry(double t, const MultibodySystem& syst
   ContactPoint point;
   point.a = system.MarkerState(sphere1_, y);
   point.b = system.MarkerState(sphere2_, y);
-  const Eigen::Vector3d d = point.a.p_WM_W - point.b.p_WM_W;
-  const double length = d.norm();
-  if (!(length > 0.0)) {
+  contact::PointContactKinematics kinematics;
+  try {
+    kinematics = contact::SphereSphere({point.a.p_WM_W, radius1_}, {point.b.p_WM_W, radius2_});
+  } catch (const contact::DegenerateContactError&) {
     throw SimulationError(t, fmt::format("t = {:.9g} s: sphere-sphere contact '{}': the centres meet (no normal)", t, name_));
   }
-  point.n_W = d / length;
-  point.penetration = radius1_ + radius2_ - length;
-  point.p_Wc_W = point.b.p_WM_W + (radius2_ - 0.5 * point.penetration) * point.n_W;
+  point.n_W = kinematics.n_W;
+  point.penetration = -kinematics.g_N;
+  point.p_Wc_W = 0.5 * (kinematics.p_WA_W + kinematics.p_WB_W);  // the middle of the overlap
+  const double length = (point.a.p_WM_W - point.b.p_WM_W).norm();
   point.n_turning = (Eigen::Matrix3d::Identity() - point.n_W * point.n_W.transpose()) / length;
   return point;
 }

@@ -14,7 +14,7 @@ namespace flexmbs::mbs {
 
 /// A sphere of radius r [m] centred on marker S against the plane through the origin of marker
 /// P with outward normal n = P's z axis (either marker may be the ground). Penetration
-/// delta = r - n . (p_S - p_P) [m]; contact point c = p_S - r n. The sphere takes
+/// delta = r - n . (p_S - p_P) [m]; contact point c = p_S - r n (contact::SpherePlane). The sphere takes
 /// F_N(delta, delta') n + F_T at c, the plane's body the opposite (CompliantContact); the
 /// friction's moment about the sphere's centre is (c - p_S) x F_T. Potential energy: the
 /// normal law's spring energy.
@@ -46,7 +46,7 @@ class SpherePlaneContact final : public ForceElement {
 
 /// Two spheres of radii r1, r2 [m] centred on markers S1 and S2 (either may be the ground). With
 /// l = |p_S1 - p_S2| and n = (p_S1 - p_S2) / l, the penetration is delta = r1 + r2 - l and the
-/// contact point the middle of the overlap, c = p_S2 + (r2 - delta / 2) n. Sphere 1 takes
+/// contact point the middle of the overlap, c = p_S2 + (r2 - delta / 2) n (contact::SphereSphere). Sphere 1 takes
 /// F_N n + F_T at c, sphere 2 the opposite (CompliantContact). Throws SimulationError if the
 /// centres meet (no normal).
 class SphereSphereContact final : public ForceElement {

@@ -4,10 +4,12 @@
 // form from its first integral (contact::ImpactRestitution: a function of chi v0 alone).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <numbers>
+#include <utility>
 
 #include "contact/laws/hertz.h"
 #include "contact/laws/normal_law.h"
@@ -97,28 +99,32 @@ TEST(Restitution, HertzIsElasticAndLastsHertzsImpactTime) {
               impact.duration, impact.duration / t_c - 1.0);
 }
 
+constexpr std::array kRestitutions{1.0, 0.99, 0.95, 0.9, 0.8, 0.7, 0.5, 0.3, 0.2, 0.1};
+
 // Hunt & Crossley and Lankarani & Nikravesh derived chi to first order in 1 - e: near e = 1
 // they give e. Measured |e_eff - e|: HC 0.0001 / 0.0024 / 0.0090 at e = 0.99 / 0.95 / 0.9,
-// LN 0.0001 / 0.0035 / 0.0132; tolerance 0.1 (1 - e) + 0.004 (at 0.9: 0.014).
-TEST(Restitution, HuntCrossleyAndLankaraniNikraveshHoldNearOne) {
-  for (const double e : {0.99, 0.95, 0.9}) {
-    const double tolerance = 0.1 * (1.0 - e) + 0.004;
-    EXPECT_NEAR(MeasuredRestitution("hunt_crossley", kHuntCrossley, e), e, tolerance);
-    EXPECT_NEAR(MeasuredRestitution("lankarani_nikravesh", kLankaraniNikravesh, e), e, tolerance);
+// LN 0.0001 / 0.0035 / 0.0132; tolerance 0.1 (1 - e) + 0.004 (at 0.9: 0.014). Below, both
+// overestimate e, more as e falls (HC 0.66, LN 0.73 at e = 0.5; 0.52 and 0.67 at 0.1): the
+// papers' stated limitation, asserted as e_eff > e.
+TEST(Restitution, HuntCrossleyAndLankaraniNikraveshHoldNearOneOnly) {
+  for (const double e : kRestitutions) {
+    for (const auto& [name, make] : {std::pair{"hunt_crossley", kHuntCrossley},
+                                     std::pair{"lankarani_nikravesh", kLankaraniNikravesh}}) {
+      const double measured = MeasuredRestitution(name, make, e);
+      if (e >= 0.9) {
+        EXPECT_NEAR(measured, e, 0.1 * (1.0 - e) + 0.004) << name;
+      } else {
+        EXPECT_GT(measured, e + 0.03) << name;
+      }
+    }
   }
-}
-
-// Away from 1 both overestimate e (more so as e falls): the papers' limitation, shown.
-TEST(Restitution, HuntCrossleyAndLankaraniNikraveshDriftAwayFromOne) {
-  EXPECT_GT(MeasuredRestitution("hunt_crossley", kHuntCrossley, 0.5), 0.6);
-  EXPECT_GT(MeasuredRestitution("lankarani_nikravesh", kLankaraniNikravesh, 0.5), 0.7);
 }
 
 // Flores et al. 2011 claim their chi holds over the whole range of e. Measured |e_eff - e| at
 // most 0.0445 (at e = 0.2) for e in [0.1, 1]; tolerance 0.05.
 TEST(Restitution, FloresHoldsForAnyRestitution) {
   double worst = 0.0;
-  for (const double e : {1.0, 0.95, 0.9, 0.8, 0.7, 0.5, 0.3, 0.2, 0.1}) {
+  for (const double e : kRestitutions) {
     const double measured = MeasuredRestitution("flores", kFlores, e);
     EXPECT_NEAR(measured, e, 0.05);
     worst = std::max(worst, std::abs(measured - e));
