@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <utility>
 
 #include "core/error.h"
@@ -17,6 +18,17 @@ template <typename Items, typename NameOf>
 void RequireNewName(const Items& items, const std::string& name, std::string_view kind, NameOf name_of) {
   for (const auto& item : items) {
     if (name_of(item) == name) throw InputError(fmt::format("{} '{}' defined twice", kind, name));
+  }
+}
+
+/// Throws InputError "<kind> '<name>': body index <b> is not in the system" for a marker on a
+/// body outside [0, num_bodies) (the ground is allowed).
+void RequireBodiesInSystem(std::initializer_list<const MarkerRef*> markers, int num_bodies, std::string_view kind,
+                           const std::string& name) {
+  for (const MarkerRef* marker : markers) {
+    if (marker->body != kGround && (marker->body < 0 || marker->body >= num_bodies)) {
+      throw InputError(fmt::format("{} '{}': body index {} is not in the system", kind, name, marker->body));
+    }
   }
 }
 
@@ -38,11 +50,7 @@ int MultibodySystem::AddBody(std::unique_ptr<Body> body) {
 
 int MultibodySystem::AddJoint(Joint joint) {
   RequireNewName(joints_, joint.name(), "joint", [](const Joint& j) { return j.name(); });
-  for (const MarkerRef* marker : {&joint.marker_i(), &joint.marker_j()}) {
-    if (marker->body != kGround && (marker->body < 0 || marker->body >= num_bodies())) {
-      throw InputError(fmt::format("joint '{}': body index {} is not in the system", joint.name(), marker->body));
-    }
-  }
+  RequireBodiesInSystem({&joint.marker_i(), &joint.marker_j()}, num_bodies(), "joint", joint.name());
   constraint_offsets_.push_back(num_constraints_);
   num_constraints_ += joint.num_equations();
   joints_.push_back(std::move(joint));
@@ -54,6 +62,14 @@ int MultibodySystem::AddForceElement(std::unique_ptr<ForceElement> element) {
   RequireNewName(force_elements_, element->name(), "force element", [](const auto& e) { return e->name(); });
   force_elements_.push_back(std::move(element));
   return num_force_elements() - 1;
+}
+
+int MultibodySystem::AddUnilateralContact(std::unique_ptr<UnilateralContact> contact) {
+  FLEXMBS_CHECK(contact != nullptr, "MultibodySystem::AddUnilateralContact: null contact");
+  RequireNewName(unilateral_contacts_, contact->name(), "contact", [](const auto& c) { return c->name(); });
+  RequireBodiesInSystem({&contact->marker_a(), &contact->marker_b()}, num_bodies(), "contact", contact->name());
+  unilateral_contacts_.push_back(std::move(contact));
+  return num_unilateral_contacts() - 1;
 }
 
 int MultibodySystem::FindBody(std::string_view name) const {

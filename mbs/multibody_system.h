@@ -14,6 +14,7 @@
 #include "mbs/force_element.h"
 #include "mbs/joint.h"
 #include "mbs/marker_ref.h"
+#include "mbs/unilateral_contact.h"
 
 namespace flexmbs::mbs {
 
@@ -54,6 +55,9 @@ class MultibodySystem {
   int AddJoint(Joint joint);
   /// Adds a force element; returns its index. Throws InputError if its name is taken.
   int AddForceElement(std::unique_ptr<ForceElement> element);
+  /// Adds a unilateral contact (mbs/unilateral_contact.h; Moreau-Jean time stepping only, the
+  /// ODE integrators see none); returns its index. Throws InputError if its name is taken.
+  int AddUnilateralContact(std::unique_ptr<UnilateralContact> contact);
 
   /// The index of body `name`, or -1.
   int FindBody(std::string_view name) const;
@@ -66,6 +70,10 @@ class MultibodySystem {
   const Joint& joint(int k) const { return joints_.at(static_cast<std::size_t>(k)); }
   int num_force_elements() const { return static_cast<int>(force_elements_.size()); }
   const ForceElement& force_element(int k) const { return *force_elements_.at(static_cast<std::size_t>(k)); }
+  int num_unilateral_contacts() const { return static_cast<int>(unilateral_contacts_.size()); }
+  const UnilateralContact& unilateral_contact(int k) const {
+    return *unilateral_contacts_.at(static_cast<std::size_t>(k));
+  }
   const Eigen::Vector3d& gravity() const { return g_W_; }
   const ConstraintSettings& constraint_settings() const { return settings_; }
   void set_constraint_settings(const ConstraintSettings& settings) { settings_ = settings; }
@@ -153,6 +161,7 @@ class MultibodySystem {
   std::vector<std::unique_ptr<Body>> bodies_;
   std::vector<Joint> joints_;
   std::vector<std::unique_ptr<ForceElement>> force_elements_;
+  std::vector<std::unique_ptr<UnilateralContact>> unilateral_contacts_;
   std::vector<Eigen::Index> position_offsets_, velocity_offsets_, constraint_offsets_;
   std::vector<Eigen::Index> dropped_constraints_;
   Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_constraints_ = 0;

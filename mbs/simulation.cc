@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "mbs/constraint_solver.h"
 #include "mbs/kkt_newton_solver.h"
+#include "mbs/moreau_jean_simulation.h"
 #include "mbs/simulation_error.h"
 #include "mbs/system_jacobian.h"
 
@@ -42,17 +43,6 @@ double BaumgarteFrequency(const SimulationOptions& options) {
   return 1.0 / h;
 }
 
-// The output times: start_time + k output_interval, then end_time (a last interval shorter than
-// 1e-9 output intervals is merged into the one before).
-std::vector<double> OutputTimes(const SimulationOptions& options) {
-  std::vector<double> times;
-  const double span = options.end_time - options.start_time;
-  const long count = static_cast<long>(std::ceil(span / options.output_interval - 1e-9));
-  for (long k = 1; k < count; ++k) times.push_back(options.start_time + static_cast<double>(k) * options.output_interval);
-  times.push_back(options.end_time);
-  return times;
-}
-
 /// The implicit method's sparse Newton solve (kkt_newton_solver.h) for Simulate: a SimulationError
 /// of the model's own evaluation is already explained (as from the other callbacks).
 class SimulationNewtonSolver final : public OdeNewtonSolver {
@@ -77,13 +67,29 @@ class SimulationNewtonSolver final : public OdeNewtonSolver {
 
 }  // namespace
 
+std::vector<double> OutputTimes(const SimulationOptions& options) {
+  std::vector<double> times;
+  const double span = options.end_time - options.start_time;
+  const long count = static_cast<long>(std::ceil(span / options.output_interval - 1e-9));
+  for (long k = 1; k < count; ++k) times.push_back(options.start_time + static_cast<double>(k) * options.output_interval);
+  times.push_back(options.end_time);
+  return times;
+}
+
 SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
-                              const OutputCallback& output) {
+                              const OutputCallback& output, const ContactOutputCallback& contact_output) {
   const auto wall_start = std::chrono::steady_clock::now();
   CheckOptions(options);
   if (y0.size() != system.state_size()) {
     throw InputError(fmt::format("simulation: the initial state has {} entries, the system {}", y0.size(),
                                  system.state_size()));
+  }
+  if (options.moreau_jean) return SimulateMoreauJean(system, options, std::move(y0), output, contact_output);
+  if (system.num_unilateral_contacts() > 0) {
+    throw InputError(fmt::format("simulation: contact '{}' is unilateral, which only method moreau_jean integrates "
+                                 "(compliant contact for explicit and implicit: force elements sphere_plane_contact, "
+                                 "sphere_sphere_contact)",
+                                 system.unilateral_contact(0).name()));
   }
   SimulationStatistics statistics;
   statistics.baumgarte_frequency = BaumgarteFrequency(options);

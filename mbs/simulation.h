@@ -5,8 +5,11 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
+#include <vector>
 
 #include "mbs/constraint_projection.h"
+#include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
 
@@ -26,6 +29,9 @@ struct SimulationOptions {
   double singular_pivot = 1e-10;
   ProjectionOptions projection;
   ConsistencyOptions initial_conditions;
+  /// Set: Moreau-Jean time stepping (mbs/moreau_jean.h, the system's unilateral contacts) instead
+  /// of the ODE integrator, whose settings are then unused.
+  std::optional<MoreauJeanOptions> moreau_jean;
 };
 
 /// What a run did.
@@ -42,12 +48,17 @@ struct SimulationStatistics {
   double dropped_row_violation = 0.0;
   double dropped_row_limit_share = 0.0;
   double baumgarte_frequency = 0.0;   ///< the omega_B used [rad/s]
+  MoreauJeanStatistics moreau_jean;   ///< Moreau-Jean runs only (integrator.steps counts its steps too)
   double wall_seconds = 0.0;
 };
 
 /// Called at every output time with the state y and the multipliers lambda (per joint in joint
 /// order; MultibodySystem::ConstraintLoad turns them into loads).
 using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda)>;
+
+/// The output times of a run: start_time + k output_interval, then end_time (a last interval
+/// shorter than 1e-9 output intervals is merged into the one before).
+std::vector<double> OutputTimes(const SimulationOptions& options);
 
 /// Integrates `system` from y0 at options.start_time to options.end_time; the implicit method
 /// solves its Newton systems as options.integrator.newton says, sparse by KktNewtonSolver
@@ -56,8 +67,10 @@ using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, co
 /// initial state (MakeConsistent). Throws InputError for bad options or inconsistent initial
 /// conditions, SimulationError (with the time) when the integration fails; a failure near a
 /// singular configuration is reported with the joints of the loop, a dropped row that stops
-/// holding as a change of the redundancy (DroppedRowWatch, after every projection).
+/// holding as a change of the redundancy (DroppedRowWatch, after every projection). With
+/// options.moreau_jean the run is SimulateMoreauJean's (mbs/moreau_jean_simulation.h), which also
+/// calls contact_output; without it a system with unilateral contacts is an InputError.
 SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
-                              const OutputCallback& output);
+                              const OutputCallback& output, const ContactOutputCallback& contact_output = {});
 
 }  // namespace flexmbs::mbs

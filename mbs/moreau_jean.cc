@@ -1,0 +1,259 @@
+#include "mbs/moreau_jean.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "contact/complementarity/friction_contact_problem.h"
+#include "contact/complementarity/lcp_problem.h"
+#include "contact/complementarity/lemke.h"
+#include "contact/complementarity/nsgs.h"
+#include "core/error.h"
+#include "mbs/simulation_error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+/// The smooth part of a step: the factorised KKT matrix [A G^T; G 0] over the kept joint rows and
+/// the free velocity increment with its joint impulses.
+struct SmoothStep {
+  Eigen::FullPivLU<MatrixXd> kkt;
+  std::vector<Index> kept;
+  VectorXd dv_free;       ///< v_free - v_k
+  VectorXd impulse_free;  ///< Lambda of the free step (kept rows) [N s]
+};
+
+/// Solves the KKT system for right-hand sides [rhs_v; rhs_c]: the velocity parts and Lambda (the
+/// second block of the solution with its sign turned: A dv = rhs_v + G^T Lambda).
+void SolveKkt(const SmoothStep& step, Index nu, const MatrixXd& rhs, MatrixXd* dv, MatrixXd* impulse) {
+  const MatrixXd solution = step.kkt.solve(rhs);
+  *dv = solution.topRows(nu);
+  *impulse = -solution.bottomRows(solution.rows() - nu);
+}
+
+SmoothStep SolveSmoothStep(const MultibodySystem& system, double t, double h, double theta, const ConstVectorRef& y,
+                           const VectorXd& u_dot_previous) {
+  const Index nu = system.num_velocities();
+  const auto v_k = y.tail(nu);
+  MatrixXd A = MatrixXd::Zero(nu, nu), H_x = MatrixXd::Zero(nu, nu), H_u = MatrixXd::Zero(nu, nu);
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    const Index offset = system.velocity_offset(b), n = system.body(b).num_velocities();
+    A.block(offset, offset, n, n) = system.BodyMassMatrix(b, y);
+    system.body(b).AddForceJacobian(system.BodyPositions(y, b), system.BodyVelocities(y, b),
+                                    u_dot_previous.segment(offset, n), system.gravity(), H_x.block(offset, offset, n, n),
+                                    H_u.block(offset, offset, n, n));
+  }
+  for (int k = 0; k < system.num_force_elements(); ++k) system.force_element(k).AddForceJacobian(t, system, y, H_x, H_u);
+  A -= h * theta * H_u + h * h * theta * theta * H_x;
+  const VectorXd rhs_v = h * (system.Forces(t + theta * h, y) + h * theta * H_x * v_k);
+
+  SmoothStep step;
+  step.kept = system.KeptConstraints();
+  const Index m = static_cast<Index>(step.kept.size());
+  const SystemConstraints c = system.Constraints(t + h, y);
+  MatrixXd kkt = MatrixXd::Zero(nu + m, nu + m);
+  kkt.topLeftCorner(nu, nu) = A;
+  VectorXd rhs(nu + m);
+  rhs.head(nu) = rhs_v;
+  for (Index r = 0; r < m; ++r) {
+    const Index row = step.kept[static_cast<std::size_t>(r)];
+    kkt.block(nu + r, 0, 1, nu) = c.G.row(row);
+    kkt.block(0, nu + r, nu, 1) = c.G.row(row).transpose();
+    rhs(nu + r) = -c.g_t(row) - c.G.row(row).dot(v_k);
+  }
+  step.kkt.compute(kkt);
+  if (!step.kkt.isInvertible()) {
+    throw SimulationError(t, fmt::format("t = {:.9g} s: Moreau-Jean step: the KKT matrix of the masses and the {} kept "
+                                         "joint rows is singular (rank {} of {})",
+                                         t, m, step.kkt.rank(), nu + m));
+  }
+  MatrixXd dv, impulse;
+  SolveKkt(step, nu, rhs, &dv, &impulse);
+  VectorXd h_a(nu);
+  if (system.AccelerationDependentForces(y, dv / h, h_a)) {
+    rhs.head(nu) += h * h_a;
+    SolveKkt(step, nu, rhs, &dv, &impulse);
+  }
+  step.dv_free = dv;
+  step.impulse_free = impulse;
+  return step;
+}
+
+/// The active contacts' local problem: H (3 per contact: W_N, W_T) and their restitution terms.
+struct ActiveContacts {
+  std::vector<int> index;  ///< contact indices of the system
+  MatrixXd H;              ///< 3 n_a x num_velocities()
+  VectorXd restitution_term;  ///< e U_N,k per active contact
+  VectorXd mu;
+};
+
+/// The index set: contacts whose gap predicted half a step ahead is closed,
+/// g_N(x_k) + h/2 U_N,k <= 0 (Siconos' MoreauJeanOSI::addInteractionInIndexSet, gamma = 1/2), with
+/// their rows of H, e U_N,k and mu.
+ActiveContacts FindActiveContacts(const MultibodySystem& system,
+                                  const std::vector<UnilateralContactKinematics>& kinematics, double h,
+                                  const VectorXd& v_k) {
+  ActiveContacts active;
+  for (std::size_t k = 0; k < kinematics.size(); ++k) {
+    if (kinematics[k].g_N + 0.5 * h * kinematics[k].W_N.dot(v_k) <= 0.0) active.index.push_back(static_cast<int>(k));
+  }
+  const Index n_a = static_cast<Index>(active.index.size());
+  active.H.resize(3 * n_a, v_k.size());
+  active.restitution_term.resize(n_a);
+  active.mu.resize(n_a);
+  for (Index i = 0; i < n_a; ++i) {
+    const int k = active.index[static_cast<std::size_t>(i)];
+    const UnilateralContactKinematics& c = kinematics[static_cast<std::size_t>(k)];
+    active.H.row(3 * i) = c.W_N;
+    active.H.middleRows(3 * i + 1, 2) = c.W_T;
+    active.restitution_term(i) = system.unilateral_contact(k).law().restitution * c.W_N.dot(v_k);
+    active.mu(i) = system.unilateral_contact(k).law().friction;
+  }
+  return active;
+}
+
+/// The impulses P (3 per contact: normal, t1, t2) of U = W P + q: frictionless (every mu = 0) the
+/// LCP (W_NN, q_N) by Lemke, otherwise the friction-contact problem (d = 3) by NSGS.
+contact::SolveStatus SolveImpulses(const MatrixXd& W, const VectorXd& q, const VectorXd& mu,
+                                   const MoreauJeanOptions& options, VectorXd* P) {
+  const Index n_a = mu.size();
+  P->setZero(3 * n_a);
+  if (mu.maxCoeff() == 0.0) {
+    contact::LcpProblem lcp{MatrixXd(n_a, n_a), VectorXd(n_a)};
+    for (Index i = 0; i < n_a; ++i) {
+      lcp.q(i) = q(3 * i);
+      for (Index j = 0; j < n_a; ++j) lcp.M(i, j) = W(3 * i, 3 * j);
+    }
+    contact::LemkeOptions lemke;
+    lemke.tolerance = options.solver_tolerance;
+    contact::LcpSolution solution = contact::SolveLcpLemke(lcp, lemke);
+    for (Index i = 0; i < n_a; ++i) (*P)(3 * i) = solution.z(i);
+    solution.message = "LCP by Lemke: " + solution.message;
+    return solution;
+  }
+  contact::NsgsOptions nsgs;
+  nsgs.tolerance = options.solver_tolerance;
+  nsgs.max_iterations = options.solver_max_iterations;
+  contact::FrictionContactSolution solution = contact::SolveFrictionNsgs({3, W, q, mu}, nsgs);
+  *P = solution.r;
+  solution.message = "friction contact by NSGS: " + solution.message;
+  return solution;
+}
+
+/// Turns a solver that did not converge into the SimulationError of step `step` at t.
+[[noreturn]] void NotConverged(long step, double t, double h, int active, const contact::SolveStatus& status,
+                               double tolerance) {
+  throw SimulationError(t, fmt::format("t = {:.9g} s: Moreau-Jean step {} ({:.9g} -> {:.9g} s): the contact solve of "
+                                       "{} active contacts did not converge: residual {:.3g} > tolerance {:.3g} after "
+                                       "{} iterations ({})",
+                                       t, step, t, t + h, active, status.error, tolerance, status.iterations,
+                                       status.message));
+}
+
+}  // namespace
+
+void CheckMoreauJeanOptions(const MoreauJeanOptions& options) {
+  if (!(options.step > 0.0) || !std::isfinite(options.step)) {
+    throw InputError(fmt::format("simulation: Moreau-Jean step {:g} s must be finite and > 0", options.step));
+  }
+  if (!(options.theta >= 0.5 && options.theta <= 1.0)) {
+    throw InputError(fmt::format("simulation: theta {:g} must be in [0.5, 1]", options.theta));
+  }
+  if (!(options.solver_tolerance > 0.0) || options.solver_max_iterations < 1) {
+    throw InputError(fmt::format("simulation: contact solver tolerance {:g} must be > 0 and its iterations {} >= 1",
+                                 options.solver_tolerance, options.solver_max_iterations));
+  }
+}
+
+MoreauJeanStepper::MoreauJeanStepper(const MultibodySystem& system, const MoreauJeanOptions& options)
+    : system_(system), options_(options), u_dot_(VectorXd::Zero(system.num_velocities())) {
+  CheckMoreauJeanOptions(options_);
+}
+
+MoreauJeanStepReport MoreauJeanStepper::Initial(double t, const ConstVectorRef& y) const {
+  MoreauJeanStepReport report;
+  report.time = t;
+  report.lambda = VectorXd::Zero(system_.num_constraints());
+  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
+    const UnilateralContactKinematics kinematics = system_.unilateral_contact(k).Evaluate(t, system_, y);
+    report.contacts.push_back({false, kinematics.g_N, kinematics.W_N.dot(y.tail(system_.num_velocities())), 0.0,
+                               Eigen::Vector2d::Zero()});
+  }
+  return report;
+}
+
+const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::Ref<VectorXd> y) {
+  FLEXMBS_CHECK(h > 0.0 && h <= options_.step * (1.0 + 1e-9), "MoreauJeanStepper::Step: h outside (0, step]");
+  const Index nu = system_.num_velocities();
+  const double theta = options_.theta;
+  const long step_number = statistics_.steps + 1;
+  const VectorXd v_k = y.tail(nu);
+  const SmoothStep smooth = SolveSmoothStep(system_, t, h, theta, y, u_dot_);
+  u_dot_ = smooth.dv_free / h;
+
+  std::vector<UnilateralContactKinematics> kinematics;
+  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
+    kinematics.push_back(system_.unilateral_contact(k).Evaluate(t, system_, y));
+  }
+  const ActiveContacts active = FindActiveContacts(system_, kinematics, h, v_k);
+  const Index n_a = static_cast<Index>(active.index.size());
+
+  VectorXd v_next = v_k + smooth.dv_free;
+  VectorXd impulse = smooth.impulse_free;
+  VectorXd P = VectorXd::Zero(3 * n_a);
+  report_.solver_iterations = 0;
+  report_.solver_error = 0.0;
+  if (n_a > 0) {
+    MatrixXd rhs = MatrixXd::Zero(nu + static_cast<Index>(smooth.kept.size()), 3 * n_a);
+    rhs.topRows(nu) = active.H.transpose();
+    MatrixXd dv_per_P, impulse_per_P;
+    SolveKkt(smooth, nu, rhs, &dv_per_P, &impulse_per_P);
+    const MatrixXd W = active.H * dv_per_P;
+    VectorXd q = active.H * v_next;
+    for (Index i = 0; i < n_a; ++i) q(3 * i) += active.restitution_term(i);
+    const contact::SolveStatus status = SolveImpulses(W, q, active.mu, options_, &P);
+    if (!status.converged) NotConverged(step_number, t, h, static_cast<int>(n_a), status, options_.solver_tolerance);
+    report_.solver_iterations = status.iterations;
+    report_.solver_error = status.error;
+    v_next += dv_per_P * P;
+    impulse += impulse_per_P * P;
+    ++statistics_.contact_solves;
+    statistics_.solver_iterations += report_.solver_iterations;
+    statistics_.max_solver_error = std::max(statistics_.max_solver_error, report_.solver_error);
+  }
+
+  system_.DisplacePositions(h * (theta * v_next + (1.0 - theta) * v_k), y);
+  y.tail(nu) = v_next;
+  system_.NormalizeEulerParameters(y);
+
+  report_.time = t + h;
+  report_.active_contacts = static_cast<int>(n_a);
+  report_.lambda = VectorXd::Zero(system_.num_constraints());
+  for (std::size_t r = 0; r < smooth.kept.size(); ++r) report_.lambda(smooth.kept[r]) = impulse(static_cast<Index>(r)) / h;
+  report_.contacts.assign(static_cast<std::size_t>(system_.num_unilateral_contacts()), ContactStepResult{});
+  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
+    const auto& c = kinematics[static_cast<std::size_t>(k)];
+    ContactStepResult& result = report_.contacts[static_cast<std::size_t>(k)];
+    result.U_N = c.W_N.dot(v_next);
+    result.g_N = system_.unilateral_contact(k).Evaluate(t + h, system_, y).g_N;
+  }
+  for (Index i = 0; i < n_a; ++i) {
+    ContactStepResult& result = report_.contacts[static_cast<std::size_t>(active.index[static_cast<std::size_t>(i)])];
+    result.active = true;
+    result.P_N = P(3 * i);
+    result.P_T = P.segment<2>(3 * i + 1);
+  }
+  ++statistics_.steps;
+  statistics_.max_active_contacts = std::max(statistics_.max_active_contacts, static_cast<int>(n_a));
+  return report_;
+}
+
+}  // namespace flexmbs::mbs

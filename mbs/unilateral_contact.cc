@@ -1,0 +1,101 @@
+#include "mbs/unilateral_contact.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <utility>
+
+#include "contact/geometry/point_contact.h"
+#include "core/error.h"
+#include "core/skew.h"
+#include "mbs/multibody_system.h"
+#include "mbs/simulation_error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+void CheckRadius(const std::string& contact, std::string_view what, double radius) {
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw InputError(fmt::format("contact '{}': {} {:g} must be finite and > 0", contact, what, radius));
+  }
+}
+
+UnilateralContactKinematics FromPointContact(const contact::PointContactKinematics& c) {
+  UnilateralContactKinematics k;
+  k.g_N = c.g_N;
+  k.n_W = c.n_W;
+  k.t1_W = c.t1_W;
+  k.t2_W = c.t2_W;
+  k.p_WA_W = c.p_WA_W;
+  k.p_WB_W = c.p_WB_W;
+  return k;
+}
+
+/// Adds sign [n; t1; t2]^T (J_v - [p - p_M]x J_w) of marker `ref` into the columns of its body.
+void AddPointJacobian(const MultibodySystem& system, const MarkerRef& ref, const MarkerKinematics& marker,
+                      const Eigen::Vector3d& p_W, double sign, UnilateralContactKinematics* k) {
+  if (ref.is_ground()) return;
+  const Eigen::MatrixXd J_p =
+      marker.jacobian.topRows<3>() - Skew(p_W - marker.p_WM_W) * marker.jacobian.bottomRows<3>();
+  const Eigen::Index column = system.velocity_offset(ref.body), n = J_p.cols();
+  k->W_N.segment(column, n) += sign * k->n_W.transpose() * J_p;
+  k->W_T.middleCols(column, n).row(0) += sign * k->t1_W.transpose() * J_p;
+  k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * J_p;
+}
+
+}  // namespace
+
+UnilateralContact::UnilateralContact(std::string name, MarkerRef a, MarkerRef b, UnilateralLaw law)
+    : name_(std::move(name)), a_(std::move(a)), b_(std::move(b)), law_(law) {
+  if (!(law_.restitution >= 0.0 && law_.restitution <= 1.0)) {
+    throw InputError(fmt::format("contact '{}': restitution {:g} must be in [0, 1]", name_, law_.restitution));
+  }
+  if (!(law_.friction >= 0.0) || !std::isfinite(law_.friction)) {
+    throw InputError(fmt::format("contact '{}': friction {:g} must be finite and >= 0", name_, law_.friction));
+  }
+  if (a_.body == b_.body) {
+    throw InputError(fmt::format("contact '{}': both shapes are on {}", name_,
+                                 a_.is_ground() ? "the ground" : "one body"));
+  }
+}
+
+UnilateralContactKinematics UnilateralContact::Evaluate(double t, const MultibodySystem& system,
+                                                        const ConstVectorRef& y) const {
+  const MarkerKinematics a = system.MarkerState(a_, y), b = system.MarkerState(b_, y);
+  UnilateralContactKinematics k;
+  try {
+    k = Geometry(a, b);
+  } catch (const contact::DegenerateContactError& e) {
+    throw SimulationError(t, fmt::format("t = {:.9g} s: contact '{}': {}", t, name_, e.what()));
+  }
+  k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
+  k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
+  AddPointJacobian(system, a_, a, k.p_WA_W, 1.0, &k);
+  AddPointJacobian(system, b_, b, k.p_WB_W, -1.0, &k);
+  return k;
+}
+
+SpherePlaneUnilateral::SpherePlaneUnilateral(std::string name, MarkerRef sphere, MarkerRef plane, double radius,
+                                             UnilateralLaw law)
+    : UnilateralContact(std::move(name), std::move(sphere), std::move(plane), law), radius_(radius) {
+  CheckRadius(this->name(), "radius [m]", radius_);
+}
+
+UnilateralContactKinematics SpherePlaneUnilateral::Geometry(const MarkerKinematics& a, const MarkerKinematics& b) const {
+  return FromPointContact(contact::SpherePlane({a.p_WM_W, radius_}, {b.p_WM_W, b.R_WM.col(2)}));
+}
+
+SphereSphereUnilateral::SphereSphereUnilateral(std::string name, MarkerRef sphere1, MarkerRef sphere2, double radius1,
+                                               double radius2, UnilateralLaw law)
+    : UnilateralContact(std::move(name), std::move(sphere1), std::move(sphere2), law),
+      radius1_(radius1), radius2_(radius2) {
+  CheckRadius(this->name(), "radius1 [m]", radius1_);
+  CheckRadius(this->name(), "radius2 [m]", radius2_);
+}
+
+UnilateralContactKinematics SphereSphereUnilateral::Geometry(const MarkerKinematics& a,
+                                                             const MarkerKinematics& b) const {
+  return FromPointContact(contact::SphereSphere({a.p_WM_W, radius1_}, {b.p_WM_W, radius2_}));
+}
+
+}  // namespace flexmbs::mbs

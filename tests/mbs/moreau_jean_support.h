@@ -1,0 +1,45 @@
+#pragma once
+// Scenes of the Moreau-Jean tests (tests/mbs/moreau_jean_test.cc, moreau_jean_friction_test.cc):
+// a ball above the ground plane and a block on an incline, built in the library, and a run that
+// keeps every step's state and contact report.
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "mbs/moreau_jean.h"
+#include "mbs/multibody_system.h"
+
+namespace flexmbs::mbs::testing {
+
+/// A system and its initial state.
+struct ContactScene {
+  std::unique_ptr<MultibodySystem> system;
+  Eigen::VectorXd y0;
+};
+
+/// A ball (mass [kg], radius [m], solid-sphere inertia) whose lowest point is `gap0` [m] above
+/// the plane z = 0 (unilateral contact "floor", restitution e, friction mu), moving with v0_W
+/// [m/s] and spinning with w0_W [rad/s]; gravity (0, 0, -g).
+ContactScene BallOnFloor(double mass, double radius, double gap0, double g, double restitution, double friction,
+                         const Eigen::Vector3d& v0_W = Eigen::Vector3d::Zero(),
+                         const Eigen::Vector3d& w0_W = Eigen::Vector3d::Zero());
+
+/// A block of mass 1 kg, 0.2 x 0.2 x 0.1 m, at rest on (1e-12 m into) a plane through W's origin tilted
+/// by `angle` [rad] about W's y axis, on four small spheres (radius 0.01 m) at its bottom corners
+/// (contacts "c0".."c3", restitution 0, friction mu); gravity (0, 0, -g). Down the slope is
+/// (cos a, 0, -sin a).
+ContactScene BlockOnIncline(double angle, double friction, double g);
+
+/// Every step of a Moreau-Jean run: time, state and contact report.
+struct StepHistory {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> y;
+  std::vector<MoreauJeanStepReport> steps;  ///< steps[0]: the initial report
+  std::vector<double> energy;               ///< kinetic + potential [J]
+};
+
+/// Runs `scene` to end_time by steps of h (theta) with an output at every step.
+StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double theta = 0.5);
+
+}  // namespace flexmbs::mbs::testing
