@@ -8,13 +8,14 @@
 // this process, the steadier measure on a shared machine; ratio = Siconos' time / ours.
 //
 //   bench_lcp [--contacts 1,10,100,1000] [--tolerance 1e-8] [--seconds 0.2] [--newton-max 100]
-//             [--lemke-max 1000]
+//             [--lemke-max 1000] [--rank-deficient-max 100] [--parts lcp,2,3]
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <ctime>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,6 +39,8 @@ struct Settings {
   double seconds = 0.2;
   int newton_max = 100;  // largest problem for the dense global Newton solvers (O((d n)^3) per step)
   int lemke_max = 1000;  // largest LCP for the pivoting solvers
+  int rank_deficient_max = 100;  // largest rank-deficient friction problem (NSGS needs ~1e4 sweeps)
+  std::vector<std::string> parts{"lcp", "2", "3"};  // the LCP, planar and spatial friction tables
 };
 
 double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
@@ -123,6 +126,14 @@ void BenchFriction(int d, int contacts, bool rank_deficient, const Settings& s) 
         Time([&] { return SiconosFrictionProximal(fc, siconos); }, s.seconds));
 }
 
+std::vector<std::string> ParseList(std::string_view text) {
+  std::vector<std::string> items;
+  std::stringstream stream{std::string(text)};
+  std::string item;
+  while (std::getline(stream, item, ',')) items.push_back(item);
+  return items;
+}
+
 Settings Parse(int argc, char** argv) {
   Settings s;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -133,6 +144,8 @@ Settings Parse(int argc, char** argv) {
     else if (flag == "--seconds") s.seconds = std::atof(value);
     else if (flag == "--newton-max") s.newton_max = std::atoi(value);
     else if (flag == "--lemke-max") s.lemke_max = std::atoi(value);
+    else if (flag == "--rank-deficient-max") s.rank_deficient_max = std::atoi(value);
+    else if (flag == "--parts") s.parts = ParseList(value);
     else throw std::invalid_argument(fmt::format("bench_lcp: unknown option '{}'", flag));
   }
   return s;
@@ -148,10 +161,18 @@ int main(int argc, char** argv) {
              s.tolerance);
   fmt::print("| problem | contacts | flexmbs: time, iterations, error | Siconos: time, iterations, error | ratio |\n");
   fmt::print("|---|---:|---|---|---:|\n");
-  for (int n : s.contacts) BenchLcp(n, s);
+  const auto wanted = [&](const std::string& part) {
+    return std::find(s.parts.begin(), s.parts.end(), part) != s.parts.end();
+  };
+  if (wanted("lcp")) {
+    for (int n : s.contacts) BenchLcp(n, s);
+  }
   for (int d : {2, 3}) {
+    if (!wanted(std::to_string(d))) continue;
     for (bool rank_deficient : {false, true}) {
-      for (int n : s.contacts) BenchFriction(d, n, rank_deficient, s);
+      for (int n : s.contacts) {
+        if (!rank_deficient || n <= s.rank_deficient_max) BenchFriction(d, n, rank_deficient, s);
+      }
     }
   }
   return 0;

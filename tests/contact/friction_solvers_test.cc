@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "contact/complementarity/friction_newton.h"
+#include "contact/complementarity/friction_solver.h"
 #include "contact/complementarity/lemke.h"
 #include "contact/complementarity/nsgs.h"
 #include "contact/complementarity/siconos_solvers.h"
@@ -184,6 +185,21 @@ TEST(FrictionContact, FrictionlessPlanarContactIsTheNormalLcp) {
   ASSERT_TRUE(nsgs.converged) << nsgs.message;
   Report("mu = 0 planar NSGS r_N against Lemke on W_NN", Difference(nsgs.r(normal), lcp.z));
   EXPECT_LT(Difference(nsgs.r(normal), lcp.z), kFrictionlessAgainstLcp);
+}
+
+TEST(FrictionContact, TheDefaultSolverHandsHardProblemsFromNsgsToNewton) {
+  // Regular: NSGS alone. Rank-deficient (ten contacts on one body): NSGS needs about 3600 sweeps,
+  // so after 1000 Newton takes over.
+  const FrictionContactSolution regular = SolveFrictionContact(RigidBodiesOnGround(3, 10, 10, 0.3, 1).problem);
+  EXPECT_TRUE(regular.converged) << regular.message;
+  EXPECT_EQ(regular.message.find("Newton"), std::string::npos) << regular.message;
+  const GeometricProblem hard = RigidBodiesOnGround(3, 1, 10, 0.3, 1);
+  const FrictionContactSolution handed_over = SolveFrictionContact(hard.problem);
+  EXPECT_TRUE(handed_over.converged) << handed_over.message;
+  EXPECT_NE(handed_over.message.find("Newton: converged"), std::string::npos) << handed_over.message;
+  const FrictionContactSolution newton = SolveFrictionNewton(hard.problem, Newton());
+  Report("default solver against Newton alone on the rank-deficient problem, u", Difference(handed_over.u, newton.u));
+  EXPECT_LT(Difference(handed_over.u, newton.u), kRankDeficientAgreement);
 }
 
 TEST(FrictionContact, NonConvergenceIsReported) {
