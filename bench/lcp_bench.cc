@@ -4,8 +4,9 @@
 // stacks of rigid bodies on the ground (tests/contact/complementarity_problems.h): with as many
 // bodies as contacts, W = G M^-1 G^T is regular; with ten contacts per body ("rank-deficient") it
 // has rank 6 per body. The LCP is the frictionless normal problem (W_NN, q_N) of the regular
-// spatial stack. Times are the mean of repeated solves (at least --seconds each) in CPU seconds of
-// this process, the steadier measure on a shared machine; ratio = Siconos' time / ours.
+// spatial stack; "default" is SolveFrictionContact (NSGS, then Newton). Times are the mean of
+// repeated solves (at least --seconds each) in CPU seconds of this process, the steadier measure
+// on a shared machine; ratio = Siconos' time / ours.
 //
 //   bench_lcp [--contacts 1,10,100,1000] [--tolerance 1e-8] [--seconds 0.2] [--newton-max 100]
 //             [--lemke-max 1000] [--rank-deficient-max 100] [--parts lcp,2,3]
@@ -22,6 +23,7 @@
 
 #include "bench/command_line.h"
 #include "contact/complementarity/friction_newton.h"
+#include "contact/complementarity/friction_solver.h"
 #include "contact/complementarity/lcp_pgs.h"
 #include "contact/complementarity/lemke.h"
 #include "contact/complementarity/nsgs.h"
@@ -110,6 +112,10 @@ void BenchFriction(int d, int contacts, bool rank_deficient, const Settings& s) 
   const Timed siconos_nsgs = Time([&] { return SiconosFrictionNsgs(fc, siconos); }, s.seconds);
   Print(problem, contacts, "NSGS", Time([&] { return SolveFrictionNsgs(fc, nsgs); }, s.seconds), "Siconos NSGS",
         siconos_nsgs);
+  FrictionContactOptions default_options;
+  default_options.tolerance = s.tolerance;
+  Print(problem, contacts, "default", Time([&] { return SolveFrictionContact(fc, default_options); }, s.seconds),
+        "Siconos NSGS", siconos_nsgs);
   if (contacts > s.newton_max) return;
   FrictionNewtonOptions newton;
   newton.tolerance = s.tolerance;
