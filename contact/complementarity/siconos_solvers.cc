@@ -85,6 +85,7 @@ void SetStatus(Solution& s, int info, int iterations, double error, const Sicono
 
 LcpSolution SolveLcp(const LcpProblem& problem, int solver, const SiconosOptions& options, const char* name) {
   CheckLcp(problem);
+  if (problem.q.size() == 0) return {{0, 0.0, true, "empty LCP"}, {}, {}};  // Siconos is not asked
   SiconosLcp p(problem);
   OptionsPtr o = Options(solver, options);
   o->iparam[SICONOS_LCP_IPARAM_SKIP_TRIVIAL] = SICONOS_LCP_SKIP_TRIVIAL_YES;
@@ -112,6 +113,7 @@ double FcError(SiconosFc& p, Eigen::VectorXd& r, Eigen::VectorXd& u, SolverOptio
 FrictionContactSolution SolveFc(const FrictionContactProblem& problem, int solver, const SiconosOptions& options,
                                 const char* name) {
   CheckFrictionContact(problem);
+  if (problem.q.size() == 0) return {{0, 0.0, true, "no contacts"}, {}, {}};  // Siconos is not asked
   SiconosFc p(problem);
   OptionsPtr o = Options(solver, options);
   FrictionContactSolution s;

@@ -202,6 +202,17 @@ TEST(FrictionContact, TheDefaultSolverHandsHardProblemsFromNsgsToNewton) {
   EXPECT_LT(Difference(handed_over.u, newton.u), kRankDeficientAgreement);
 }
 
+TEST(FrictionContact, NoContactsIsSolvedAtOnce) {
+  const FrictionContactProblem empty{3, Eigen::MatrixXd(0, 0), Eigen::VectorXd(0), Eigen::VectorXd(0)};
+  for (const FrictionContactSolution& s : SolveAll(empty)) {
+    EXPECT_TRUE(s.converged) << s.message;
+    EXPECT_EQ(s.r.size(), 0);
+  }
+  const LcpProblem lcp{Eigen::MatrixXd(0, 0), Eigen::VectorXd(0)};
+  EXPECT_TRUE(SolveLcpLemke(lcp).converged);
+  EXPECT_TRUE(SiconosLcpLemke(lcp).converged);
+}
+
 TEST(FrictionContact, NonConvergenceIsReported) {
   const GeometricProblem g = RigidBodiesOnGround(3, 2, 20, 0.3, 1);
   const FrictionContactSolution nsgs = SolveFrictionNsgs(g.problem, Nsgs(2));
