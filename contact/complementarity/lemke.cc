@@ -15,47 +15,51 @@ struct Tableau {
   Eigen::MatrixXd B_inv;    // the inverse of the basis matrix, n x n
   Eigen::VectorXd b;        // the basic variables' values, B^-1 q
   std::vector<int> basis;   // basis[i]: the variable basic in row i
+  Eigen::VectorXd c;        // the entering variable's column B^-1 A_j
+  Eigen::RowVectorXd pivot_row;  // scratch of Pivot
+  std::vector<int> rows;    // scratch of LexicographicRow
 };
 
-// B^-1 A_j, the entering variable j's column of the updated tableau.
-Eigen::VectorXd Column(const Tableau& t, const Eigen::MatrixXd& M, int j) {
+// c = B^-1 A_j, the entering variable j's column of the updated tableau.
+void EnteringColumn(Tableau& t, const Eigen::MatrixXd& M, int j) {
   const int n = static_cast<int>(M.rows());
-  if (j < n) return t.B_inv.col(j);
-  if (j < 2 * n) return -(t.B_inv * M.col(j - n));
-  return -t.B_inv.rowwise().sum();
+  if (j < n) {
+    t.c = t.B_inv.col(j);
+  } else if (j < 2 * n) {
+    t.c.noalias() = -t.B_inv * M.col(j - n);
+  } else {
+    t.c = -t.B_inv.rowwise().sum();
+  }
 }
 
 // Gauss-Jordan pivot on row r with the entering column c (c(r) != 0).
-void Pivot(Tableau& t, int r, Eigen::VectorXd c, int entering) {
-  const double p = c(r);
-  t.B_inv.row(r) /= p;
-  t.b(r) /= p;
-  c(r) = 0.0;
-  const Eigen::RowVectorXd pivot_row = t.B_inv.row(r);
-  t.B_inv.noalias() -= c * pivot_row;
-  t.b -= c * t.b(r);
+void Pivot(Tableau& t, int r, int entering) {
+  const double p = t.c(r);
+  t.pivot_row = t.B_inv.row(r) / p;
+  const double b_r = t.b(r) / p;
+  t.B_inv.noalias() -= t.c * t.pivot_row;
+  t.b -= b_r * t.c;
+  t.B_inv.row(r) = t.pivot_row;
+  t.b(r) = b_r;
   t.basis[r] = entering;
 }
 
 // The lexicographic minimum ratio test (Cottle, Pang & Stone 1992, §4.9): among rows with c_i
 // above tol, the lexicographic minimum of (b_i, B^-1_i.) / c_i. -1 when no row blocks (a ray).
-int LexicographicRow(const Tableau& t, const Eigen::VectorXd& c, double tol) {
-  std::vector<int> rows;
-  for (int i = 0; i < c.size(); ++i) {
-    if (c(i) > tol) rows.push_back(i);
+int LexicographicRow(Tableau& t, double tol) {
+  std::vector<int>& rows = t.rows;
+  rows.clear();
+  for (int i = 0; i < t.c.size(); ++i) {
+    if (t.c(i) > tol) rows.push_back(i);
   }
   if (rows.empty()) return -1;
   // Column -1 is b, then the columns of B^-1; keep the rows within round-off of the minimum.
   for (int k = -1; k < t.B_inv.cols() && rows.size() > 1; ++k) {
-    const auto value = [&](int i) { return (k < 0 ? t.b(i) : t.B_inv(i, k)) / c(i); };
+    const auto value = [&](int i) { return (k < 0 ? t.b(i) : t.B_inv(i, k)) / t.c(i); };
     double least = value(rows[0]);
     for (int i : rows) least = std::min(least, value(i));
     const double tie = 1e-12 * (1.0 + std::abs(least));
-    std::vector<int> kept;
-    for (int i : rows) {
-      if (value(i) <= least + tie) kept.push_back(i);
-    }
-    rows = std::move(kept);
+    std::erase_if(rows, [&](int i) { return value(i) > least + tie; });
   }
   return rows[0];
 }
@@ -84,11 +88,12 @@ Eigen::VectorXd RefinedZ(const LcpProblem& problem, const Eigen::VectorXd& z_tab
   return z.allFinite() ? z : z_tableau;
 }
 
-LcpSolution Finish(const LcpProblem& problem, Eigen::VectorXd z, int pivots, const LemkeOptions& options,
-                   const std::string& how) {
+// The solution z with its LcpError `error`.
+LcpSolution Finish(const LcpProblem& problem, Eigen::VectorXd z, double error, int pivots,
+                   const LemkeOptions& options, const std::string& how) {
   LcpSolution s;
   s.iterations = pivots;
-  s.error = LcpError(problem, z);
+  s.error = error;
   s.converged = s.error <= options.tolerance;
   s.message = s.converged ? how
                           : fmt::format("{}, but its error {:.3g} exceeds the tolerance {:.3g} (round-off on an "
@@ -104,11 +109,13 @@ LcpSolution SolveLcpLemke(const LcpProblem& problem, const LemkeOptions& options
   CheckLcp(problem);
   const int n = static_cast<int>(problem.q.size());
   if (n == 0 || problem.q.minCoeff() >= 0.0) {
-    return Finish(problem, Eigen::VectorXd::Zero(n), 0, options, "q >= 0: z = 0 solves the LCP");
+    return Finish(problem, Eigen::VectorXd::Zero(n), 0.0, 0, options, "q >= 0: z = 0 solves the LCP");
   }
   const int max_pivots = options.max_pivots > 0 ? options.max_pivots : 10 * (n + 1) * (n + 1);
-  Tableau t{Eigen::MatrixXd::Identity(n, n), problem.q, std::vector<int>(n)};
+  Tableau t{Eigen::MatrixXd::Identity(n, n), problem.q, std::vector<int>(n), Eigen::VectorXd(n),
+            Eigen::RowVectorXd(n), {}};
   for (int i = 0; i < n; ++i) t.basis[i] = i;
+  t.rows.reserve(n);
 
   // z0 enters at the most negative q_i; among ties the last row keeps the tableau lexico-positive.
   int r = 0;
@@ -117,22 +124,29 @@ LcpSolution SolveLcpLemke(const LcpProblem& problem, const LemkeOptions& options
   }
   const int z0 = 2 * n;
   int entering = z0;
-  Eigen::VectorXd c = Column(t, problem.M, z0);
+  EnteringColumn(t, problem.M, z0);
   for (int pivots = 1; pivots <= max_pivots; ++pivots) {
     const int leaving = t.basis[r];
-    Pivot(t, r, c, entering);
+    Pivot(t, r, entering);
     if (leaving == z0) {
-      const Eigen::VectorXd z = BasicZ(t, n);
-      if (!options.refine) return Finish(problem, z, pivots, options, "z0 left the basis: solution");
-      const Eigen::VectorXd z_refined = RefinedZ(problem, z, t);
-      const bool better = LcpError(problem, z_refined) < LcpError(problem, z);
-      return Finish(problem, better ? z_refined : z, pivots, options, "z0 left the basis: solution");
+      Eigen::VectorXd z = BasicZ(t, n);
+      double error = LcpError(problem, z);
+      if (options.refine) {
+        Eigen::VectorXd z_refined = RefinedZ(problem, z, t);
+        const double refined_error = LcpError(problem, z_refined);
+        if (refined_error < error) {
+          z = std::move(z_refined);
+          error = refined_error;
+        }
+      }
+      return Finish(problem, std::move(z), error, pivots, options, "z0 left the basis: solution");
     }
     entering = leaving < n ? leaving + n : leaving - n;  // the complement of the leaving variable
-    c = Column(t, problem.M, entering);
-    r = LexicographicRow(t, c, options.pivot_tolerance * c.cwiseAbs().maxCoeff());
+    EnteringColumn(t, problem.M, entering);
+    r = LexicographicRow(t, options.pivot_tolerance * t.c.cwiseAbs().maxCoeff());
     if (r < 0) {
-      LcpSolution s = Finish(problem, BasicZ(t, n), pivots, options, "");
+      const Eigen::VectorXd z = BasicZ(t, n);
+      LcpSolution s = Finish(problem, z, LcpError(problem, z), pivots, options, "");
       s.converged = false;
       s.message = fmt::format("Lemke: ray termination after {} pivots ({}[{}] can grow without bound): no "
                               "solution found; the LCP is infeasible or M is not copositive-plus",
@@ -140,7 +154,8 @@ LcpSolution SolveLcpLemke(const LcpProblem& problem, const LemkeOptions& options
       return s;
     }
   }
-  LcpSolution s = Finish(problem, BasicZ(t, n), max_pivots, options, "");
+  const Eigen::VectorXd z = BasicZ(t, n);
+  LcpSolution s = Finish(problem, z, LcpError(problem, z), max_pivots, options, "");
   s.converged = false;
   s.message = fmt::format("Lemke: no solution after the maximum of {} pivots", max_pivots);
   return s;
