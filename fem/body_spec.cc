@@ -119,7 +119,7 @@ Mesh BuildBodyMesh(const BodySpec& spec) {
   }
   for (const auto& [region, material] : spec.region_materials) {
     const bool found = std::any_of(mesh.blocks.begin(), mesh.blocks.end(),
-                                   [&](const ElementBlock& b) { return b.region == region; });
+                                   [&wanted = region](const ElementBlock& b) { return b.region == wanted; });
     if (!found) {
       std::set<std::string> available;
       for (const ElementBlock& b : mesh.blocks) available.insert(b.region);

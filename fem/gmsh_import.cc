@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "fem/gmsh_mesh_arrays.h"
 
 namespace flexmbs::fem {
 namespace {
@@ -145,13 +146,6 @@ std::map<std::string, std::pair<int, int>> NamedGroups() {
   return named;
 }
 
-struct RawBlock {
-  int gmsh_type;
-  std::string region;
-  std::vector<std::size_t> element_tags;
-  std::vector<std::size_t> node_tags;
-};
-
 // The volume entities to mesh and their region names.
 std::vector<std::pair<int, std::string>> VolumeRegions() {
   gmsh::vectorpair groups;
@@ -173,8 +167,8 @@ std::vector<std::pair<int, std::string>> VolumeRegions() {
   return regions;
 }
 
-std::vector<RawBlock> ReadVolumeElements() {
-  std::vector<RawBlock> blocks;
+std::vector<GmshElementBlock> ReadVolumeElements() {
+  std::vector<GmshElementBlock> blocks;
   for (const auto& [entity, region] : VolumeRegions()) {
     std::vector<int> types;
     std::vector<std::vector<std::size_t>> element_tags, node_tags;
@@ -205,72 +199,18 @@ std::string DescribeMeshWithoutVolumes() {
   return "the mesh has no elements";
 }
 
-Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
+// The mesh of the model's volume elements `blocks` with the node sets `node_set_names`, from
+// gmsh's arrays checked by MeshFromGmshArrays.
+Mesh BuildMesh(const fs::path& path, std::vector<GmshElementBlock> blocks,
                const std::vector<std::string>& node_set_names) {
-  if (raw.empty()) {
+  if (blocks.empty()) {
     throw InputError(fmt::format("{}: {}; flexmbs needs a solid (3-D) mesh", path.string(),
                                  DescribeMeshWithoutVolumes()));
   }
-  // Supported types only.
-  for (const RawBlock& b : raw) {
-    if (!FromGmshType(b.gmsh_type)) {
-      std::vector<std::string_view> supported;
-      for (const ElementTraits& t : kElementTraits) supported.push_back(t.name);
-      throw InputError(fmt::format(
-          "{}: region '{}': element {} is a {} (gmsh type {}), which flexmbs does not support "
-          "(supported: {})",
-          path.string(), b.region, b.element_tags.front(), GmshTypeName(b.gmsh_type),
-          b.gmsh_type, fmt::join(supported, ", ")));
-    }
-  }
-  // All node coordinates, indexed by tag.
-  std::vector<std::size_t> all_tags;
-  std::vector<double> coords, parametric;
-  gmsh::model::mesh::getNodes(all_tags, coords, parametric, -1, -1, false, false);
-  const std::size_t max_tag = all_tags.empty() ? 0 : *std::max_element(all_tags.begin(), all_tags.end());
-  std::vector<std::size_t> position(max_tag + 1, SIZE_MAX);
-  for (std::size_t i = 0; i < all_tags.size(); ++i) position[all_tags[i]] = i;
-
-  // Compact numbering of the nodes used by volume elements, in tag order.
-  std::vector<int> index(max_tag + 1, -1);
-  for (const RawBlock& b : raw) {
-    const auto n = static_cast<std::size_t>(Traits(*FromGmshType(b.gmsh_type)).num_nodes);
-    for (std::size_t k = 0; k < b.node_tags.size(); ++k) {
-      const std::size_t tag = b.node_tags[k];
-      if (tag > max_tag || position[tag] == SIZE_MAX) {
-        throw InputError(
-            fmt::format("{}: region '{}': element {} uses node {}, which has no coordinates",
-                        path.string(), b.region, b.element_tags[k / n], tag));
-      }
-      index[tag] = 0;
-    }
-  }
-  Mesh mesh;
-  for (std::size_t tag = 0; tag <= max_tag; ++tag) {
-    if (index[tag] < 0) continue;
-    index[tag] = static_cast<int>(mesh.node_ids.size());
-    mesh.node_ids.push_back(tag);
-  }
-  mesh.nodes.resize(3, static_cast<Eigen::Index>(mesh.node_ids.size()));
-  for (std::size_t i = 0; i < mesh.node_ids.size(); ++i) {
-    const std::size_t p = position[mesh.node_ids[i]];
-    FLEXMBS_CHECK(p != SIZE_MAX, "element node without coordinates");
-    mesh.nodes.col(static_cast<Eigen::Index>(i)) =
-        Eigen::Vector3d(coords[3 * p], coords[3 * p + 1], coords[3 * p + 2]);
-  }
-
-  for (RawBlock& b : raw) {
-    ElementBlock block;
-    block.type = *FromGmshType(b.gmsh_type);
-    block.region = b.region;
-    const int n = Traits(block.type).num_nodes;
-    block.connectivity.resize(n, static_cast<Eigen::Index>(b.element_tags.size()));
-    for (std::size_t k = 0; k < b.node_tags.size(); ++k) {
-      block.connectivity.data()[k] = index[b.node_tags[k]];
-    }
-    block.element_ids = std::move(b.element_tags);
-    mesh.blocks.push_back(std::move(block));
-  }
+  GmshNodes all_nodes;
+  std::vector<double> parametric;
+  gmsh::model::mesh::getNodes(all_nodes.tags, all_nodes.coords, parametric, -1, -1, false, false);
+  Mesh mesh = MeshFromGmshArrays(path, std::move(blocks), all_nodes);
 
   const auto groups = NamedGroups();
   for (const std::string& name : node_set_names) {
@@ -285,12 +225,7 @@ Mesh BuildMesh(const fs::path& path, std::vector<RawBlock> raw,
     std::vector<std::size_t> tags;
     std::vector<double> xyz;
     gmsh::model::mesh::getNodesForPhysicalGroup(it->second.first, it->second.second, tags, xyz);
-    std::vector<int> nodes;
-    for (std::size_t tag : tags) {
-      if (tag <= max_tag && index[tag] >= 0) nodes.push_back(index[tag]);
-    }
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    std::vector<int> nodes = MeshNodesOfTags(mesh, tags);
     if (nodes.empty()) {
       throw InputError(fmt::format("{}: node set '{}': the physical group has no nodes on the solid mesh",
                                    path.string(), name));
