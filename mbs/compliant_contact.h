@@ -67,6 +67,7 @@ class CompliantContact {
   /// The normal law's spring energy at `point` [J] (contact::ElasticEnergy).
   double PotentialEnergy(const ContactPoint& point) const;
 
+  /// The law this contact evaluates.
   const CompliantContactLaw& law() const { return law_; }
 
  private:
