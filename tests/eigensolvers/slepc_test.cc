@@ -292,7 +292,7 @@ TEST(SlepcBackend, SturmCountOfACubeWithRepeatedFrequenciesEqualsTheDenseCount) 
 constexpr double kKeptSolveAgreement = 1e-10;
 
 // The DOF of the clamped nodes (zeroed by the solve: K diagonal 1, M diagonal 0).
-std::vector<int> reduction::ClampedDofs(const Problem& p) {
+std::vector<int> ClampedDofs(const Problem& p) {
   std::vector<int> fixed;
   for (int node : p.clamp) {
     for (int i = 0; i < 3; ++i) fixed.push_back(3 * node + i);
@@ -327,7 +327,7 @@ TEST(SlepcBackend, KeptFactorisationOfAHeldBodySolvesKAndTheSturmCountIsTheDense
   fem::DistributedMatrices distributed = fem::AssembleDistributed(p.mesh, fem::MassMatrixKind::kConsistent);
   const int factorizations_before = LoggedEventCount("MatCholFctrNum");
   Mat K_factor = nullptr;
-  const EigenSolution slepc = SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, reduction::ClampedDofs(p),
+  const EigenSolution slepc = SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, ClampedDofs(p),
                                                            options, ModesOn::kEveryRank, nullptr, &K_factor);
   ASSERT_NE(K_factor, nullptr);
   EXPECT_EQ(slepc.shift, 0.0);
@@ -370,7 +370,7 @@ TEST(SlepcBackend, KeptFactorisationSurvivesAMissedModeAndItsSecondRun) {
   options.distributed_factorization = DistributedFactorization::kMumps;  // refactorised per run
   fem::DistributedMatrices distributed = fem::AssembleDistributed(p.mesh, fem::MassMatrixKind::kConsistent);
   Mat K_factor = nullptr;
-  const EigenSolution slepc = SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, reduction::ClampedDofs(p),
+  const EigenSolution slepc = SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, ClampedDofs(p),
                                                            options, ModesOn::kEveryRank, nullptr, &K_factor);
   ASSERT_NE(K_factor, nullptr);
   EXPECT_EQ(slepc.krylov_runs, 2);
@@ -403,7 +403,7 @@ TEST(SlepcBackend, SubstructuredKeptFactorisationGivesTheModesAndSolvesK) {
     Mat K_factor = nullptr;
     std::unique_ptr<SubstructuredFactor> K_substructured;
     const EigenSolution slepc =
-        SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, reduction::ClampedDofs(p), options,
+        SolveDistributedEigenproblem(distributed.stiffness, distributed.mass, ClampedDofs(p), options,
                                      ModesOn::kEveryRank, nullptr, &K_factor, &K_substructured);
     if (choice == DistributedFactorization::kMumps) {
       ASSERT_NE(K_factor, nullptr);
@@ -486,7 +486,7 @@ TEST(SlepcBackend, BlockKrylovCheckOnTheKeptPathFindsAMissedPairMode) {
   const Problem p{mesh, testing::NodesOnPlane(mesh, 2, 0.0)};
   const bool root = SlepcSession::Rank() == 0;
   const fem::Mesh empty;
-  const std::vector<int> clamped = reduction::ClampedDofs(p);
+  const std::vector<int> clamped = ClampedDofs(p);
   for (const int modes : {5, 11}) {
     EigenOptions options;
     options.num_modes = modes;

@@ -106,7 +106,7 @@ long FactorizationsDuring(const std::function<void()>& f) {
   return eigensolvers::ShiftedFactorization::NumericFactorizations() - before;
 }
 
-void ExpectConsistentSummary(const EigensolverSummary& s) {
+void ExpectConsistentSummary(const reduction::EigensolverSummary& s) {
   EXPECT_GT(s.factorization_seconds, 0.0);
   EXPECT_GE(s.sturm_seconds, 0.0);
   EXPECT_GE(s.krylov_seconds, 0.0);

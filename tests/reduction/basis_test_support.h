@@ -28,7 +28,7 @@ struct Body {
   fem::Mesh mesh;
   SparseMatrix K;
   SparseMatrix M;
-  FeModel model() const { return {K, M, mesh.nodes}; }
+  reduction::FeModel model() const { return {K, M, mesh.nodes}; }
 };
 Body AssembleBody(fem::Mesh mesh);
 
@@ -57,7 +57,7 @@ long FactorizationsDuring(const std::function<void()>& f);
 /// Expects the parts of an eigen-solve's time to fit in its total (factorisation + Sturm +
 /// Krylov <= seconds, each >= 0, the factorisation > 0) and at least one factorisation, Krylov
 /// run and operator application.
-void ExpectConsistentSummary(const EigensolverSummary& summary);
+void ExpectConsistentSummary(const reduction::EigensolverSummary& summary);
 
 /// All eigenpairs of K x = lambda M x restricted to span(N) (N: num_dofs x k, independent
 /// columns): dense, in shift-invert form with shift `sigma` (test_problems.h SolveDense), the
