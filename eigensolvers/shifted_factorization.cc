@@ -19,6 +19,26 @@ namespace {
 
 std::atomic<long> numeric_factorizations{0};  // NumericFactorizations()
 
+// A CHOLMOD view (no copy) of the upper triangle A of a symmetric matrix (stype = 1), compressed.
+cholmod_sparse UpperTriangleView(Eigen::SparseMatrix<double>& A) {
+  cholmod_sparse a{};
+  a.nrow = static_cast<std::size_t>(A.rows());
+  a.ncol = static_cast<std::size_t>(A.cols());
+  a.nzmax = static_cast<std::size_t>(A.nonZeros());
+  a.p = A.outerIndexPtr();
+  a.i = A.innerIndexPtr();
+  a.nz = nullptr;
+  a.x = A.valuePtr();
+  a.z = nullptr;
+  a.stype = 1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
 }  // namespace
 
 struct ShiftedFactorization::Impl {
@@ -63,6 +83,49 @@ struct ShiftedFactorization::Impl {
     if (y != nullptr) cholmod_free_dense(&y, &common);
     if (e != nullptr) cholmod_free_dense(&e, &common);
   }
+
+  // The symbolic factorisation (fill-reducing ordering) of `a`, kept while the pattern of A and
+  // the method stay the same, so that a new shift reuses it.
+  void Analyze(cholmod_sparse* a, const Eigen::SparseMatrix<double>& A, Method new_method) {
+    const auto outer = std::span<const int>(A.outerIndexPtr(), static_cast<std::size_t>(A.cols()) + 1);
+    const auto inner = std::span<const int>(A.innerIndexPtr(), static_cast<std::size_t>(A.nonZeros()));
+    if (factor != nullptr && method == new_method && std::ranges::equal(outer, pattern_outer) &&
+        std::ranges::equal(inner, pattern_inner)) {
+      return;
+    }
+    FreeFactor();
+    method = new_method;
+    factor = cholmod_analyze(a, &common);
+    if (factor == nullptr) {
+      if (common.status == CHOLMOD_OUT_OF_MEMORY || common.status == CHOLMOD_TOO_LARGE) throw std::bad_alloc();
+      throw InternalError("CHOLMOD analysis failed with status " + std::to_string(common.status));
+    }
+    pattern_outer.assign(outer.begin(), outer.end());
+    pattern_inner.assign(inner.begin(), inner.end());
+    factor_nonzeros = common.lnz;
+    factor_flops = common.fl;
+  }
+
+  // The pivot statistics of a successful numeric factorisation: the pivot ratio, and for
+  // L D L^T the number of negative pivots (the inertia).
+  void RecordPivots() {
+    if (method == Method::kSupernodalCholesky) {
+      pivot_ratio = cholmod_rcond(factor, &common);  // (min L_kk / max L_kk)^2 for L L^T
+      return;
+    }
+    // Simplicial L D L^T: column j of L starts with D_jj.
+    const int* p = static_cast<const int*>(factor->p);
+    const double* values = static_cast<const double*>(factor->x);
+    double dmin = std::numeric_limits<double>::infinity();
+    double dmax = 0.0;
+    for (std::size_t j = 0; j < factor->n; ++j) {
+      const double djj = values[p[j]];
+      if (djj < 0.0) ++negative_pivots;
+      dmin = std::min(dmin, std::abs(djj));
+      dmax = std::max(dmax, std::abs(djj));
+    }
+    pivot_ratio = dmax > 0.0 ? dmin / dmax : 0.0;
+  }
 };
 
 ShiftedFactorization::ShiftedFactorization() : impl_(std::make_unique<Impl>()) {}
@@ -87,48 +150,12 @@ ShiftedFactorization::Status ShiftedFactorization::Factorize(const Eigen::Sparse
   // difference keeps the union pattern of K and M for every sigma, zero included.
   Eigen::SparseMatrix<double> A = Eigen::SparseMatrix<double>(K - sigma * M).triangularView<Eigen::Upper>();
   A.makeCompressed();
-
-  cholmod_sparse a{};
-  a.nrow = static_cast<std::size_t>(A.rows());
-  a.ncol = static_cast<std::size_t>(A.cols());
-  a.nzmax = static_cast<std::size_t>(A.nonZeros());
-  a.p = A.outerIndexPtr();
-  a.i = A.innerIndexPtr();
-  a.nz = nullptr;
-  a.x = A.valuePtr();
-  a.z = nullptr;
-  a.stype = 1;
-  a.itype = CHOLMOD_INT;
-  a.xtype = CHOLMOD_REAL;
-  a.dtype = CHOLMOD_DOUBLE;
-  a.sorted = 1;
-  a.packed = 1;
+  cholmod_sparse a = UpperTriangleView(A);
 
   cholmod_common& c = d.common;
-  if (method == Method::kSupernodalCholesky) {
-    c.supernodal = CHOLMOD_SUPERNODAL;
-    c.final_ll = 1;
-  } else {
-    c.supernodal = CHOLMOD_SIMPLICIAL;
-    c.final_ll = 0;
-  }
-  const auto outer = std::span<const int>(A.outerIndexPtr(), static_cast<std::size_t>(A.cols()) + 1);
-  const auto inner = std::span<const int>(A.innerIndexPtr(), static_cast<std::size_t>(A.nonZeros()));
-  const bool same_pattern = d.factor != nullptr && d.method == method &&
-                            std::ranges::equal(outer, d.pattern_outer) && std::ranges::equal(inner, d.pattern_inner);
-  if (!same_pattern) {
-    d.FreeFactor();
-    d.method = method;
-    d.factor = cholmod_analyze(&a, &c);
-    if (d.factor == nullptr) {
-      if (c.status == CHOLMOD_OUT_OF_MEMORY || c.status == CHOLMOD_TOO_LARGE) throw std::bad_alloc();
-      throw InternalError("CHOLMOD analysis failed with status " + std::to_string(c.status));
-    }
-    d.pattern_outer.assign(outer.begin(), outer.end());
-    d.pattern_inner.assign(inner.begin(), inner.end());
-    d.factor_nonzeros = c.lnz;
-    d.factor_flops = c.fl;
-  }
+  c.supernodal = method == Method::kSupernodalCholesky ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+  c.final_ll = method == Method::kSupernodalCholesky ? 1 : 0;
+  d.Analyze(&a, A, method);
   numeric_factorizations.fetch_add(1, std::memory_order_relaxed);
   cholmod_factorize(&a, d.factor, &c);
   if (c.status == CHOLMOD_OUT_OF_MEMORY || c.status == CHOLMOD_TOO_LARGE) {
@@ -140,28 +167,11 @@ ShiftedFactorization::Status ShiftedFactorization::Factorize(const Eigen::Sparse
     d.FreeFactor();
     throw InternalError("CHOLMOD factorisation failed with status " + std::to_string(status));
   }
-  cholmod_factor* L = d.factor;
-  if (c.status == CHOLMOD_NOT_POSDEF || L->minor < L->n) {
-    d.failed_pivot = static_cast<Eigen::Index>(L->minor);  // the symbolic part stays for a retry
+  if (c.status == CHOLMOD_NOT_POSDEF || d.factor->minor < d.factor->n) {
+    d.failed_pivot = static_cast<Eigen::Index>(d.factor->minor);  // the symbolic part stays for a retry
     return method == Method::kSupernodalCholesky ? Status::kNotPositiveDefinite : Status::kSingular;
   }
-
-  if (method == Method::kSupernodalCholesky) {
-    d.pivot_ratio = cholmod_rcond(L, &c);  // (min L_kk / max L_kk)^2 for L L^T
-  } else {
-    // Simplicial L D L^T: column j of L starts with D_jj.
-    const int* p = static_cast<const int*>(L->p);
-    const double* x = static_cast<const double*>(L->x);
-    double dmin = std::numeric_limits<double>::infinity();
-    double dmax = 0.0;
-    for (std::size_t j = 0; j < L->n; ++j) {
-      const double djj = x[p[j]];
-      if (djj < 0.0) ++d.negative_pivots;
-      dmin = std::min(dmin, std::abs(djj));
-      dmax = std::max(dmax, std::abs(djj));
-    }
-    d.pivot_ratio = dmax > 0.0 ? dmin / dmax : 0.0;
-  }
+  d.RecordPivots();
   d.numeric_ok = true;
   return Status::kOk;
 }

@@ -92,6 +92,83 @@ LoadCases BuildLoadCases(Index num_nodes, const LoadSet& load) {
   return cases;
 }
 
+namespace {
+
+// Every load set's unit load cases side by side (n x cases) with their mode names
+// ("static_correction_<case>"), refused when a name is in the basis or made twice.
+struct NamedLoads {
+  Eigen::MatrixXd F;
+  std::vector<std::string> names;
+};
+NamedLoads StackLoadCases(Index num_nodes, Index n, const ReducedBasis& basis, std::span<const LoadSet> loads) {
+  NamedLoads stacked;
+  std::vector<Eigen::MatrixXd> blocks;
+  std::set<std::string> taken(basis.names.begin(), basis.names.end());
+  Index num_cases = 0;
+  for (const LoadSet& load : loads) {
+    LoadCases cases = BuildLoadCases(num_nodes, load);
+    num_cases += cases.F.cols();
+    for (std::string& name : cases.names) {
+      stacked.names.push_back("static_correction_" + name);
+      if (!taken.insert(stacked.names.back()).second) {
+        throw InputError(fmt::format("load set '{}': mode name '{}' is already in the basis or made twice", load.name,
+                                     stacked.names.back()));
+      }
+    }
+    blocks.push_back(std::move(cases.F));
+  }
+  stacked.F.resize(n, num_cases);
+  Index offset = 0;
+  for (const Eigen::MatrixXd& block : blocks) {
+    stacked.F.middleCols(offset, block.cols()) = block;
+    offset += block.cols();
+  }
+  return stacked;
+}
+
+// The basis's modes other than its constraint modes (what correction modes are made
+// M-orthogonal to).
+Eigen::MatrixXd NonConstraintModes(const ReducedBasis& basis) {
+  std::vector<Index> keep;
+  for (Index j = 0; j < basis.num_modes(); ++j) {
+    if (basis.kinds[static_cast<std::size_t>(j)] != ModeKind::kConstraint) keep.push_back(j);
+  }
+  Eigen::MatrixXd columns(basis.Phi.rows(), static_cast<Index>(keep.size()));
+  for (std::size_t k = 0; k < keep.size(); ++k) columns.col(static_cast<Index>(k)) = basis.Phi.col(keep[k]);
+  return columns;
+}
+
+// `basis` with the M-orthonormal correction modes `added` (named by `names` at `accepted`)
+// appended: kinds, names, NaN frequencies and residuals, method and description, reduced matrices.
+ReducedBasis AppendCorrectionModes(const FeModel& model, const ReducedBasis& basis, const Eigen::MatrixXd& added,
+                                   const std::vector<Index>& accepted, const std::vector<std::string>& names,
+                                   std::size_t dropped) {
+  ReducedBasis out = basis;
+  const Index n = model.num_dofs();
+  const Index old = basis.num_modes();
+  const Index k = added.cols();
+  out.Phi.conservativeResize(n, old + k);
+  out.Phi.rightCols(k) = added;
+  for (const Index j : accepted) {
+    out.kinds.push_back(ModeKind::kStaticCorrection);
+    out.names.push_back(names[static_cast<std::size_t>(j)]);
+  }
+  auto extend = [&](Eigen::VectorXd* v) {
+    v->conservativeResize(old + k);
+    v->tail(k).setConstant(kNaN);
+  };
+  extend(&out.frequency_hz);
+  extend(&out.relative_residuals);
+  extend(&out.residual_floors);
+  if (out.method.find("+static_correction") == std::string::npos) out.method += "+static_correction";
+  out.description += fmt::format("; {} static correction modes ({}, {} dropped)", k,
+                                 basis.held_by.empty() ? "inertia relief" : "held as the basis", dropped);
+  ComputeReducedMatrices(model, &out);
+  return out;
+}
+
+}  // namespace
+
 CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBasis& basis,
                                           std::span<const LoadSet> loads, const CorrectionOptions& options) {
   ValidateModel(model);
@@ -104,50 +181,21 @@ CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBas
     throw InputError(fmt::format("static correction modes: dependency_tolerance {} must be in (0, 1)",
                                  options.dependency_tolerance));
   }
-  std::vector<std::string> names;
-  std::vector<Eigen::MatrixXd> blocks;
-  std::set<std::string> taken(basis.names.begin(), basis.names.end());
-  Index num_cases = 0;
-  for (const LoadSet& load : loads) {
-    LoadCases cases = BuildLoadCases(model.nodes.cols(), load);
-    num_cases += cases.F.cols();
-    for (std::string& name : cases.names) {
-      names.push_back("static_correction_" + name);
-      if (!taken.insert(names.back()).second) {
-        throw InputError(fmt::format("load set '{}': mode name '{}' is already in the basis or made twice", load.name,
-                                     names.back()));
-      }
-    }
-    blocks.push_back(std::move(cases.F));
-  }
-  Eigen::MatrixXd F(n, num_cases);
-  Index offset = 0;
-  for (const Eigen::MatrixXd& block : blocks) {
-    F.middleCols(offset, block.cols()) = block;
-    offset += block.cols();
-  }
+  const NamedLoads loads_named = StackLoadCases(model.nodes.cols(), n, basis, loads);
+  const std::vector<std::string>& names = loads_named.names;
 
   // Static responses of the body as the basis holds it.
   CorrectionResult result;
-  const StaticResponses responses = SolveStaticResponses(model, basis.held_by, F, "static correction modes",
+  const StaticResponses responses = SolveStaticResponses(model, basis.held_by, loads_named.F, "static correction modes",
                                                          basis.held_factorization.get());
   const Eigen::MatrixXd& X = responses.X;
   const std::vector<bool>& carried = responses.carried;  // no interior load at all
 
   // M-orthogonalise against the basis (not its constraint modes) and each other; drop the dependent.
-  Eigen::MatrixXd against_columns(n, 0);
-  {
-    std::vector<Index> keep;
-    for (Index j = 0; j < basis.num_modes(); ++j) {
-      if (basis.kinds[static_cast<std::size_t>(j)] != ModeKind::kConstraint) keep.push_back(j);
-    }
-    against_columns.resize(n, static_cast<Index>(keep.size()));
-    for (std::size_t k = 0; k < keep.size(); ++k) against_columns.col(static_cast<Index>(k)) = basis.Phi.col(keep[k]);
-  }
-  Eigen::MatrixXd Q = MOrthonormalized(model.mass(), against_columns);
+  Eigen::MatrixXd Q = MOrthonormalized(model.mass(), NonConstraintModes(basis));
   std::vector<Index> accepted;
   Eigen::MatrixXd added(n, 0);
-  for (Index j = 0; j < num_cases; ++j) {
+  for (Index j = 0; j < loads_named.F.cols(); ++j) {
     const std::string& name = names[static_cast<std::size_t>(j)];
     if (carried[static_cast<std::size_t>(j)]) {
       result.dropped.push_back(fmt::format("{}: the load acts on support or interface DOF only (carried by the "
@@ -170,29 +218,8 @@ CorrectionResult AddStaticCorrectionModes(const FeModel& model, const ReducedBas
     added.col(added.cols() - 1) = x.col(0);
     accepted.push_back(j);
   }
-
-  ReducedBasis& out = result.basis;
-  out = basis;
-  const Index old = basis.num_modes();
-  const Index k = added.cols();
-  result.added = k;
-  out.Phi.conservativeResize(n, old + k);
-  out.Phi.rightCols(k) = added;
-  for (const Index j : accepted) {
-    out.kinds.push_back(ModeKind::kStaticCorrection);
-    out.names.push_back(names[static_cast<std::size_t>(j)]);
-  }
-  auto extend = [&](Eigen::VectorXd* v) {
-    v->conservativeResize(old + k);
-    v->tail(k).setConstant(kNaN);
-  };
-  extend(&out.frequency_hz);
-  extend(&out.relative_residuals);
-  extend(&out.residual_floors);
-  if (out.method.find("+static_correction") == std::string::npos) out.method += "+static_correction";
-  out.description += fmt::format("; {} static correction modes ({}, {} dropped)", k,
-                                 basis.held_by.empty() ? "inertia relief" : "held as the basis", result.dropped.size());
-  ComputeReducedMatrices(model, &out);
+  result.added = added.cols();
+  result.basis = AppendCorrectionModes(model, basis, added, accepted, names, result.dropped.size());
   return result;
 }
 

@@ -100,6 +100,42 @@ Eigen::VectorXd GatherDiagonal(Mat A, const std::vector<int>& old_node) {
   return ToMeshNumbering(values, all, old_node);
 }
 
+// The partition's numbering of what the solve needs on every rank: the clamped DOF in partition
+// numbering, ascending (every rank), and on rank 0 the mesh node of each partition node.
+struct PartitionNumbering {
+  std::vector<int> clamped;
+  std::vector<int> old_node;
+};
+PartitionNumbering Renumber(const fem::MeshPartition& partition, const std::vector<int>& clamped_dofs, int rank) {
+  PartitionNumbering numbering;
+  numbering.old_node.resize(partition.new_node.size());
+  if (rank == 0) {
+    for (int dof : clamped_dofs) {
+      numbering.clamped.push_back(3 * partition.new_node[static_cast<std::size_t>(dof / 3)] + dof % 3);
+    }
+    std::sort(numbering.clamped.begin(), numbering.clamped.end());
+    for (std::size_t n = 0; n < numbering.old_node.size(); ++n) {
+      numbering.old_node[static_cast<std::size_t>(partition.new_node[n])] = static_cast<int>(n);
+    }
+  }
+  numbering.clamped = Broadcast(std::move(numbering.clamped));
+  return numbering;
+}
+
+// The DOF 0 .. num_dofs - 1 not in `clamped` (ascending), ascending.
+std::vector<int> FreeDofs(int num_dofs, const std::vector<int>& clamped) {
+  std::vector<int> free;
+  auto next = clamped.begin();
+  for (int dof = 0; dof < num_dofs; ++dof) {
+    if (next != clamped.end() && *next == dof) {
+      ++next;
+    } else {
+      free.push_back(dof);
+    }
+  }
+  return free;
+}
+
 }  // namespace
 
 void ShareRootError(const std::string& error_on_root) {
@@ -117,17 +153,9 @@ eigensolvers::EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::Ma
   fem::MeshPartition partition;
   if (rank == 0) partition = fem::PartitionByCoordinateBisection(mesh, size);
   fem::MeshPart part = fem::ScatterMeshParts(mesh, partition);
-  // The clamped DOF in partition numbering, ascending, on every rank; rank 0: the mesh node of
-  // each partition node.
-  std::vector<int> clamped, old_node(partition.new_node.size());
-  if (rank == 0) {
-    for (int dof : clamped_dofs) clamped.push_back(3 * partition.new_node[static_cast<std::size_t>(dof / 3)] + dof % 3);
-    std::sort(clamped.begin(), clamped.end());
-    for (std::size_t n = 0; n < old_node.size(); ++n) {
-      old_node[static_cast<std::size_t>(partition.new_node[n])] = static_cast<int>(n);
-    }
-  }
-  clamped = Broadcast(std::move(clamped));
+  const PartitionNumbering numbering = Renumber(partition, clamped_dofs, rank);
+  const std::vector<int>& clamped = numbering.clamped;
+  const std::vector<int>& old_node = numbering.old_node;
   stats->partition_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
@@ -189,16 +217,7 @@ eigensolvers::EigenSolution SolveModesDistributed(const fem::Mesh& mesh, fem::Ma
 
   start = std::chrono::steady_clock::now();
   if (rank == 0) {
-    std::vector<int> free_new;
-    auto next = clamped.begin();
-    for (int dof = 0; dof < 3 * static_cast<int>(mesh.num_nodes()); ++dof) {
-      if (next != clamped.end() && *next == dof) {
-        ++next;
-      } else {
-        free_new.push_back(dof);
-      }
-    }
-    solution.modes = ToMeshNumbering(solution.modes, free_new, old_node);
+    solution.modes = ToMeshNumbering(solution.modes, FreeDofs(3 * static_cast<int>(mesh.num_nodes()), clamped), old_node);
   }
   stats->gather_seconds = gather_seconds + SecondsSince(start);
   share.peak_rss_mb = eigensolvers::PeakRssMb();

@@ -198,11 +198,11 @@ std::string DescribeConditions(const BoundaryConditions& conditions) {
   return text.empty() ? "no interface or support" : text;
 }
 
-ConstraintTransform BuildConstraintTransform(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions) {
-  const Index num_nodes = nodes.cols();
-  const Index num_dofs = 3 * num_nodes;
+namespace {
 
-  // Validation: names, node lists, ownership (one interface or support per node).
+// Names, node lists and ownership of the conditions (one interface or support per node);
+// InputError naming the first that breaks a rule.
+void ValidateConditions(Index num_nodes, const BoundaryConditions& conditions) {
   std::vector<std::string> owner_names;
   std::set<std::string> names;
   auto claim_name = [&](std::string_view what, const std::string& name) {
@@ -223,127 +223,168 @@ ConstraintTransform BuildConstraintTransform(const Eigen::Matrix3Xd& nodes, cons
                   owner_names);
     ValidateWeightsAndMarker(i);
   }
+}
 
-  // Roles of the DOF: interior (default), clamped, coupled (node set / rigid), dependent (averaging).
-  enum Role : char { kInterior, kClamped, kCoupled, kDependent };
-  std::vector<Role> role(static_cast<std::size_t>(num_dofs), kInterior);
-  auto dof_of = [](int node, Index axis) { return 3 * static_cast<Index>(node) + axis; };
-  ConstraintTransform t;
-  for (const SupportSpec& s : conditions.supports) {
+// The DOF of `node` along `axis`.
+Index DofOf(int node, Index axis) { return 3 * static_cast<Index>(node) + axis; }
+
+// Builds a ConstraintTransform interface by interface: the roles of the DOF, the columns of B,
+// and what the averaging interfaces add to G.
+class TransformBuilder {
+ public:
+  explicit TransformBuilder(const Eigen::Matrix3Xd& nodes)
+      : nodes_(nodes), num_dofs_(3 * nodes.cols()), role_(static_cast<std::size_t>(num_dofs_), kInterior) {}
+
+  // Clamps every DOF of the support's nodes.
+  void AddSupport(const SupportSpec& s) {
     for (const int n : s.nodes) {
-      for (Index a = 0; a < 3; ++a) role[static_cast<std::size_t>(dof_of(n, a))] = kClamped;
+      for (Index a = 0; a < 3; ++a) role_[static_cast<std::size_t>(DofOf(n, a))] = kClamped;
     }
-    t.num_support_dofs += 3 * static_cast<Index>(s.nodes.size());
+    t_.num_support_dofs += 3 * static_cast<Index>(s.nodes.size());
   }
 
+  // The interface's boundary DOF: B's columns from next_boundary_ on.
+  void AddInterface(const InterfaceSpec& i) {
+    ConstraintTransform::InterfaceRange range{i.name, i.coupling, next_boundary_, 0};
+    switch (i.coupling) {
+      case Coupling::kNodes:
+        range.count = AddNodeSet(i);
+        break;
+      case Coupling::kRigid:
+        range.count = AddRigid(i);
+        break;
+      case Coupling::kAveraging:
+        range.count = AddAveraging(i);
+        break;
+    }
+    next_boundary_ += range.count;
+    t_.interfaces.push_back(range);
+  }
+
+  // Interior DOF: every DOF not clamped, coupled or dependent, in DOF order; then B and G.
+  ConstraintTransform Finish() {
+    std::vector<Index> interior_index(static_cast<std::size_t>(num_dofs_), -1);
+    Index num_interior = 0;
+    for (Index dof = 0; dof < num_dofs_; ++dof) {
+      if (role_[static_cast<std::size_t>(dof)] == kInterior) interior_index[static_cast<std::size_t>(dof)] = num_interior++;
+    }
+    std::vector<Triplet> g_triplets;
+    g_triplets.reserve(static_cast<std::size_t>(num_interior));
+    for (Index dof = 0; dof < num_dofs_; ++dof) {
+      const Index o = interior_index[static_cast<std::size_t>(dof)];
+      if (o >= 0) g_triplets.emplace_back(dof, o, 1.0);
+    }
+    for (const Averaging& a : averaging_) {
+      for (Index row = 0; row < 6; ++row) {
+        const Index dof = a.dofs[static_cast<std::size_t>(a.dependent[static_cast<std::size_t>(row)])];
+        for (std::size_t k = 0; k < a.other.size(); ++k) {
+          const double value = -a.Wd_inv_Wo(row, static_cast<Index>(k));
+          if (value == 0.0) continue;
+          const Index o = interior_index[static_cast<std::size_t>(a.dofs[static_cast<std::size_t>(a.other[k])])];
+          FLEXMBS_CHECK(o >= 0, "averaging interface: an independent DOF is not interior");
+          g_triplets.emplace_back(dof, o, value);
+        }
+      }
+    }
+    t_.B.resize(num_dofs_, next_boundary_);
+    t_.B.setFromTriplets(b_triplets_.begin(), b_triplets_.end());
+    t_.G.resize(num_dofs_, num_interior);
+    t_.G.setFromTriplets(g_triplets.begin(), g_triplets.end());
+    return std::move(t_);
+  }
+
+ private:
+  // Roles of the DOF: interior (default), clamped, coupled (node set / rigid), dependent (averaging).
+  enum Role : char { kInterior, kClamped, kCoupled, kDependent };
+  // An averaging interface's split of its DOF into 6 dependent and the others.
   struct Averaging {
     std::vector<Index> dofs;       // the interface's node DOF (local order)
     std::vector<Index> dependent;  // local indices of the 6 dependent DOF
     std::vector<Index> other;      // local indices of the others
     Eigen::MatrixXd Wd_inv;        // 6 x 6
     Eigen::MatrixXd Wd_inv_Wo;     // 6 x (3 n_I - 6)
-    Index first = 0;
   };
-  std::vector<Averaging> averaging;
-  std::vector<Triplet> b_triplets;
-  Index next_boundary = 0;
-  for (const InterfaceSpec& i : conditions.interfaces) {
-    ConstraintTransform::InterfaceRange range{i.name, i.coupling, next_boundary, 0};
-    switch (i.coupling) {
-      case Coupling::kNodes:
-        range.count = 3 * static_cast<Index>(i.nodes.size());
-        for (std::size_t k = 0; k < i.nodes.size(); ++k) {
-          for (Index a = 0; a < 3; ++a) {
-            const Index dof = dof_of(i.nodes[k], a);
-            role[static_cast<std::size_t>(dof)] = kCoupled;
-            b_triplets.emplace_back(dof, next_boundary + 3 * static_cast<Index>(k) + a, 1.0);
-            t.boundary_names.push_back(fmt::format("{}_n{}_{}", i.name, i.nodes[k], kAxisNames[a]));
-          }
-        }
-        break;
-      case Coupling::kRigid: {
-        LocalFit(nodes, i);  // throws if the nodes are on one line
-        const Eigen::Vector3d marker = MarkerPosition(nodes, i);
-        range.count = 6;
-        for (const int n : i.nodes) {
-          const Eigen::Matrix<double, 3, 6> S = RigidMotionMatrix(nodes.col(n) - marker);
-          for (Index a = 0; a < 3; ++a) {
-            const Index dof = dof_of(n, a);
-            role[static_cast<std::size_t>(dof)] = kCoupled;
-            for (Index c = 0; c < 6; ++c) {
-              if (S(a, c) != 0.0) b_triplets.emplace_back(dof, next_boundary + c, S(a, c));
-            }
-          }
-        }
-        for (const char* dof_name : kMarkerDofNames) t.boundary_names.push_back(fmt::format("{}_{}", i.name, dof_name));
-        break;
-      }
-      case Coupling::kAveraging: {
-        const Eigen::MatrixXd W = LocalFit(nodes, i);
-        range.count = 6;
-        Averaging a;
-        a.first = next_boundary;
-        for (const int n : i.nodes) {
-          for (Index axis = 0; axis < 3; ++axis) a.dofs.push_back(dof_of(n, axis));
-        }
-        // The six best-conditioned columns of W become dependent: u_d = W_d^-1 (q - W_o u_o).
-        const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(W);
-        const auto& permutation = qr.colsPermutation().indices();
-        std::vector<bool> is_dependent(a.dofs.size(), false);
-        for (Index k = 0; k < 6; ++k) is_dependent[static_cast<std::size_t>(permutation(k))] = true;
-        for (std::size_t k = 0; k < a.dofs.size(); ++k) {
-          (is_dependent[k] ? a.dependent : a.other).push_back(static_cast<Index>(k));
-        }
-        Eigen::MatrixXd Wd(6, 6), Wo(6, static_cast<Index>(a.other.size()));
-        for (Index k = 0; k < 6; ++k) Wd.col(k) = W.col(a.dependent[static_cast<std::size_t>(k)]);
-        for (std::size_t k = 0; k < a.other.size(); ++k) Wo.col(static_cast<Index>(k)) = W.col(a.other[k]);
-        const Eigen::FullPivLU<Eigen::MatrixXd> lu(Wd);
-        FLEXMBS_CHECK(lu.isInvertible(), "averaging interface: dependent block of the rigid fit is singular");
-        a.Wd_inv = lu.inverse();
-        a.Wd_inv_Wo = lu.solve(Wo);
-        for (const Index k : a.dependent) role[static_cast<std::size_t>(a.dofs[static_cast<std::size_t>(k)])] = kDependent;
-        for (Index row = 0; row < 6; ++row) {
-          const Index dof = a.dofs[static_cast<std::size_t>(a.dependent[static_cast<std::size_t>(row)])];
-          for (Index c = 0; c < 6; ++c) b_triplets.emplace_back(dof, next_boundary + c, a.Wd_inv(row, c));
-        }
-        for (const char* dof_name : kMarkerDofNames) t.boundary_names.push_back(fmt::format("{}_{}", i.name, dof_name));
-        averaging.push_back(std::move(a));
-        break;
+
+  // A node-set interface: each node DOF is a boundary DOF.
+  Index AddNodeSet(const InterfaceSpec& i) {
+    for (std::size_t k = 0; k < i.nodes.size(); ++k) {
+      for (Index a = 0; a < 3; ++a) {
+        const Index dof = DofOf(i.nodes[k], a);
+        role_[static_cast<std::size_t>(dof)] = kCoupled;
+        b_triplets_.emplace_back(dof, next_boundary_ + 3 * static_cast<Index>(k) + a, 1.0);
+        t_.boundary_names.push_back(fmt::format("{}_n{}_{}", i.name, i.nodes[k], kAxisNames[a]));
       }
     }
-    next_boundary += range.count;
-    t.interfaces.push_back(range);
+    return 3 * static_cast<Index>(i.nodes.size());
   }
 
-  // Interior DOF: every DOF not clamped, coupled or dependent, in DOF order.
-  std::vector<Index> interior_index(static_cast<std::size_t>(num_dofs), -1);
-  Index num_interior = 0;
-  for (Index dof = 0; dof < num_dofs; ++dof) {
-    if (role[static_cast<std::size_t>(dof)] == kInterior) interior_index[static_cast<std::size_t>(dof)] = num_interior++;
-  }
-  std::vector<Triplet> g_triplets;
-  g_triplets.reserve(static_cast<std::size_t>(num_interior));
-  for (Index dof = 0; dof < num_dofs; ++dof) {
-    const Index o = interior_index[static_cast<std::size_t>(dof)];
-    if (o >= 0) g_triplets.emplace_back(dof, o, 1.0);
-  }
-  for (const Averaging& a : averaging) {
-    for (Index row = 0; row < 6; ++row) {
-      const Index dof = a.dofs[static_cast<std::size_t>(a.dependent[static_cast<std::size_t>(row)])];
-      for (std::size_t k = 0; k < a.other.size(); ++k) {
-        const double value = -a.Wd_inv_Wo(row, static_cast<Index>(k));
-        if (value == 0.0) continue;
-        const Index o = interior_index[static_cast<std::size_t>(a.dofs[static_cast<std::size_t>(a.other[k])])];
-        FLEXMBS_CHECK(o >= 0, "averaging interface: an independent DOF is not interior");
-        g_triplets.emplace_back(dof, o, value);
+  // A rigid (RBE2-like) interface: the nodes follow the marker's six DOF rigidly.
+  Index AddRigid(const InterfaceSpec& i) {
+    LocalFit(nodes_, i);  // throws if the nodes are on one line
+    const Eigen::Vector3d marker = MarkerPosition(nodes_, i);
+    for (const int n : i.nodes) {
+      const Eigen::Matrix<double, 3, 6> S = RigidMotionMatrix(nodes_.col(n) - marker);
+      for (Index a = 0; a < 3; ++a) {
+        const Index dof = DofOf(n, a);
+        role_[static_cast<std::size_t>(dof)] = kCoupled;
+        for (Index c = 0; c < 6; ++c) {
+          if (S(a, c) != 0.0) b_triplets_.emplace_back(dof, next_boundary_ + c, S(a, c));
+        }
       }
     }
+    for (const char* dof_name : kMarkerDofNames) t_.boundary_names.push_back(fmt::format("{}_{}", i.name, dof_name));
+    return 6;
   }
-  t.B.resize(num_dofs, next_boundary);
-  t.B.setFromTriplets(b_triplets.begin(), b_triplets.end());
-  t.G.resize(num_dofs, num_interior);
-  t.G.setFromTriplets(g_triplets.begin(), g_triplets.end());
-  return t;
+
+  // An averaging (RBE3-like) interface: the six best-conditioned columns of the rigid fit W
+  // become dependent, u_d = W_d^-1 (q - W_o u_o); the others stay interior.
+  Index AddAveraging(const InterfaceSpec& i) {
+    const Eigen::MatrixXd W = LocalFit(nodes_, i);
+    Averaging a;
+    for (const int n : i.nodes) {
+      for (Index axis = 0; axis < 3; ++axis) a.dofs.push_back(DofOf(n, axis));
+    }
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(W);
+    const auto& permutation = qr.colsPermutation().indices();
+    std::vector<bool> is_dependent(a.dofs.size(), false);
+    for (Index k = 0; k < 6; ++k) is_dependent[static_cast<std::size_t>(permutation(k))] = true;
+    for (std::size_t k = 0; k < a.dofs.size(); ++k) {
+      (is_dependent[k] ? a.dependent : a.other).push_back(static_cast<Index>(k));
+    }
+    Eigen::MatrixXd Wd(6, 6), Wo(6, static_cast<Index>(a.other.size()));
+    for (Index k = 0; k < 6; ++k) Wd.col(k) = W.col(a.dependent[static_cast<std::size_t>(k)]);
+    for (std::size_t k = 0; k < a.other.size(); ++k) Wo.col(static_cast<Index>(k)) = W.col(a.other[k]);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(Wd);
+    FLEXMBS_CHECK(lu.isInvertible(), "averaging interface: dependent block of the rigid fit is singular");
+    a.Wd_inv = lu.inverse();
+    a.Wd_inv_Wo = lu.solve(Wo);
+    for (const Index k : a.dependent) role_[static_cast<std::size_t>(a.dofs[static_cast<std::size_t>(k)])] = kDependent;
+    for (Index row = 0; row < 6; ++row) {
+      const Index dof = a.dofs[static_cast<std::size_t>(a.dependent[static_cast<std::size_t>(row)])];
+      for (Index c = 0; c < 6; ++c) b_triplets_.emplace_back(dof, next_boundary_ + c, a.Wd_inv(row, c));
+    }
+    for (const char* dof_name : kMarkerDofNames) t_.boundary_names.push_back(fmt::format("{}_{}", i.name, dof_name));
+    averaging_.push_back(std::move(a));
+    return 6;
+  }
+
+  const Eigen::Matrix3Xd& nodes_;
+  const Index num_dofs_;
+  std::vector<Role> role_;
+  ConstraintTransform t_;
+  std::vector<Averaging> averaging_;
+  std::vector<Triplet> b_triplets_;
+  Index next_boundary_ = 0;
+};
+
+}  // namespace
+
+ConstraintTransform BuildConstraintTransform(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions) {
+  ValidateConditions(nodes.cols(), conditions);
+  TransformBuilder builder(nodes);
+  for (const SupportSpec& s : conditions.supports) builder.AddSupport(s);
+  for (const InterfaceSpec& i : conditions.interfaces) builder.AddInterface(i);
+  return builder.Finish();
 }
 
 }  // namespace flexmbs::reduction

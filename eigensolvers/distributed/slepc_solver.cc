@@ -317,6 +317,209 @@ class SlepcEigensolver final : public Eigensolver {
   }
 };
 
+// The band's size and what is wanted of it (EigenvaluesBelow at its upper end `top`, counted
+// before any run): the lowest `wanted` pairs; `band_count` >= 0 when that is the whole band.
+struct BandWanted {
+  PetscInt wanted = 0;
+  PetscInt band_count = -1;
+};
+BandWanted CountBand(Mat K, Mat M, const EigenOptions& options, double top, EigenSolution* solution) {
+  BandWanted band{options.num_modes, -1};
+  if (!(options.max_frequency_hz > 0.0)) return band;
+  auto phase = std::chrono::steady_clock::now();
+  const PetscInt in_band = eigensolvers::EigenvaluesBelow(K, M, top);
+  ++solution->factorizations;
+  solution->sturm_seconds += SecondsSince(&phase);
+  if (in_band == 0) throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
+  band.wanted = options.num_modes > 0 ? std::min<PetscInt>(options.num_modes, in_band) : in_band;
+  if (band.wanted == in_band) band.band_count = in_band;
+  return band;
+}
+
+// On more than one rank K - sigma M may be factorised once by substructuring (every attempt's
+// solves use it); it must be positive definite: K itself when held (`keep`), else sigma < 0.
+// Null where MUMPS factorises; `*not_positive_definite` if a held K is not.
+std::unique_ptr<SubstructuredFactor> FactorSubstructured(Mat K, Mat M, bool keep, const EigenOptions& options,
+                                                         EigenSolution* solution, bool* not_positive_definite) {
+  if (!keep && !(solution->shift < 0.0)) return nullptr;
+  auto phase = std::chrono::steady_clock::now();
+  std::unique_ptr<SubstructuredFactor> substructured =
+      MaybeSubstructured(K, M, keep, solution->shift, options.distributed_factorization);
+  if (!substructured) return nullptr;
+  ++solution->factorizations;
+  solution->factorization_seconds += SecondsSince(&phase);
+  solution->factorization = "substructured";
+  if (keep && !substructured->positive_definite()) *not_positive_definite = true;
+  if (!keep && !substructured->positive_definite()) {
+    solution->factorization = "mumps";
+    return nullptr;  // MUMPS's LDL^T decides
+  }
+  return substructured;
+}
+
+// The missed-mode check of one attempt: the cut after the wanted pairs (the band's end, counted
+// before the run, when the whole band is wanted) and the number of eigenvalues below it, by the
+// block Krylov check or a Sturm count.
+struct CutCount {
+  double cut = 0.0;
+  PetscInt count = -1;
+};
+CutCount CountBelowCut(EPS eps, const SubstructuredFactor* substructured, ShiftedMatrix* shifted, Mat K, Mat M,
+                       const std::vector<Vec>& x, const RitzLowerBounds& ritz, const BandWanted& band, double top,
+                       const EigenOptions& options, bool fixed_dofs, int attempt, EigenSolution* solution) {
+  if (band.band_count >= 0) {
+    solution->missed_mode_check = MissedModeCheck::kSturmCount;
+    solution->sturm_count = static_cast<int>(band.band_count);
+    solution->sturm_cut = top;
+    return {top, band.band_count};
+  }
+  CutCount result;
+  result.cut = SturmCutAfter(ValuesForTheCut(solution->eigenvalues, ritz.lambda), band.wanted, solution->shift);
+  FLEXMBS_CHECK(result.cut > solution->eigenvalues(band.wanted - 1), "Sturm cut below the last wanted mode");
+  solution->missed_mode_check = ChooseCheck(options, FactorizationFlops(eps, substructured), fixed_dofs);
+  if (solution->missed_mode_check == MissedModeCheck::kBlockKrylov) {
+    result.count = BlockCheckedCount(eps, substructured, M, x, result.cut, options, attempt, solution);
+  }
+  if (result.count < 0) {
+    auto phase = std::chrono::steady_clock::now();
+    solution->missed_mode_check = MissedModeCheck::kSturmCount;
+    result.count = shifted ? EigenvaluesBelow(eps, shifted, result.cut) : eigensolvers::EigenvaluesBelow(K, M, result.cut);
+    ++solution->factorizations;
+    solution->sturm_seconds += SecondsSince(&phase);
+    solution->sturm_count = static_cast<int>(result.count);
+    solution->sturm_cut = result.cut;
+  }
+  return result;
+}
+
+// The modes, gathered as `modes_on` says, into solution->modes; the time into *gather_seconds.
+void GatherModes(OwnedVectors* x, ModesOn modes_on, EigenSolution* solution, double* gather_seconds) {
+  const auto gather_start = std::chrono::steady_clock::now();
+  for (std::size_t j = 0; j < x->v.size(); ++j) {
+    Eigen::VectorXd mode = GatherVector(x->v[j], modes_on);
+    if (j == 0) solution->modes.resize(mode.size(), static_cast<Eigen::Index>(x->v.size()));
+    solution->modes.col(static_cast<Eigen::Index>(j)) = mode;
+  }
+  x->Clear();
+  if (gather_seconds) {
+    *gather_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
+  }
+}
+
+// Throws InputError naming the worst pair unless every residual meets its acceptance bound.
+void CheckResiduals(const EigenSolution& solution, const EigenOptions& options) {
+  const PairResiduals residuals{solution.relative_residuals, solution.residual_floors};
+  Eigen::Index worst = 0;
+  if (!residuals.Accepted(options.residual_tolerance, &worst)) {
+    throw InputError(fmt::format("eigenproblem: mode {} ({:.6g} Hz) has relative residual {:.3g} above "
+                                 "max({:g}, {:g} x its round-off floor {:.3g})",
+                                 worst, FrequenciesHz(solution.eigenvalues)(worst),
+                                 solution.relative_residuals(worst), options.residual_tolerance,
+                                 kResidualFloorFactor, solution.residual_floors(worst)));
+  }
+}
+
+// What one attempt's Krylov-Schur run shares with the others.
+struct AttemptContext {
+  Mat K, M;
+  const EigenOptions& options;
+  bool fixed_dofs;                     // DOF were removed (the check's choice depends on it)
+  bool keep;                           // a held K at sigma = 0, its factor kept for the caller
+  SubstructuredFactor* substructured;  // the substructured factor, or null (MUMPS)
+  BandWanted band;
+  double top;                          // the band's upper end [rad^2/s^2]
+  double zero_eigenvalue;              // below this an eigenvalue is zero to round-off
+};
+// How an attempt ended.
+enum class AttemptEnd {
+  kFound,                // every wanted pair, checked
+  kMissed,               // the check counted more below the cut: *nev raised for the next attempt
+  kNotPositiveDefinite,  // a held K is not positive definite
+};
+
+// One attempt: Krylov-Schur for *nev pairs (MUMPS factorises K - sigma M unless substructured),
+// the pairs into *x and *solution, and the missed-mode check below the cut. Throws InputError when
+// SLEPc converges too few pairs or a second attempt still misses some.
+AttemptEnd RunAttempt(const AttemptContext& c, int attempt, PetscInt* nev, OwnedVectors* x, OwnedMat* held_factor,
+                      EigenSolution* solution) {
+  x->Clear();
+  auto phase = std::chrono::steady_clock::now();
+  std::optional<ShiftedMatrix> shifted;
+  if (!c.keep && !c.substructured) shifted.emplace(c.K, c.M, solution->shift);
+  // At sigma = 0 the ST factorises K itself: as positive definite (MUMPS SYM = 1, no pivoting).
+  if (c.keep) FLEXMBS_PETSC(MatSetOption(c.K, MAT_SPD, PETSC_TRUE));
+  RitzLowerBounds ritz;
+  OwnedEps eps;
+  Configure(eps.eps, c.K, c.M, shifted ? shifted->get() : nullptr, solution->shift, c.options, *nev, c.fixed_dofs,
+            c.substructured);
+  FLEXMBS_PETSC(EPSGetST(eps.eps, &ritz.st));
+  FLEXMBS_PETSC(EPSSetTrackAll(eps.eps, PETSC_TRUE));  // error estimates of every Ritz value
+  FLEXMBS_PETSC(EPSMonitorSet(eps.eps, RecordRitzLowerBounds, &ritz, nullptr));
+  FLEXMBS_PETSC(EPSSetUp(eps.eps));  // K - sigma M factorised
+  solution->factorization_seconds += SecondsSince(&phase);
+  if (c.keep && !c.substructured && !FactoredPositiveDefinite(ShiftInvertFactor(eps.eps))) {
+    ++solution->factorizations;
+    return AttemptEnd::kNotPositiveDefinite;
+  }
+  FLEXMBS_PETSC(EPSSolve(eps.eps));
+  PetscInt converged = 0, iterations = 0;
+  FLEXMBS_PETSC(EPSGetConverged(eps.eps, &converged));
+  FLEXMBS_PETSC(EPSGetIterationNumber(eps.eps, &iterations));
+  ++solution->krylov_runs;
+  solution->restarts += static_cast<int>(iterations);
+  if (!c.substructured) ++solution->factorizations;
+  if (converged < *nev) {
+    throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations", converged, *nev,
+                                 iterations));
+  }
+  ExtractPairs(eps.eps, c.K, c.M, 0, solution, &x->v);
+  solution->operator_applications += OperatorApplications(eps.eps);
+  solution->krylov_seconds += SecondsSince(&phase);
+  if (c.keep && !(solution->eigenvalues(0) > c.zero_eigenvalue)) {
+    return AttemptEnd::kNotPositiveDefinite;  // singular to round-off: not held
+  }
+  // Every eigenvalue below the cut after the wanted ones must have been found.
+  const CutCount checked = CountBelowCut(eps.eps, c.substructured, shifted ? &*shifted : nullptr, c.K, c.M, x->v,
+                                         ritz, c.band, c.top, c.options, c.fixed_dofs, attempt, solution);
+  const auto found = static_cast<PetscInt>((solution->eigenvalues.array() < checked.cut).count());
+  solution->checked_cut = checked.cut;
+  if (checked.count == found) {
+    solution->eigenvalues.conservativeResize(c.band.wanted);
+    x->Truncate(static_cast<std::size_t>(c.band.wanted));
+    if (c.keep && !c.substructured) {
+      // The factor of K outlives the EPS, which resets its solver at the end of this scope.
+      held_factor->A = ShiftInvertFactor(eps.eps);
+      FLEXMBS_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(held_factor->A)));
+    }
+    return AttemptEnd::kFound;
+  }
+  if (checked.count < found || attempt > 0) {
+    throw InputError(fmt::format("eigenproblem: SLEPc found {} modes below {:.6g} Hz but the {} is {}", found,
+                                 FrequenciesHz(Eigen::VectorXd::Constant(1, checked.cut))(0),
+                                 solution->missed_mode_check == MissedModeCheck::kSturmCount
+                                     ? "Sturm count"
+                                     : "block Krylov check's count",
+                                 checked.count));
+  }
+  // SLEPc missed modes: once more, every mode below the cut converged and GuardPairs more.
+  *nev = checked.count + static_cast<PetscInt>(GuardPairs(checked.count));
+  return AttemptEnd::kMissed;
+}
+
+// `again` (the solve with the usual negative shift) with the work of the abandoned held attempt
+// `before` added to its counts; `start` is when the whole solve began.
+EigenSolution AddAbandonedWork(EigenSolution again, const EigenSolution& before,
+                               std::chrono::steady_clock::time_point start) {
+  again.factorizations += before.factorizations;
+  again.factorization_seconds += before.factorization_seconds;
+  again.operator_applications += before.operator_applications;
+  again.krylov_runs += before.krylov_runs;
+  again.restarts += before.restarts;
+  again.krylov_seconds += before.krylov_seconds;
+  again.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return again;
+}
+
 }  // namespace
 
 SlepcSession::SlepcSession() {
@@ -361,177 +564,40 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
   EigenSolution solution;
   solution.backend = "slepc";
   solution.factorization = "mumps";
-  if (keep) {
-    solution.shift = 0.0;
-  } else if (options.shift_hz) {
-    solution.shift = ShiftFromHz(*options.shift_hz);
-  } else {
-    solution.shift = -1e-6 * trace_k / trace_m;
-  }
+  solution.shift = keep ? 0.0 : options.shift_hz ? ShiftFromHz(*options.shift_hz) : -1e-6 * trace_k / trace_m;
   // A band: its size, the number of eigenvalues below its upper end, is counted first (the inertia
   // of K - top M); then the lowest `wanted` modes are found as for num_modes, and when that is the
   // whole band, the count at its end is their Sturm check. (Not SLEPc's spectrum slicing: it ran
   // Krylov-Schur at the band's upper end, and the modes near zero, a free body's rigid modes, came
   // out with errors of about tolerance x top: residuals up to 6e-6 of their shift's scale.)
-  const bool band = options.max_frequency_hz > 0.0;
-  const double top = band ? ShiftFromHz(options.max_frequency_hz) : 0.0;
-  PetscInt wanted = options.num_modes;
-  PetscInt band_count = -1;  // the eigenvalues below `top` when the whole band is wanted
-  if (band) {
-    auto phase = std::chrono::steady_clock::now();
-    const PetscInt in_band = EigenvaluesBelow(K, M, top);
-    ++solution.factorizations;
-    solution.sturm_seconds += SecondsSince(&phase);
-    if (in_band == 0) throw InputError(fmt::format("eigenproblem: no mode below {:g} Hz", options.max_frequency_hz));
-    wanted = options.num_modes > 0 ? std::min<PetscInt>(options.num_modes, in_band) : in_band;
-    if (wanted == in_band) band_count = in_band;
-  }
+  const double top = options.max_frequency_hz > 0.0 ? ShiftFromHz(options.max_frequency_hz) : 0.0;
+  const BandWanted band = CountBand(K, M, options, top, &solution);
   // Exactly the wanted pairs; the Ritz values beyond them locate the gap where the Sturm cut goes
   // (see RitzLowerBounds).
-  PetscInt nev = wanted;
+  PetscInt nev = band.wanted;
   OwnedVectors x;
   bool not_positive_definite = false;
   OwnedMat held_factor;  // kept: the factor of K (sigma = 0)
-  // On more than one rank K - sigma M may be factorised once by substructuring (every attempt's
-  // solves use it); it must be positive definite: K itself when held, else sigma < 0.
-  std::unique_ptr<SubstructuredFactor> substructured;
-  if (keep || solution.shift < 0.0) {
-    auto phase = std::chrono::steady_clock::now();
-    substructured = MaybeSubstructured(K, M, keep, solution.shift, options.distributed_factorization);
-    if (substructured) {
-      ++solution.factorizations;
-      solution.factorization_seconds += SecondsSince(&phase);
-      solution.factorization = "substructured";
-      if (keep && !substructured->positive_definite()) not_positive_definite = true;
-      if (!keep && !substructured->positive_definite()) {
-        substructured.reset();  // MUMPS's LDL^T decides
-        solution.factorization = "mumps";
-      }
-    }
-  }
+  std::unique_ptr<SubstructuredFactor> substructured =
+      FactorSubstructured(K, M, keep, options, &solution, &not_positive_definite);
+  const AttemptContext context{K, M, options, !fixed_dofs.empty(), keep, substructured.get(), band, top,
+                               kZeroEigenvalue * trace_k / trace_m};
   for (int attempt = 0; !not_positive_definite; ++attempt) {
-    x.Clear();
-    auto phase = std::chrono::steady_clock::now();
-    std::optional<ShiftedMatrix> shifted;
-    if (!keep && !substructured) shifted.emplace(K, M, solution.shift);
-    // At sigma = 0 the ST factorises K itself: as positive definite (MUMPS SYM = 1, no pivoting).
-    if (keep) FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_TRUE));
-    RitzLowerBounds ritz;
-    OwnedEps eps;
-    Configure(eps.eps, K, M, shifted ? shifted->get() : nullptr, solution.shift, options, nev, !fixed_dofs.empty(),
-              substructured.get());
-    FLEXMBS_PETSC(EPSGetST(eps.eps, &ritz.st));
-    FLEXMBS_PETSC(EPSSetTrackAll(eps.eps, PETSC_TRUE));  // error estimates of every Ritz value
-    FLEXMBS_PETSC(EPSMonitorSet(eps.eps, RecordRitzLowerBounds, &ritz, nullptr));
-    FLEXMBS_PETSC(EPSSetUp(eps.eps));  // K - sigma M factorised
-    solution.factorization_seconds += SecondsSince(&phase);
-    if (keep && !substructured && !FactoredPositiveDefinite(ShiftInvertFactor(eps.eps))) {
-      ++solution.factorizations;
-      not_positive_definite = true;
-      break;
-    }
-    FLEXMBS_PETSC(EPSSolve(eps.eps));
-    PetscInt converged = 0, iterations = 0;
-    FLEXMBS_PETSC(EPSGetConverged(eps.eps, &converged));
-    FLEXMBS_PETSC(EPSGetIterationNumber(eps.eps, &iterations));
-    ++solution.krylov_runs;
-    solution.restarts += static_cast<int>(iterations);
-    if (!substructured) ++solution.factorizations;
-    if (converged < nev) {
-      throw InputError(fmt::format("eigenproblem: SLEPc converged {} of {} modes in {} iterations", converged, nev,
-                                   iterations));
-    }
-    ExtractPairs(eps.eps, K, M, 0, &solution, &x.v);
-    solution.operator_applications += OperatorApplications(eps.eps);
-    solution.krylov_seconds += SecondsSince(&phase);
-    if (keep && !(solution.eigenvalues(0) > kZeroEigenvalue * trace_k / trace_m)) {
-      not_positive_definite = true;  // singular to round-off: not held
-      break;
-    }
-    // Sturm check: every eigenvalue below the cut after the wanted ones must have been found. The
-    // whole band's cut is its end, counted before the run.
-    double cut = top;
-    PetscInt count = band_count;
-    if (band_count < 0) {
-      cut = SturmCutAfter(ValuesForTheCut(solution.eigenvalues, ritz.lambda), wanted, solution.shift);
-      FLEXMBS_CHECK(cut > solution.eigenvalues(wanted - 1), "Sturm cut below the last wanted mode");
-      solution.missed_mode_check =
-          ChooseCheck(options, FactorizationFlops(eps.eps, substructured.get()), !fixed_dofs.empty());
-      if (solution.missed_mode_check == MissedModeCheck::kBlockKrylov) {
-        count = BlockCheckedCount(eps.eps, substructured.get(), M, x.v, cut, options, attempt, &solution);
-      }
-      if (count < 0) {
-        phase = std::chrono::steady_clock::now();
-        solution.missed_mode_check = MissedModeCheck::kSturmCount;
-        count = shifted ? EigenvaluesBelow(eps.eps, &*shifted, cut) : EigenvaluesBelow(K, M, cut);
-        ++solution.factorizations;
-        solution.sturm_seconds += SecondsSince(&phase);
-        solution.sturm_count = static_cast<int>(count);
-        solution.sturm_cut = cut;
-      }
-    } else {
-      solution.missed_mode_check = MissedModeCheck::kSturmCount;
-      solution.sturm_count = static_cast<int>(count);
-      solution.sturm_cut = cut;
-    }
-    const auto found = static_cast<PetscInt>((solution.eigenvalues.array() < cut).count());
-    solution.checked_cut = cut;
-    if (count == found) {
-      solution.eigenvalues.conservativeResize(wanted);
-      x.Truncate(static_cast<std::size_t>(wanted));
-      if (keep && !substructured) {
-        // The factor of K outlives the EPS, which resets its solver at the end of this scope.
-        held_factor.A = ShiftInvertFactor(eps.eps);
-        FLEXMBS_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(held_factor.A)));
-      }
-      break;
-    }
-    if (count < found || attempt > 0) {
-      throw InputError(fmt::format("eigenproblem: SLEPc found {} modes below {:.6g} Hz but the {} is {}", found,
-                                   FrequenciesHz(Eigen::VectorXd::Constant(1, cut))(0),
-                                   solution.missed_mode_check == MissedModeCheck::kSturmCount
-                                       ? "Sturm count"
-                                       : "block Krylov check's count",
-                                   count));
-    }
-    // SLEPc missed modes: once more, every mode below the cut converged and GuardPairs more.
-    nev = count + static_cast<PetscInt>(GuardPairs(count));
+    const AttemptEnd end = RunAttempt(context, attempt, &nev, &x, &held_factor, &solution);
+    if (end == AttemptEnd::kFound) break;
+    if (end == AttemptEnd::kNotPositiveDefinite) not_positive_definite = true;
   }
   if (not_positive_definite) {
     // K is not positive definite (a body the conditions do not hold): the usual negative shift,
     // no factorisation kept; this attempt's work counted.
     x.Clear();
     FLEXMBS_PETSC(MatSetOption(K, MAT_SPD, PETSC_FALSE));
-    EigenSolution again = SolveDistributedEigenproblem(K, M, fixed_dofs, options, modes_on, gather_seconds);
-    again.factorizations += solution.factorizations;
-    again.factorization_seconds += solution.factorization_seconds;
-    again.operator_applications += solution.operator_applications;
-    again.krylov_runs += solution.krylov_runs;
-    again.restarts += solution.restarts;
-    again.krylov_seconds += solution.krylov_seconds;
-    again.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return again;
+    return AddAbandonedWork(SolveDistributedEigenproblem(K, M, fixed_dofs, options, modes_on, gather_seconds),
+                            solution, start);
   }
   MeasurePairs(K, M, x.v, &solution);
-  const auto gather_start = std::chrono::steady_clock::now();
-  for (std::size_t j = 0; j < x.v.size(); ++j) {
-    Eigen::VectorXd mode = GatherVector(x.v[j], modes_on);
-    if (j == 0) solution.modes.resize(mode.size(), static_cast<Eigen::Index>(x.v.size()));
-    solution.modes.col(static_cast<Eigen::Index>(j)) = mode;
-  }
-  x.Clear();
-  if (gather_seconds) {
-    *gather_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
-  }
-  const PairResiduals residuals{solution.relative_residuals, solution.residual_floors};
-  Eigen::Index worst = 0;
-  if (!residuals.Accepted(options.residual_tolerance, &worst)) {
-    throw InputError(fmt::format("eigenproblem: mode {} ({:.6g} Hz) has relative residual {:.3g} above "
-                                 "max({:g}, {:g} x its round-off floor {:.3g})",
-                                 worst, FrequenciesHz(solution.eigenvalues)(worst),
-                                 solution.relative_residuals(worst), options.residual_tolerance,
-                                 kResidualFloorFactor, solution.residual_floors(worst)));
-  }
+  GatherModes(&x, modes_on, &solution, gather_seconds);
+  CheckResiduals(solution, options);
   if (keep) *K_factor = held_factor.Release();
   if (keep && substructured && K_substructured) *K_substructured = std::move(substructured);
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
