@@ -88,8 +88,15 @@ AppendableDataset Group::CreateAppendable(std::string_view name,
 
 AppendableDataset::AppendableDataset(std::shared_ptr<detail::FileState> file, std::int64_t id,
                                      std::string path, std::vector<std::int64_t> row_shape)
-    : file_(std::move(file)), id_(id), path_(std::move(path)), row_shape_(std::move(row_shape)) {
+    : file_(std::move(file)),
+      id_(id),
+      path_(std::move(path)),
+      row_shape_(std::move(row_shape)),
+      digest_(std::make_shared<detail::RowsDigest>()) {
   for (std::int64_t extent : row_shape_) row_size_ *= extent;
+  digest_->id = id_;
+  digest_->object = path_;
+  file_->row_digests.push_back(digest_);
 }
 
 AppendableDataset::AppendableDataset(AppendableDataset&& other) noexcept
@@ -98,7 +105,8 @@ AppendableDataset::AppendableDataset(AppendableDataset&& other) noexcept
       path_(std::move(other.path_)),
       row_shape_(std::move(other.row_shape_)),
       row_size_(other.row_size_),
-      rows_(other.rows_) {}
+      rows_(other.rows_),
+      digest_(std::move(other.digest_)) {}
 
 AppendableDataset& AppendableDataset::operator=(AppendableDataset&& other) noexcept {
   if (this != &other) {
@@ -109,6 +117,7 @@ AppendableDataset& AppendableDataset::operator=(AppendableDataset&& other) noexc
     row_shape_ = std::move(other.row_shape_);
     row_size_ = other.row_size_;
     rows_ = other.rows_;
+    digest_ = std::move(other.digest_);
   }
   return *this;
 }
@@ -144,7 +153,9 @@ void AppendableDataset::AppendRow(std::span<const double> row) {
   Check(H5Dwrite(id_, H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                  row.data()),
         file, path_, "write the row");
+  digest_->sha.Update(row.data(), row.size() * sizeof(double));
   ++rows_;
+  digest_->rows = rows_;
 }
 
 void AppendableDataset::AppendRow(const Eigen::Ref<const Eigen::VectorXd>& row) {
@@ -159,7 +170,8 @@ void AppendableDataset::AppendRow(double value) {
 }
 
 void AppendableDataset::Flush() {
-  const FileState& file = Writable(file_);
+  FileState& file = Writable(file_);
+  detail::RecordRowDigests(file);
   if (H5Fflush(file.id, H5F_SCOPE_LOCAL) < 0) {
     FailFile(file, fmt::format("cannot flush the file ({})", Hdf5Detail()));
   }

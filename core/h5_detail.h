@@ -20,10 +20,20 @@
 
 #include "core/error.h"
 #include "core/h5_file.h"
+#include "core/sha256.h"
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "h5_file.h stores hid_t as std::int64_t");
 
 namespace flexmbs::h5::detail {
+
+/// The running SHA-256 of an appendable dataset's rows, shared by the dataset and its file,
+/// which records it at every Flush and at Commit (files written in place).
+struct RowsDigest {
+  hid_t id = H5I_INVALID_HID;
+  std::string object;
+  std::int64_t rows = 0;
+  Sha256 sha;
+};
 
 /// What File, Group and AppendableDataset of one file share. Groups and datasets check `open`
 /// before closing their ids: File closes with H5F_CLOSE_STRONG, which closes them all.
@@ -34,6 +44,7 @@ struct FileState {
   bool writable = false;
   bool open = false;
   hid_t id = H5I_INVALID_HID;
+  std::vector<std::weak_ptr<RowsDigest>> row_digests;  // of the appendable datasets
 
   std::string name() const { return path.string(); }
 };
@@ -156,15 +167,39 @@ Handle DatasetCreationList(const std::vector<hsize_t>& dims, std::size_t element
 /// The creation list of a chunked dataset with chunk dims `chunk` and the Fletcher32 checksum.
 Handle ChecksummedChunks(const std::vector<hsize_t>& chunk);
 
-/// Throws InputError "<file>: <object>: ..." unless the dataset's stored bytes can hold all its
-/// values (a damaged chunk index or extent would read missing chunks as fill values) and its
-/// values fit in the file (a damaged extent would allocate without bound).
+/// Throws InputError "<file>: <object>: ..." unless the dataset's values fit in the file (a
+/// damaged extent would allocate without bound), its stored bytes can hold them all, and every
+/// chunk is in the chunk index with its checksum applied (a damaged index would read missing
+/// chunks as fill values).
 void CheckStorage(const FileState& file, const DatasetView& view, const std::string& object,
                   std::size_t element_bytes);
 
 /// Throws InputError naming `object` unless the dataset is stored as flexmbs writes it: no
 /// values, compact, or chunked with the Fletcher32 checksum.
 void RequireChecksum(const FileState& file, const DatasetView& view, const std::string& object);
+
+// ------------------------------------------------------------------------------------------
+// SHA-256 of a dataset's values, for files written in place (defined in h5_digest.cc)
+
+/// Writes the attributes `sha256` (hex digest) and `sha256_rows` (the leading rows it covers)
+/// of the dataset `id` named `object`. Files written in place use the HDF5 1.8 format, whose
+/// chunk index has no checksum: a damaged chunk address could point at zeros, which pass
+/// Fletcher32. The digest, in the checksummed object header, catches that.
+void WriteValuesDigest(const FileState& file, hid_t id, const std::string& object, const std::string& hex,
+                       std::int64_t rows);
+
+/// Records the digest of every live appendable dataset of `file` (WriteValuesDigest); before a
+/// flush or the close of a file written in place.
+void RecordRowDigests(FileState& file);
+
+/// Writes the values digest of `bytes` (all `rows` rows) if `file` is written in place.
+void WriteValuesDigestIfInPlace(const FileState& file, hid_t id, const std::string& object, const void* bytes,
+                                std::size_t size, std::int64_t rows);
+
+/// Throws InputError naming `object` unless the values read (`bytes`, `row_bytes` per row, as
+/// stored: row-major) match the dataset's `sha256` attribute, if it has one.
+void CheckValuesDigest(const FileState& file, const DatasetView& view, const std::string& object, const void* bytes,
+                       std::size_t row_bytes);
 
 // ------------------------------------------------------------------------------------------
 // Element types (defined in h5_types.cc)

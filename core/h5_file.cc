@@ -227,6 +227,7 @@ Group File::root() const {
 
 void File::Flush() {
   FileState& file = Writable(state_);
+  detail::RecordRowDigests(file);
   if (H5Fflush(file.id, H5F_SCOPE_LOCAL) < 0) {
     FailFile(file, fmt::format("cannot flush the file ({})", Hdf5Detail()));
   }
@@ -234,6 +235,7 @@ void File::Flush() {
 
 void File::Commit() {
   FileState& file = Writable(state_);
+  detail::RecordRowDigests(file);
   const herr_t closed = H5Fclose(file.id);
   file.open = false;
   try {

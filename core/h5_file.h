@@ -36,6 +36,7 @@ namespace flexmbs::h5 {
 
 namespace detail {
 struct FileState;
+struct RowsDigest;
 }  // namespace detail
 
 /// A matrix of 64-bit integers (face vertex indices, node ids) as stored on disk.
@@ -202,7 +203,8 @@ class Group {
 
 /// A dataset that grows by rows, for results written while a simulation runs. Obtain from
 /// Group::CreateAppendable. Rows written before a Flush survive a killed process when the
-/// file was created in WriteMode::kInPlace. Move-only.
+/// file was created in WriteMode::kInPlace; there every Flush and the Commit also record the
+/// SHA-256 of the rows so far (attributes `sha256`, `sha256_rows`; docs/h5.md). Move-only.
 class AppendableDataset {
  public:
   AppendableDataset(AppendableDataset&& other) noexcept;
@@ -237,6 +239,7 @@ class AppendableDataset {
   std::vector<std::int64_t> row_shape_;
   std::int64_t row_size_ = 1;
   std::int64_t rows_ = 0;
+  std::shared_ptr<detail::RowsDigest> digest_;  // of the rows appended, shared with the file
 };
 
 template <std::ranges::input_range Range>

@@ -25,6 +25,7 @@ using detail::CheckInternal;
 using detail::CheckName;
 using detail::CheckStorage;
 using detail::CheckUnits;
+using detail::CheckValuesDigest;
 using detail::ChildType;
 using detail::DatasetCreationList;
 using detail::DatasetView;
@@ -41,6 +42,7 @@ using detail::ReadStringData;
 using detail::StringTypeProblem;
 using detail::Utf8StringType;
 using detail::Writable;
+using detail::WriteValuesDigestIfInPlace;
 using detail::WriteStringAttribute;
 
 namespace {
@@ -180,6 +182,8 @@ std::vector<T> ReadData(const DatasetView& view, const FileState& file, const st
   if (!data.empty()) {
     Check(H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
           file, object, "read the dataset");
+    const std::size_t rows = view.rank > 0 ? static_cast<std::size_t>(view.dims[0]) : 1;
+    CheckValuesDigest(file, view, object, data.data(), data.size() / rows * sizeof(T));
   }
   return data;
 }
@@ -209,6 +213,8 @@ void WriteNumeric(FileState& file, hid_t loc, const std::string& object, std::st
           "write the dataset");
   }
   WriteStringAttribute(file, dataset.get(), object, "units", units);
+  WriteValuesDigestIfInPlace(file, dataset.get(), object, data, count * H5Tget_size(memory_type),
+                             dims.empty() ? 1 : static_cast<std::int64_t>(dims[0]));
 }
 
 }  // namespace
@@ -401,6 +407,8 @@ void Group::WriteStrings(std::string_view name, const std::vector<std::string>& 
     Check(H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()),
           file, object, "write the dataset");
   }
+  WriteValuesDigestIfInPlace(file, dataset.get(), object, packed.data(), packed.size(),
+                             static_cast<std::int64_t>(values.size()));
 }
 
 // --- reading -------------------------------------------------------------------------------
@@ -464,12 +472,19 @@ std::vector<std::string> Group::ReadStrings(std::string_view name) const {
   Expect(view, file, object, 1, H5T_STRING);
   const std::string problem = StringTypeProblem(view.type.get());
   if (!problem.empty()) Fail(file, object, problem);
-  CheckStorage(file, view, object, H5Tget_size(view.type.get()));
-  return ReadStringData(file, object, view.type.get(), view.count,
-                        [&](hid_t memory_type, void* buffer) {
-                          return H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL,
-                                         H5P_DEFAULT, buffer);
-                        });
+  const std::size_t size = H5Tget_size(view.type.get());
+  CheckStorage(file, view, object, size);
+  std::vector<std::string> values =
+      ReadStringData(file, object, view.type.get(), view.count, [&](hid_t memory_type, void* buffer) {
+        return H5Dread(view.dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+      });
+  // The digest is over the stored bytes: the strings padded with '\0' to the type's size.
+  std::vector<char> packed(values.size() * size, '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::copy(values[i].begin(), values[i].end(), packed.begin() + static_cast<std::ptrdiff_t>(i * size));
+  }
+  if (!values.empty()) CheckValuesDigest(file, view, object, packed.data(), size);
+  return values;
 }
 
 std::string Group::ReadUnits(std::string_view name) const {

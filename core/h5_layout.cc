@@ -21,6 +21,40 @@ namespace {
 /// 10 KiB to 1 MiB; its default chunk cache holds 1 MiB).
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 
+/// Throws InputError naming `object` unless every chunk of the chunked dataset `view` is found
+/// in its chunk index with its filters applied. The 1.8 format's chunk index (version-1 B-trees)
+/// has no checksum: a damaged key would make HDF5 read its chunk as fill values, or skip the
+/// chunk's checksum. Two queries, as they walk the index differently: H5Dget_chunk_storage_size
+/// looks the chunk up as H5Dread does (through the keys that bound each child), and
+/// H5Dget_chunk_info_by_coord visits every entry and gives its filter mask.
+void CheckChunks(const FileState& file, const DatasetView& view, const std::string& object, hid_t create_list) {
+  std::vector<hsize_t> chunk(view.dims.size(), 0);
+  Check(H5Pget_chunk(create_list, static_cast<int>(chunk.size()), chunk.data()), file, object, "read the chunk shape");
+  const Handle space(Check(H5Dget_space(view.dataset.get()), file, object, "read the dataset extent"), H5Sclose);
+  std::vector<hsize_t> offset(view.dims.size(), 0);
+  for (;;) {
+    unsigned mask = 0;
+    haddr_t address = HADDR_UNDEF;
+    hsize_t size = 0, stored = 0;
+    if (H5Dget_chunk_storage_size(view.dataset.get(), offset.data(), &stored) < 0 || stored == 0 ||
+        H5Dget_chunk_info_by_coord(view.dataset.get(), offset.data(), &mask, &address, &size) < 0 ||
+        address == HADDR_UNDEF || mask != 0) {
+      H5Eclear2(H5E_DEFAULT);
+      Fail(file, object, fmt::format("the chunk at [{}] is missing from the chunk index or skips its checksum",
+                                     fmt::join(offset, ", ")));
+    }
+    std::size_t d = offset.size();
+    while (d > 0) {
+      --d;
+      offset[d] += chunk[d];
+      if (offset[d] < view.dims[d]) break;
+      offset[d] = 0;
+      if (d == 0) return;
+    }
+    if (offset.empty()) return;
+  }
+}
+
 }  // namespace
 
 Handle ChecksummedChunks(const std::vector<hsize_t>& chunk) {
@@ -60,6 +94,9 @@ void CheckStorage(const FileState& file, const DatasetView& view, const std::str
     Fail(file, object, fmt::format("{} values of {} bytes, but only {} bytes stored: part of the data is missing",
                                    view.count, element_bytes, stored));
   }
+  const Handle list(Check(H5Dget_create_plist(view.dataset.get()), file, object, "read the storage layout"),
+                    H5Pclose);
+  if (H5Pget_layout(list.get()) == H5D_CHUNKED) CheckChunks(file, view, object, list.get());
 }
 
 void RequireChecksum(const FileState& file, const DatasetView& view, const std::string& object) {

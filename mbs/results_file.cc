@@ -157,4 +157,21 @@ void ResultsWriter::Finish(std::string_view termination, bool complete) {
 
 std::int64_t ResultsWriter::samples() const { return impl_->time->rows(); }
 
+h5::VerifyReport VerifyResultsFile(const std::filesystem::path& path) {
+  const h5::File file = h5::File::Open(path);
+  const h5::Group root = file.root();
+  const std::int64_t version = root.HasAttribute("schema_version") ? root.GetIntegerAttribute("schema_version") : 0;
+  if (version == 1) {
+    throw InputError(fmt::format("{}: results schema_version 1 was written by an earlier flexmbs, without checksums; "
+                                 "write it again with `flexmbs simulate SCENE.yaml -o {}`",
+                                 path.string(), path.string()));
+  }
+  if (!root.HasAttribute("format") || root.GetStringAttribute("format") != kResultsFormat ||
+      version != kResultsSchemaVersion) {
+    throw InputError(fmt::format("{}: not a flexmbs results file of schema_version {} (format '{}')", path.string(),
+                                 kResultsSchemaVersion, kResultsFormat));
+  }
+  return root.VerifyAll();
+}
+
 }  // namespace flexmbs::mbs

@@ -13,11 +13,19 @@
 #include <string_view>
 #include <vector>
 
+#include "core/h5_file.h"
+
 namespace flexmbs::mbs {
 
-/// The results file's format attribute and schema version.
+/// The results file's format attribute and schema version (2: every dataset checksummed with
+/// Fletcher32, fixed-length strings; schema 1 had neither).
 inline constexpr std::string_view kResultsFormat = "flexmbs-results";
-inline constexpr int kResultsSchemaVersion = 1;
+inline constexpr int kResultsSchemaVersion = 2;
+
+/// Reads a results file in full (h5::Group::VerifyAll) after checking its format and schema:
+/// what `flexmbs info --verify` checks. Throws InputError naming `path` at the first problem;
+/// a file of schema 1 is refused with the command that writes it again.
+h5::VerifyReport VerifyResultsFile(const std::filesystem::path& path);
 
 /// What the file records, fixed when it is created.
 struct ResultsLayout {

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <limits>
+#include <string_view>
+#include <utility>
+
 #include "core/error.h"
 #include "mbs/force_element.h"
 #include "mbs/joint.h"
@@ -112,6 +116,14 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
   Within(node, [&] { return system->AddForceElement(std::move(element)); });
 }
 
+/// At most this many output samples (end_time / output_interval; docs/scene.md): 10^7 samples
+/// of a single rigid body are already 1.3 GB of results.
+constexpr double kMaxOutputSamples = 1e7;
+
+/// A step below this many machine epsilons of end_time cannot advance the time (t + h rounds
+/// to t near the end); docs/scene.md.
+constexpr double kMinStepEpsilons = 64.0;
+
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
                           "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot"});
@@ -122,6 +134,12 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
                                                         : options.end_time / 100.0;
   if (options.output_interval <= 0.0) {
     node.Required("output_interval").Fail(fmt::format("{:g} must be > 0", options.output_interval));
+  }
+  if (options.end_time / options.output_interval > kMaxOutputSamples) {
+    node.Required("output_interval")
+        .Fail(fmt::format("{:g} s asks for {:.3g} samples up to end_time {:g} s, more than the limit of {:g}",
+                          options.output_interval, options.end_time / options.output_interval, options.end_time,
+                          kMaxOutputSamples));
   }
   if (node.Has("method")) {
     const YamlNode method = node.Required("method");
@@ -162,6 +180,15 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
   positive("absolute_tolerance", &options.integrator.absolute_tolerance);
   positive("max_step", &options.integrator.max_step);
   positive("fixed_step", &options.integrator.fixed_step);
+  const double min_step = kMinStepEpsilons * std::numeric_limits<double>::epsilon() * options.end_time;
+  for (const auto& [key, step] : {std::pair<std::string_view, double>{"max_step", options.integrator.max_step},
+                                  {"fixed_step", options.integrator.fixed_step}}) {
+    if (step > 0.0 && step < min_step) {
+      node.Required(key).Fail(fmt::format("{:g} s is below the round-off of the time up to end_time {:g} s "
+                                          "(at least {:g} epsilon x end_time = {:.3g} s)",
+                                          step, options.end_time, kMinStepEpsilons, min_step));
+    }
+  }
   positive("baumgarte_frequency", &options.baumgarte_frequency);
   if (node.Has("redundant_pivot")) {
     const YamlNode item = node.Required("redundant_pivot");

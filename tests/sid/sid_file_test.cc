@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/h5_file.h"
 #include "sid/sid_digest.h"
+#include "tests/sid/sample_body.h"
 #include "tests/input_error.h"
 
 namespace flexmbs::sid {
@@ -26,75 +27,9 @@ fs::path TempPath(const std::string& name) {
   return dir / name;
 }
 
-// A Taylor block of random entries with `order` for n modes.
-TaylorMatrix RandomTaylor(Eigen::Index rows, Eigen::Index cols, Eigen::Index n, int order) {
-  TaylorMatrix block;
-  block.m0 = Eigen::MatrixXd::Random(rows, cols);
-  if (order >= 1) {
-    for (Eigen::Index j = 0; j < n; ++j) block.m1.push_back(Eigen::MatrixXd::Random(rows, cols));
-  }
-  if (order >= 2) {
-    for (Eigen::Index j = 0; j < n * n; ++j) block.m2.push_back(Eigen::MatrixXd::Random(rows, cols));
-  }
-  return block;
-}
-
-constexpr Eigen::Index kModes = 3;
-constexpr Eigen::Index kNodes = 5;
-
-ReducedBody SampleBody() {
-  const Eigen::Index n = kModes;
-  ReducedBody body;
-  body.name = "bracket";
-  body.mass = 1.25;
-  body.center_of_mass = Eigen::Vector3d(0.1, -0.2, 0.3);
-  body.inertia_about_center_of_mass << 1, 0.1, 0.2, 0.1, 2, 0.3, 0.2, 0.3, 3;
-  body.mode_names = {"constraint_tip_tx", "normal_1", "normal_2"};
-  body.mode_kinds = {"constraint", "normal", "normal"};
-  body.frequency_hz = Eigen::Vector3d(std::nan(""), 12.5, 80.25);
-  body.relative_residuals = Eigen::Vector3d(std::nan(""), 1e-12, 3e-11);
-  body.damping = "modal 2 %";
-  body.mdCM = RandomTaylor(3, 1, n, 1);
-  body.J = RandomTaylor(3, 3, n, 2);
-  body.Ct = RandomTaylor(n, 3, n, 1);
-  body.Cr = RandomTaylor(n, 3, n, 1);
-  body.Me = RandomTaylor(n, n, n, 0);
-  body.Gr = RandomTaylor(3, 3 * n, n, 1);
-  body.Ge = RandomTaylor(n, 3 * n, n, 0);
-  body.Oe = RandomTaylor(n, 6, n, 1);
-  body.Ke = RandomTaylor(n, n, n, 0);
-  body.De = RandomTaylor(n, n, n, 0);
-  body.ksigma = RandomTaylor(n, 1, n, 0);
-  for (auto* cases : {&body.stiffening.K0t, &body.stiffening.K0r}) {
-    for (Eigen::MatrixXd& K : *cases) K = Eigen::MatrixXd::Random(n, n);
-  }
-  for (Eigen::MatrixXd& K : body.stiffening.K0omega) K = Eigen::MatrixXd::Random(n, n);
-  body.node_positions = Eigen::Matrix3Xd::Random(3, kNodes);
-  body.node_sets = {{"clamp", {0, 1}}, {"tip", {3, 4}}};
-  body.phi = Eigen::MatrixXd::Random(3 * kNodes, n);
-  Node tip;
-  tip.name = "tip";
-  tip.fe_nodes = {3, 4};
-  tip.coupling = "rigid";
-  tip.origin = RandomTaylor(3, 1, n, 1);
-  tip.phi = RandomTaylor(3, n, n, 1);
-  tip.psi = RandomTaylor(3, n, n, 1);
-  tip.AP = RandomTaylor(3, 3, n, 1);
-  body.nodes = {tip};
-  ContactSurface pad;
-  pad.name = "pad";
-  pad.fe_nodes = {1, 2, 3, 4};
-  pad.vertices = Eigen::MatrixX3d::Random(4, 3);
-  pad.face_sizes = {3, 3};
-  pad.face_vertices = {0, 1, 2, 0, 2, 3};
-  pad.face_normals = Eigen::MatrixX3d::Random(2, 3);
-  pad.phi = Eigen::MatrixXd::Random(12, n);
-  body.surfaces = {pad};
-  body.visual_surface.face_sizes = {3, 4};
-  body.visual_surface.face_nodes = {0, 1, 2, 1, 2, 3, 4};
-  body.provenance = {{"mesh", "bracket.msh"}, {"eigensolver", "spectra"}};
-  return body;
-}
+constexpr Eigen::Index kModes = testing::kSampleModes;
+constexpr Eigen::Index kNodes = testing::kSampleNodes;
+using testing::SampleBody;
 
 // Equal matrices, NaN where the other has NaN (HDF5 stores doubles unchanged).
 void ExpectSame(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {

@@ -1,0 +1,141 @@
+// The time to write and read a `.sid.h5` body against its size (docs/h5.md, "Cost of the
+// checksums"): a generated body of D DOF and n modes (random basis and invariants of the shapes
+// docs/sid.md gives, 4 marker nodes, no surfaces), written with sid::WriteReducedBody and read
+// back with sid::ReadReducedBody, the fastest of --repeat runs each (the file stays in the page
+// cache, so this is the CPU cost of HDF5, checksums and digest, not the disk's). Both the wall
+// time and the process's CPU time are given: on a machine shared with other jobs the CPU time
+// is the steadier measure.
+//
+//   bench_sid_file [--dofs 100000,512000] [--modes 20] [--repeat 3] [--dir /tmp]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <string>
+#include <string_view>
+
+#include "bench/command_line.h"
+#include "sid/sid_file.h"
+
+namespace flexmbs::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A Taylor block of random entries: rows x cols, `order` 0, 1 or 2, n modes.
+sid::TaylorMatrix RandomTaylor(Eigen::Index rows, Eigen::Index cols, Eigen::Index n, int order) {
+  sid::TaylorMatrix block;
+  block.m0 = Eigen::MatrixXd::Random(rows, cols);
+  for (Eigen::Index j = 0; order >= 1 && j < n; ++j) block.m1.push_back(Eigen::MatrixXd::Random(rows, cols));
+  for (Eigen::Index j = 0; order >= 2 && j < n * n; ++j) block.m2.push_back(Eigen::MatrixXd::Random(rows, cols));
+  return block;
+}
+
+/// A body of `dofs` / 3 FE nodes and n modes with every block in its documented shape.
+sid::ReducedBody GeneratedBody(Eigen::Index dofs, Eigen::Index n) {
+  const Eigen::Index nodes = dofs / 3;
+  sid::ReducedBody body;
+  body.name = "generated";
+  body.mass = 1.0;
+  body.inertia_about_center_of_mass = Eigen::Matrix3d::Identity();
+  for (Eigen::Index k = 0; k < n; ++k) {
+    body.mode_names.push_back(fmt::format("normal_{}", k + 1));
+    body.mode_kinds.push_back("normal");
+  }
+  body.frequency_hz = Eigen::VectorXd::LinSpaced(n, 1.0, 1000.0);
+  body.relative_residuals = Eigen::VectorXd::Constant(n, 1e-12);
+  body.damping = "none";
+  body.mdCM = RandomTaylor(3, 1, n, 1);
+  body.J = RandomTaylor(3, 3, n, 2);
+  body.Ct = RandomTaylor(n, 3, n, 1);
+  body.Cr = RandomTaylor(n, 3, n, 1);
+  body.Me = RandomTaylor(n, n, n, 0);
+  body.Gr = RandomTaylor(3, 3 * n, n, 1);
+  body.Ge = RandomTaylor(n, 3 * n, n, 0);
+  body.Oe = RandomTaylor(n, 6, n, 1);
+  body.Ke = RandomTaylor(n, n, n, 0);
+  body.De = RandomTaylor(n, n, n, 0);
+  body.ksigma = RandomTaylor(n, 1, n, 0);
+  body.node_positions = Eigen::Matrix3Xd::Random(3, nodes);
+  body.phi = Eigen::MatrixXd::Random(3 * nodes, n);
+  for (int m = 0; m < 4; ++m) {
+    sid::Node node;
+    node.name = fmt::format("marker_{}", m);
+    node.fe_nodes = {m};
+    node.coupling = "node";
+    node.origin = RandomTaylor(3, 1, n, 1);
+    node.phi = RandomTaylor(3, n, n, 1);
+    node.psi = RandomTaylor(3, n, n, 1);
+    node.AP = RandomTaylor(3, 3, n, 1);
+    body.nodes.push_back(node);
+  }
+  return body;
+}
+
+/// Wall-clock and CPU time of one run [s].
+struct Seconds {
+  double wall = std::numeric_limits<double>::infinity();
+  double cpu = std::numeric_limits<double>::infinity();
+};
+
+double ProcessCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// The fastest of `repeat` runs of `f`, in wall-clock and in CPU time (each its own minimum).
+Seconds Fastest(int repeat, const std::function<void()>& f) {
+  Seconds best;
+  for (int r = 0; r < repeat; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = ProcessCpuSeconds();
+    f();
+    best.cpu = std::min(best.cpu, ProcessCpuSeconds() - cpu_start);
+    best.wall = std::min(best.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+int Run(int argc, char** argv) {
+  std::vector<int> dofs{100000, 512000};
+  int modes = 20, repeat = 3;
+  fs::path dir = fs::temp_directory_path();
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string_view option = argv[i];
+    if (option == "--dofs") {
+      dofs = ParseIntList(argv[i + 1]);
+    } else if (option == "--modes") {
+      modes = std::atoi(argv[i + 1]);
+    } else if (option == "--repeat") {
+      repeat = std::atoi(argv[i + 1]);
+    } else if (option == "--dir") {
+      dir = argv[i + 1];
+    } else {
+      fmt::print(stderr, "bench_sid_file: unknown option {}\n", option);
+      return 2;
+    }
+  }
+  fmt::print("{:>9} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8}\n", "DOF", "modes", "file MB", "write s", "read s",
+             "write cpu", "read cpu");
+  for (const int d : dofs) {
+    const sid::ReducedBody body = GeneratedBody(d, modes);
+    const fs::path path = dir / fmt::format("bench_sid_file_{}.sid.h5", d);
+    const Seconds write = Fastest(repeat, [&] { sid::WriteReducedBody(path, body); });
+    const Seconds read = Fastest(repeat, [&] { sid::ReadReducedBody(path); });
+    fmt::print("{:>9} {:>6} {:>8.1f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f}\n", d, modes,
+               static_cast<double>(fs::file_size(path)) / 1e6, write.wall, read.wall, write.cpu, read.cpu);
+    fs::remove(path);
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace flexmbs::bench
+
+int main(int argc, char** argv) { return flexmbs::bench::Run(argc, argv); }
