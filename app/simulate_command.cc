@@ -43,6 +43,10 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
   for (int k = 0; k < system.num_joints(); ++k) {
     layout.joints.push_back({system.joint(k).name(), std::string(mbs::JointTypeName(system.joint(k).type()))});
   }
+  for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
+    const mbs::UnilateralContact& contact = system.unilateral_contact(k);
+    layout.contacts.push_back({contact.name(), std::string(contact.type())});
+  }
   const mbs::OdeOptions& ode = scene.options.integrator;
   const std::string jacobian = ode.method == mbs::OdeMethod::kImplicit
                                    ? fmt::format(", jacobian {}, newton {}", mbs::OdeJacobianName(ode.jacobian),
@@ -50,8 +54,11 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
                                    : "";
   layout.provenance = {{"scene_file", scene.file.string()},
                        {"scene_sha256", Sha256OfFile(scene.file)},
-                       {"integrator", fmt::format("{}, rtol {:g}, atol {:g}{}", mbs::OdeMethodName(ode.method),
-                                                  ode.relative_tolerance, ode.absolute_tolerance, jacobian)},
+                       {"integrator", scene.options.moreau_jean
+                                          ? fmt::format("moreau_jean, step {:g}, theta {:g}",
+                                                        scene.options.moreau_jean->step, scene.options.moreau_jean->theta)
+                                          : fmt::format("{}, rtol {:g}, atol {:g}{}", mbs::OdeMethodName(ode.method),
+                                                        ode.relative_tolerance, ode.absolute_tolerance, jacobian)},
                        {"redundant_constraints", initial.redundancy.Describe(system)}};
   for (std::size_t b = 0; b < scene.body_files.size(); ++b) {
     if (scene.body_files[b].empty()) continue;
@@ -61,8 +68,10 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
   return layout;
 }
 
-/// The results of one output time.
-mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda) {
+/// The results of one output time; `contacts` is the report of the Moreau-Jean output interval
+/// that ended at t (empty for the ODE methods, which have no unilateral contacts).
+mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda,
+                          const mbs::MoreauJeanStepReport& contacts) {
   const mbs::MultibodySystem& system = *scene.system;
   mbs::ResultsSample sample;
   sample.time = t;
@@ -79,6 +88,9 @@ mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::Vector
     const mbs::JointLoad load = system.ConstraintLoad(k, t, y, lambda);
     sample.joint_forces.push_back(load.f_W);
     sample.joint_torques.push_back(load.tau_W);
+  }
+  for (const mbs::ContactStepResult& contact : contacts.contacts) {
+    sample.contacts.push_back({contact.g_N, contact.P_N, contact.P_T, contact.active});
   }
   sample.kinetic_energy = system.KineticEnergy(y);
   sample.potential_energy = system.PotentialEnergy(t, y);
@@ -105,6 +117,12 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
     j["steps"] = stats.integrator.steps;
     j["rhs_evaluations"] = stats.integrator.rhs_evaluations;
     j["error_test_failures"] = stats.integrator.error_test_failures;
+    if (scene.options.moreau_jean) {
+      j["contact_solves"] = stats.moreau_jean.contact_solves;
+      j["max_active_contacts"] = stats.moreau_jean.max_active_contacts;
+      j["contact_solver_iterations"] = stats.moreau_jean.solver_iterations;
+      j["max_contact_solver_error"] = stats.moreau_jean.max_solver_error;
+    }
     if (implicit) {
       j["newton"] = NewtonUsed(stats.integrator);
       j["newton_iterations"] = stats.integrator.newton_iterations;
@@ -136,6 +154,13 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
   }
   fmt::print("integration     {} steps, {} function evaluations, {} error-test failures\n", stats.integrator.steps,
              stats.integrator.rhs_evaluations, stats.integrator.error_test_failures);
+  if (scene.options.moreau_jean) {
+    fmt::print("contacts        {} unilateral: {} steps with contact, at most {} active, {} solver iterations, largest "
+               "error {:.3g}\n",
+               scene.system->num_unilateral_contacts(), stats.moreau_jean.contact_solves,
+               stats.moreau_jean.max_active_contacts, stats.moreau_jean.solver_iterations,
+               stats.moreau_jean.max_solver_error);
+  }
   if (implicit) {
     fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,
                stats.integrator.newton_setups, NewtonUsed(stats.integrator));
@@ -165,8 +190,10 @@ void RunSimulate(const SimulateOptions& options) {
   Progress progress;
   double energy_start = std::nan(""), energy_end = std::nan("");
   const double end_time = scene.options.end_time;
+  mbs::MoreauJeanStepReport contacts;  // the output interval that ended at the output time
+  auto record_contacts = [&](double, const mbs::MoreauJeanStepReport& step) { contacts = step; };
   auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda) {
-    const mbs::ResultsSample sample = Sample(scene, t, y, lambda);
+    const mbs::ResultsSample sample = Sample(scene, t, y, lambda, contacts);
     if (std::isnan(energy_start)) energy_start = sample.kinetic_energy + sample.potential_energy;
     energy_end = sample.kinetic_energy + sample.potential_energy;
     writer.Append(sample);
@@ -175,7 +202,7 @@ void RunSimulate(const SimulateOptions& options) {
   };
   mbs::SimulationStatistics stats;
   try {
-    stats = mbs::Simulate(*scene.system, scene.options, y0, record);
+    stats = mbs::Simulate(*scene.system, scene.options, y0, record, record_contacts);
   } catch (const mbs::SimulationError& e) {
     progress.Clear();
     writer.Finish(e.what(), false);

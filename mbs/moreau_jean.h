@@ -49,8 +49,8 @@ struct MoreauJeanStepReport {
   Eigen::VectorXd lambda;
 };
 
-/// Called at every output time with the report of the step that ended there (at the start: all
-/// contacts inactive, their gaps at y0).
+/// Called at every output time with the report of the output interval that ended there
+/// (SimulateMoreauJean; at the start: all contacts inactive, their gaps at y0).
 using ContactOutputCallback = std::function<void(double t, const MoreauJeanStepReport& step)>;
 
 /// Counters of a Moreau-Jean run.

@@ -2,12 +2,36 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "core/error.h"
 #include "mbs/constraint_projection.h"
 #include "mbs/constraint_redundancy.h"
 
 namespace flexmbs::mbs {
+namespace {
+
+/// Adds `step` (the next step) to the report of an output interval: its impulses add up, a
+/// contact counts as active if it was in any step's index set, and the gaps, velocities, joint
+/// forces and solver figures are the last step's.
+void AccumulateStep(const MoreauJeanStepReport& step, MoreauJeanStepReport* interval) {
+  for (std::size_t k = 0; k < step.contacts.size(); ++k) {
+    ContactStepResult& sum = interval->contacts[k];
+    const ContactStepResult& next = step.contacts[k];
+    sum.active = sum.active || next.active;
+    sum.g_N = next.g_N;
+    sum.U_N = next.U_N;
+    sum.P_N += next.P_N;
+    sum.P_T += next.P_T;
+  }
+  interval->time = step.time;
+  interval->active_contacts = step.active_contacts;
+  interval->solver_iterations = step.solver_iterations;
+  interval->solver_error = step.solver_error;
+  interval->lambda = step.lambda;
+}
+
+}  // namespace
 
 SimulationStatistics SimulateMoreauJean(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
                                         const OutputCallback& output, const ContactOutputCallback& contact_output) {
@@ -23,18 +47,23 @@ SimulationStatistics SimulateMoreauJean(MultibodySystem& system, const Simulatio
   watch.Check(system, options.start_time, y0);
 
   const auto emit = [&](double t, const Eigen::VectorXd& y, const MoreauJeanStepReport& report) {
-    output(t, y, report.lambda);
     if (contact_output) contact_output(t, report);
+    output(t, y, report.lambda);
     ++statistics.outputs;
   };
   emit(options.start_time, y0, stepper.Initial(options.start_time, y0));
   double t = options.start_time;
   Eigen::VectorXd& y = y0;
   for (const double t_out : OutputTimes(options)) {
-    const MoreauJeanStepReport* report = nullptr;
+    std::optional<MoreauJeanStepReport> interval;  // the steps since the last output
     while (t_out - t > 1e-9 * h) {
       const bool last = t_out - t <= h * (1.0 + 1e-9);
-      report = &stepper.Step(t, last ? t_out - t : h, y);
+      const MoreauJeanStepReport& step = stepper.Step(t, last ? t_out - t : h, y);
+      if (interval) {
+        AccumulateStep(step, &*interval);
+      } else {
+        interval = step;
+      }
       t = last ? t_out : t + h;
       if (system.num_constraints() > 0) {
         const ProjectionResult projection = ProjectPositions(system, t, y, options.projection);
@@ -45,7 +74,7 @@ SimulationStatistics SimulateMoreauJean(MultibodySystem& system, const Simulatio
         ++statistics.projections;
       }
     }
-    if (report != nullptr) emit(t, y, *report);
+    if (interval) emit(t, y, *interval);
   }
   statistics.moreau_jean = stepper.statistics();
   statistics.integrator.steps = statistics.moreau_jean.steps;

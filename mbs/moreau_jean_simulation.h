@@ -16,8 +16,10 @@ namespace flexmbs::mbs {
 /// before it shortened to land on it when the output interval is not a multiple of h (within
 /// 1e-9 h it is). After every step the positions are projected onto the kept joint rows and the
 /// velocities onto G u = -g_t (ProjectPositions, ProjectVelocities; nothing without joints).
-/// Calls output(t, y, lambda) with lambda the joints' average forces of the step that ended at t,
-/// and contact_output (if set) with that step's report. Throws InputError for bad options or
+/// At every output time calls contact_output (if set) with the report of the output interval
+/// (the steps since the last output: impulses summed, a contact active if it was in any step's
+/// index set, gaps and the rest from the last step), then output(t, y, lambda) with lambda the
+/// joints' average forces of the last step. Throws InputError for bad options or
 /// initial conditions (as Simulate), SimulationError as MoreauJeanStepper::Step and the
 /// projections do.
 SimulationStatistics SimulateMoreauJean(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,

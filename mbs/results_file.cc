@@ -22,6 +22,10 @@ struct JointSeries {
   h5::AppendableDataset force, torque;
 };
 
+struct ContactSeries {
+  h5::AppendableDataset gap, normal_impulse, tangential_impulse, active;
+};
+
 }  // namespace
 
 struct ResultsWriter::Impl {
@@ -29,11 +33,13 @@ struct ResultsWriter::Impl {
   std::optional<h5::AppendableDataset> time, kinetic, potential, total;
   std::vector<BodySeries> bodies;
   std::vector<JointSeries> joints;
+  std::vector<ContactSeries> contacts;
   std::chrono::steady_clock::time_point last_flush = std::chrono::steady_clock::now();
   double flush_interval_seconds = 1.0;
   bool finished = false;
 
   explicit Impl(h5::File f) : file(std::move(f)) {}
+
 };
 
 namespace {
@@ -83,6 +89,16 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsLay
     group.SetStringAttribute("type", joint.type);
     impl_->joints.push_back({group.CreateAppendable("force", {3}, "N"), group.CreateAppendable("torque", {3}, "N m")});
   }
+  if (!layout.contacts.empty()) {
+    h5::Group contacts = root.CreateGroup("contacts");
+    for (const ResultsLayout::Contact& contact : layout.contacts) {
+      h5::Group group = contacts.CreateGroup(contact.name);
+      group.SetStringAttribute("type", contact.type);
+      impl_->contacts.push_back({group.CreateAppendable("gap", {}, "m"), group.CreateAppendable("normal_impulse", {}, "N s"),
+                                 group.CreateAppendable("tangential_impulse", {2}, "N s"),
+                                 group.CreateAppendable("active", {}, "1")});
+    }
+  }
   std::map<std::string, std::string> provenance = layout.provenance;
   provenance["tool_version"] = std::string(Version());
   std::vector<std::string> keys, values;
@@ -104,8 +120,8 @@ void ResultsWriter::Append(const ResultsSample& sample) {
   FLEXMBS_CHECK(sample.positions.size() == impl.bodies.size() && sample.velocities.size() == impl.bodies.size() &&
                     sample.marker_positions.size() == impl.bodies.size() &&
                     sample.joint_forces.size() == impl.joints.size() &&
-                    sample.joint_torques.size() == impl.joints.size(),
-                "a results sample needs every body and joint of the layout");
+                    sample.joint_torques.size() == impl.joints.size() && sample.contacts.size() == impl.contacts.size(),
+                "a results sample needs every body, joint and contact of the layout");
   for (std::size_t b = 0; b < impl.bodies.size(); ++b) {
     BodySeries& series = impl.bodies[b];
     const Eigen::VectorXd& x = sample.positions[b];
@@ -129,6 +145,13 @@ void ResultsWriter::Append(const ResultsSample& sample) {
   for (std::size_t j = 0; j < impl.joints.size(); ++j) {
     impl.joints[j].force.AppendRow(Eigen::VectorXd(sample.joint_forces[j]));
     impl.joints[j].torque.AppendRow(Eigen::VectorXd(sample.joint_torques[j]));
+  }
+  for (std::size_t c = 0; c < impl.contacts.size(); ++c) {
+    const ResultsSample::ContactSample& contact = sample.contacts[c];
+    impl.contacts[c].gap.AppendRow(contact.gap);
+    impl.contacts[c].normal_impulse.AppendRow(contact.normal_impulse);
+    impl.contacts[c].tangential_impulse.AppendRow(Eigen::VectorXd(contact.tangential_impulse));
+    impl.contacts[c].active.AppendRow(contact.active ? 1.0 : 0.0);
   }
   impl.kinetic->AppendRow(sample.kinetic_energy);
   impl.potential->AppendRow(sample.potential_energy);

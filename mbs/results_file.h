@@ -39,8 +39,14 @@ struct ResultsLayout {
     std::string name;
     std::string type;  ///< "revolute", ...
   };
+  /// A unilateral contact (Moreau-Jean runs).
+  struct Contact {
+    std::string name;
+    std::string type;  ///< "sphere_plane", "sphere_sphere"
+  };
   std::vector<Body> bodies;
   std::vector<Joint> joints;
+  std::vector<Contact> contacts;
   /// Scene file, integrator, tolerances, tool version, ...: written as /provenance.
   std::map<std::string, std::string> provenance;
 };
@@ -48,7 +54,8 @@ struct ResultsLayout {
 /// One output time: per body its positions x_b = [p_WBo_W, e, q] and velocities
 /// u_b = [v_WBo_W, w_WB_B, qdot] (docs/mbs.md), marker positions p_WM_W per body and marker,
 /// joint loads per joint (force [N] and torque [N m] on the second body at its marker, in W),
-/// energies [J].
+/// energies [J], and per unilateral contact the output interval that ended at this time
+/// (ContactSample).
 struct ResultsSample {
   double time = 0.0;
   std::vector<Eigen::VectorXd> positions;
@@ -58,6 +65,16 @@ struct ResultsSample {
   std::vector<Eigen::Vector3d> joint_torques;
   double kinetic_energy = 0.0;
   double potential_energy = 0.0;
+  /// One unilateral contact at an output time: its gap [m], the impulses [N s] summed over the
+  /// Moreau-Jean steps since the last output, and whether it was active in any of them
+  /// (mbs/moreau_jean_simulation.h).
+  struct ContactSample {
+    double gap = 0.0;
+    double normal_impulse = 0.0;
+    Eigen::Vector2d tangential_impulse = Eigen::Vector2d::Zero();  ///< along t1_W, t2_W
+    bool active = false;
+  };
+  std::vector<ContactSample> contacts;
 };
 
 /// Writes a results file sample by sample.

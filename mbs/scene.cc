@@ -11,6 +11,7 @@
 #include "mbs/joint.h"
 #include "mbs/scene_bodies.h"
 #include "mbs/scene_contact.h"
+#include "mbs/scene_unilateral.h"
 #include "mbs/scene_values.h"
 
 namespace flexmbs::mbs {
@@ -126,7 +127,8 @@ constexpr double kMinStepEpsilons = 64.0;
 
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
-                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot"});
+                          "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot",
+                          "step", "theta"});
   SimulationOptions options;
   options.end_time = node.Required("end_time").AsDouble();
   if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
@@ -141,15 +143,19 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
                           options.output_interval, options.end_time / options.output_interval, options.end_time,
                           kMaxOutputSamples));
   }
+  bool moreau_jean = false;
   if (node.Has("method")) {
     const YamlNode method = node.Required("method");
     const std::string name = method.AsString();
     if (name == "implicit") {
       options.integrator.method = OdeMethod::kImplicit;
+    } else if (name == "moreau_jean") {
+      moreau_jean = true;
     } else if (name != "explicit") {
-      method.Fail(fmt::format("'{}' must be one of: explicit, implicit", name));
+      method.Fail(fmt::format("'{}' must be one of: explicit, implicit, moreau_jean", name));
     }
   }
+  options.moreau_jean = ReadMoreauJeanOptions(node, moreau_jean);
   if (node.Has("jacobian")) {
     const YamlNode jacobian = node.Required("jacobian");
     const std::string name = jacobian.AsString();
@@ -239,7 +245,7 @@ std::vector<RecordedMarker> ReadOutput(const YamlNode& node, const MultibodySyst
 
 Scene LoadScene(const std::filesystem::path& file) {
   const YamlNode root = YamlNode::LoadFile(file);
-  root.RejectUnknownKeys({"gravity", "bodies", "joints", "forces", "simulation", "output"});
+  root.RejectUnknownKeys({"gravity", "bodies", "joints", "forces", "contacts", "simulation", "output"});
   Scene scene;
   scene.file = file;
   scene.system = std::make_unique<MultibodySystem>(root.Has("gravity") ? ReadVector3(root.Required("gravity"))
@@ -265,6 +271,20 @@ Scene LoadScene(const std::filesystem::path& file) {
     scene.system->SetBodyState(static_cast<int>(b), bodies[b].x0, bodies[b].u0, scene.initial_state);
   }
   scene.options = ReadSimulation(root.Required("simulation"));
+  if (root.Has("contacts")) {
+    const YamlNode contacts = root.Required("contacts");
+    for (const YamlNode& item : contacts.AsList()) {
+      std::unique_ptr<UnilateralContact> contact =
+          ReadUnilateralContact(item, [&](const YamlNode& end) { return ReadMarkerRef(end, *scene.system); });
+      if (!scene.options.moreau_jean) {
+        item.Fail(fmt::format("contact '{}' is unilateral, which only simulation.method moreau_jean integrates "
+                              "(compliant contact under explicit or implicit: the force elements sphere_plane_contact, "
+                              "sphere_sphere_contact)",
+                              contact->name()));
+      }
+      Within(item, [&] { return scene.system->AddUnilateralContact(std::move(contact)); });
+    }
+  }
   if (root.Has("output")) {
     const YamlNode output = root.Required("output");
     scene.recorded_markers = ReadOutput(output, *scene.system);

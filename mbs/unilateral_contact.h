@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 
 #include "mbs/body.h"
 #include "mbs/marker_ref.h"
@@ -47,6 +48,8 @@ class UnilateralContact {
   UnilateralContact& operator=(const UnilateralContact&) = delete;
 
   const std::string& name() const { return name_; }
+  /// The scene's type name: "sphere_plane", "sphere_sphere".
+  virtual std::string_view type() const = 0;
   const UnilateralLaw& law() const { return law_; }
   const MarkerRef& marker_a() const { return a_; }
   const MarkerRef& marker_b() const { return b_; }
@@ -79,6 +82,7 @@ class SpherePlaneUnilateral final : public UnilateralContact {
  public:
   /// radius > 0 [m]; InputError naming the contact otherwise (and as UnilateralContact).
   SpherePlaneUnilateral(std::string name, MarkerRef sphere, MarkerRef plane, double radius, UnilateralLaw law);
+  std::string_view type() const override { return "sphere_plane"; }
 
  private:
   UnilateralContactKinematics Geometry(const MarkerKinematics& a, const MarkerKinematics& b) const override;
@@ -93,6 +97,7 @@ class SphereSphereUnilateral final : public UnilateralContact {
   /// radius1, radius2 > 0 [m]; InputError naming the contact otherwise (and as UnilateralContact).
   SphereSphereUnilateral(std::string name, MarkerRef sphere1, MarkerRef sphere2, double radius1, double radius2,
                          UnilateralLaw law);
+  std::string_view type() const override { return "sphere_sphere"; }
 
  private:
   UnilateralContactKinematics Geometry(const MarkerKinematics& a, const MarkerKinematics& b) const override;

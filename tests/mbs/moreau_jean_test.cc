@@ -12,9 +12,12 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <tuple>
 #include <vector>
 
 #include "mbs/moreau_jean.h"
+#include "mbs/rigid_body.h"
+#include "mbs/unilateral_contact.h"
 #include "tests/mbs/moreau_jean_support.h"
 
 namespace flexmbs::mbs {
@@ -159,6 +162,40 @@ TEST(MoreauJean, PerfectlyPlasticImpactSticksAtTheFirstImpact) {
     EXPECT_TRUE(history.steps[k].contacts[0].active) << "t = " << history.t[k];
     EXPECT_EQ(history.y[k](9), 0.0) << "t = " << history.t[k];
   }
+}
+
+TEST(MoreauJean, TwoSpheresCollideWithNewtonsRestitution) {
+  // Two free balls (1 kg, r = 0.1 m; 2 kg, r = 0.15 m) head-on along x without gravity, e = 0.8:
+  // after the impact v1' = (m1 v1 + m2 v2 - m2 e (v1 - v2)) / (m1 + m2), v2' likewise, the
+  // momentum kept. W_N couples both bodies (sphere-sphere contact, normal from 2 to 1).
+  constexpr double m1 = 1.0, m2 = 2.0, v1 = 1.0, v2 = -0.5, e = 0.8;
+  testing::ContactScene scene{std::make_unique<MultibodySystem>(Eigen::Vector3d::Zero()), Eigen::VectorXd()};
+  MultibodySystem& system = *scene.system;
+  for (const auto& [name, mass, radius] : {std::tuple{"a", m1, 0.1}, std::tuple{"b", m2, 0.15}}) {
+    system.AddBody(std::make_unique<RigidBody>(
+        name, mass, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity() * (0.4 * mass * radius * radius),
+        std::vector<RigidBodyMarker>{{"centre", Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()}}));
+  }
+  system.AddUnilateralContact(std::make_unique<SphereSphereUnilateral>(
+      "pair", system.Marker("b", "centre"), system.Marker("a", "centre"), 0.15, 0.1, UnilateralLaw{e, 0.0}));
+  scene.y0 = system.NeutralState();
+  Eigen::VectorXd x(7), u = Eigen::VectorXd::Zero(6);
+  x << -0.3, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0;
+  u(0) = v1;
+  system.SetBodyState(0, x, u, scene.y0);
+  x(0) = 0.2;
+  u(0) = v2;
+  system.SetBodyState(1, x, u, scene.y0);
+  const StepHistory history = RunMoreauJean(scene, 1e-3, 0.2);
+  const Eigen::VectorXd& y = history.y.back();
+  const double v1_after = (m1 * v1 + m2 * v2 - m2 * e * (v1 - v2)) / (m1 + m2);
+  const double v2_after = (m1 * v1 + m2 * v2 + m1 * e * (v1 - v2)) / (m1 + m2);
+  const Eigen::Index va = system.num_positions() + system.velocity_offset(0);
+  const Eigen::Index vb = system.num_positions() + system.velocity_offset(1);
+  EXPECT_NEAR(y(va), v1_after, 1e-13);
+  EXPECT_NEAR(y(vb), v2_after, 1e-13);
+  EXPECT_NEAR(m1 * y(va) + m2 * y(vb), m1 * v1 + m2 * v2, 1e-13);
+  EXPECT_GT(history.steps.back().contacts[0].g_N, 0.0);  // apart again
 }
 
 /// Runs `command`, returning its standard output and exit status.

@@ -1,0 +1,104 @@
+#include "mbs/scene_unilateral.h"
+
+#include <fmt/format.h>
+
+#include <string>
+#include <string_view>
+
+#include "core/error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+/// `key` of `node` as a number, or `fallback` if absent.
+double NumberOr(const YamlNode& node, std::string_view key, double fallback) {
+  return node.Has(key) ? node.Required(key).AsDouble() : fallback;
+}
+
+/// Runs `build`, turning an InputError of the contact classes into one at `node`.
+template <typename Build>
+auto At(const YamlNode& node, Build build) -> decltype(build()) {
+  try {
+    return build();
+  } catch (const InputError& e) {
+    node.Fail(e.what());
+  }
+}
+
+UnilateralLaw ReadLaw(const YamlNode& node, const std::string& name) {
+  if (node.Has("law")) {
+    const YamlNode law = node.Required("law");
+    const std::string value = law.AsString();
+    if (value != "unilateral") {
+      law.Fail(fmt::format("contact '{}': law '{}' must be unilateral (compliant laws are the force elements "
+                           "sphere_plane_contact, sphere_sphere_contact)",
+                           name, value));
+    }
+  }
+  const UnilateralLaw law{NumberOr(node, "restitution", 0.0), NumberOr(node, "friction", 0.0)};
+  if (!(law.restitution >= 0.0 && law.restitution <= 1.0)) {
+    node.Required("restitution").Fail(fmt::format("contact '{}': {:g} must be in [0, 1]", name, law.restitution));
+  }
+  if (!(law.friction >= 0.0)) {
+    node.Required("friction").Fail(fmt::format("contact '{}': {:g} must be >= 0", name, law.friction));
+  }
+  return law;
+}
+
+/// The radius under `key`, > 0.
+double ReadRadius(const YamlNode& node, std::string_view key, const std::string& name) {
+  const YamlNode item = node.Required(key);
+  const double radius = item.AsDouble();
+  if (!(radius > 0.0)) item.Fail(fmt::format("contact '{}': {:g} m must be > 0", name, radius));
+  return radius;
+}
+
+}  // namespace
+
+std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulation, bool selected) {
+  if (!selected) {
+    for (const std::string_view key : {"step", "theta"}) {
+      if (simulation.Has(key)) simulation.Required(key).Fail("only for method moreau_jean");
+    }
+    return std::nullopt;
+  }
+  if (!simulation.Has("step")) {
+    simulation.Required("method").Fail("moreau_jean needs step: the fixed time step [s]");
+  }
+  MoreauJeanOptions options;
+  const YamlNode step = simulation.Required("step");
+  options.step = step.AsDouble();
+  if (!(options.step > 0.0)) step.Fail(fmt::format("{:g} s must be > 0", options.step));
+  if (simulation.Has("theta")) {
+    const YamlNode theta = simulation.Required("theta");
+    options.theta = theta.AsDouble();
+    if (!(options.theta >= 0.5 && options.theta <= 1.0)) theta.Fail(fmt::format("{:g} must be in [0.5, 1]", options.theta));
+  }
+  return options;
+}
+
+std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node,
+                                                         const std::function<MarkerRef(const YamlNode&)>& read_marker) {
+  const std::string name = node.Required("name").AsString();
+  const YamlNode type = node.Required("type");
+  const std::string kind = type.AsString();
+  if (kind == "sphere_plane") {
+    node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "restitution", "friction"});
+    const MarkerRef sphere = read_marker(node.Required("sphere")), plane = read_marker(node.Required("plane"));
+    const double radius = ReadRadius(node, "radius", name);
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] { return std::make_unique<SpherePlaneUnilateral>(name, sphere, plane, radius, law); });
+  }
+  if (kind == "sphere_sphere") {
+    node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "restitution", "friction"});
+    const MarkerRef sphere1 = read_marker(node.Required("sphere1")), sphere2 = read_marker(node.Required("sphere2"));
+    const double radius1 = ReadRadius(node, "radius1", name), radius2 = ReadRadius(node, "radius2", name);
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] {
+      return std::make_unique<SphereSphereUnilateral>(name, sphere1, sphere2, radius1, radius2, law);
+    });
+  }
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere", name, kind));
+}
+
+}  // namespace flexmbs::mbs
