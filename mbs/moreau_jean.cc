@@ -11,7 +11,7 @@
 #include "contact/complementarity/friction_contact_problem.h"
 #include "contact/complementarity/lcp_problem.h"
 #include "contact/complementarity/lemke.h"
-#include "contact/complementarity/nsgs.h"
+#include "contact/complementarity/friction_solver.h"
 #include "core/error.h"
 #include "mbs/simulation_error.h"
 
@@ -121,7 +121,8 @@ ActiveContacts FindActiveContacts(const MultibodySystem& system,
 }
 
 /// The impulses P (3 per contact: normal, t1, t2) of U = W P + q: frictionless (every mu = 0) the
-/// LCP (W_NN, q_N) by Lemke, otherwise the friction-contact problem (d = 3) by NSGS.
+/// LCP (W_NN, q_N) by Lemke, otherwise the friction-contact problem (d = 3) by SolveFrictionContact
+/// (NSGS, then proximal Newton on rank-deficient W).
 contact::SolveStatus SolveImpulses(const MatrixXd& W, const VectorXd& q, const VectorXd& mu,
                                    const MoreauJeanOptions& options, VectorXd* P) {
   const Index n_a = mu.size();
@@ -139,12 +140,12 @@ contact::SolveStatus SolveImpulses(const MatrixXd& W, const VectorXd& q, const V
     solution.message = "LCP by Lemke: " + solution.message;
     return solution;
   }
-  contact::NsgsOptions nsgs;
-  nsgs.tolerance = options.solver_tolerance;
-  nsgs.max_iterations = options.solver_max_iterations;
-  contact::FrictionContactSolution solution = contact::SolveFrictionNsgs({3, W, q, mu}, nsgs);
+  contact::FrictionContactOptions friction;
+  friction.tolerance = options.solver_tolerance;
+  friction.nsgs_sweeps = options.solver_max_iterations;
+  contact::FrictionContactSolution solution = contact::SolveFrictionContact({3, W, q, mu}, friction);
   *P = solution.r;
-  solution.message = "friction contact by NSGS: " + solution.message;
+  solution.message = "friction contact: " + solution.message;
   return solution;
 }
 

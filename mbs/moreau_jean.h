@@ -21,7 +21,7 @@ struct MoreauJeanOptions {
   double step = 0.0;    ///< h [s] > 0, fixed (a last step before an output time may be shorter)
   double theta = 0.5;   ///< in [0.5, 1]: 0.5 (Siconos' examples) conserves the smooth energy best
   double solver_tolerance = 1e-10;  ///< the contact solver's error (LcpError, FrictionContactError)
-  int solver_max_iterations = 10000;  ///< NSGS sweeps (Lemke: its own pivot limit)
+  int solver_max_iterations = 1000;  ///< NSGS sweeps before the Newton handover (Lemke: own limit)
 };
 
 /// Throws InputError "simulation: ..." unless step > 0 and finite, theta in [0.5, 1],
@@ -41,7 +41,7 @@ struct ContactStepResult {
 struct MoreauJeanStepReport {
   double time = 0.0;        ///< t_k+1 [s]
   int active_contacts = 0;  ///< size of the index set
-  int solver_iterations = 0;  ///< Lemke pivots or NSGS sweeps (0 without active contacts)
+  int solver_iterations = 0;  ///< Lemke pivots, or NSGS sweeps plus Newton steps (0 without active contacts)
   double solver_error = 0.0;  ///< the solver's error at its end
   std::vector<ContactStepResult> contacts;  ///< per contact of the system, in its order
   /// The joints' multipliers as the average force of the step, Lambda / h (num_constraints(), 0 on
@@ -75,7 +75,7 @@ struct MoreauJeanStatistics {
 /// the Euler parameters normalised. The KKT system [A G^T; G 0] is solved densely (full-pivot
 /// LU); the contacts see the Delassus operator W = H A_c^-1 H^T (A_c^-1 the velocity block of the
 /// KKT inverse) and the free local velocity q = H v_free + (e U_N,k, 0, 0). Frictionless steps
-/// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), others SolveFrictionNsgs (d = 3). The
+/// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), others SolveFrictionContact (d = 3). The
 /// bodies' acceleration-dependent forces (geometric stiffening) enter by one corrector of the
 /// free velocity with u' = (v_free - v_k) / h (as MultibodySystem::Accelerations); the contact
 /// impulses' own stiffening is left out.

@@ -1,11 +1,14 @@
 // Moreau-Jean time stepping with Coulomb friction: a block on four corner contacts on an incline
 // sticks below the friction angle and slides with the analytic acceleration g (sin a - mu cos a)
-// above it.
+// above it; a contact solve that does not converge stops the run.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
+#include "mbs/moreau_jean.h"
+#include "mbs/simulation_error.h"
 #include "tests/mbs/moreau_jean_support.h"
 
 namespace flexmbs::mbs {
@@ -28,7 +31,7 @@ TEST(MoreauJeanFriction, BlockSticksBelowTheFrictionAngle) {
   }
   std::printf("sticking at a = %.2f rad, mu = %.2f: largest speed %.3e m/s, largest displacement %.3e m\n", angle, mu,
               fastest, drift);
-  // Measured: 1.4e-13 m/s and 1.4e-13 m (the NSGS tolerance 1e-10 on impulses of ~m g h / 4).
+  // Measured: 1.4e-13 m/s and 1.4e-13 m (the solver tolerance 1e-10 on impulses of ~m g h / 4).
   EXPECT_LT(fastest, 1e-9);
   EXPECT_LT(drift, 1e-9);
 }
@@ -50,10 +53,32 @@ TEST(MoreauJeanFriction, BlockSlidesWithTheAnalyticAccelerationAboveTheFrictionA
               "largest velocity error %.2e m/s, off the slope %.2e m/s\n",
               angle, mu, measured, acceleration, std::abs(measured / acceleration - 1.0), worst, off_slope);
   // Measured: relative error 1.6e-14, velocity error 6.0e-14 m/s, 2.0e-13 m/s off the slope (the
-  // constant acceleration is exact in the scheme; the NSGS tolerance remains).
+  // constant acceleration is exact in the scheme; the solver tolerance remains).
   EXPECT_LT(std::abs(measured / acceleration - 1.0), 1e-9);
   EXPECT_LT(worst, 1e-9);
   EXPECT_LT(off_slope, 1e-9);
+}
+
+TEST(MoreauJeanFriction, ContactSolveThatDoesNotConvergeStopsNamingStepTimeAndResidual) {
+  // A tolerance below round-off cannot be met: the step must fail, not go on unconverged.
+  testing::ContactScene scene = testing::BlockOnIncline(0.5, 0.3, kG);
+  MoreauJeanOptions options{kStep, 0.5};
+  options.solver_tolerance = 1e-300;
+  options.solver_max_iterations = 2;
+  MoreauJeanStepper stepper(*scene.system, options);
+  Eigen::VectorXd y = scene.y0;
+  try {
+    stepper.Step(0.25, kStep, y);
+    FAIL() << "no error";
+  } catch (const SimulationError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.time(), 0.25);
+    EXPECT_NE(message.find("t = 0.25 s: Moreau-Jean step 1 (0.25 -> 0.251 s): the contact solve of 4 active contacts "
+                           "did not converge: residual"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("> tolerance 1e-300"), std::string::npos) << message;
+  }
 }
 
 }  // namespace
