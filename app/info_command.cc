@@ -1,5 +1,6 @@
-// `flexmbs info`: a summary of a flexmbs file. The file's `format` attribute picks the summary
-// (kFileKinds): reduced bodies (`.sid.h5`) now, results files later.
+// `flexmbs info`: a summary of a flexmbs file, or with --verify whether it is intact. The file's
+// `format` attribute picks the summary and the check (kFileKinds): reduced bodies (`.sid.h5`) and,
+// for --verify, results files.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -16,6 +17,7 @@
 #include "core/error.h"
 #include "core/h5_file.h"
 #include "core/polygon.h"
+#include "mbs/results_file.h"
 #include "reduction/modal_basis.h"
 #include "sid/sid_file.h"
 
@@ -27,6 +29,7 @@ namespace fs = std::filesystem;
 struct InfoOptions {
   std::string file;
   bool json = false;
+  bool verify = false;
 };
 
 // --- reduced bodies (`.sid.h5`) ----------------------------------------------------------------
@@ -141,14 +144,35 @@ void ReportBody(const fs::path& file, bool json) {
 
 // --- dispatch ----------------------------------------------------------------------------------
 
-/// A kind of file `flexmbs info` summarises: the root `format` attribute that marks it and its
-/// report (text, or JSON with `json`).
+// --- verification ------------------------------------------------------------------------------
+
+/// Prints that `file` (of `format`) is intact and what was read: one line, or JSON.
+void PrintIntact(const fs::path& file, std::string_view format, const h5::VerifyReport& report, bool json) {
+  if (json) {
+    const nlohmann::json j{{"file", file.string()},          {"format", format},
+                           {"intact", true},                 {"groups", report.groups},
+                           {"datasets", report.datasets},    {"attributes", report.attributes},
+                           {"values", report.values},        {"content_sha256", report.content_sha256}};
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("{}: intact ({}; {} groups, {} datasets, {} attributes, {} values read; every checksum holds{})\n",
+             file.string(), format, report.groups, report.datasets, report.attributes, report.values,
+             format == sid::kSidFormat ? "; content digest holds" : "");
+}
+
+// --- dispatch ----------------------------------------------------------------------------------
+
+/// A kind of file `flexmbs info` reads: the root `format` attribute that marks it, its summary
+/// (text, or JSON with `json`; none for results files) and its full check (--verify).
 struct FileKind {
   std::string_view format;
   void (*report)(const fs::path& file, bool json);
+  h5::VerifyReport (*verify)(const fs::path& file);
 };
 
-constexpr std::array<FileKind, 1> kFileKinds{{{sid::kSidFormat, &ReportBody}}};
+constexpr std::array<FileKind, 2> kFileKinds{{{sid::kSidFormat, &ReportBody, &sid::VerifyReducedBodyFile},
+                                              {mbs::kResultsFormat, nullptr, &mbs::VerifyResultsFile}}};
 
 /// The root `format` attribute of `file` ("" if it has none). Throws InputError for a missing,
 /// non-HDF5 or corrupt file.
@@ -162,15 +186,20 @@ void RunInfo(const InfoOptions& options) {
   const std::string format = FileFormat(options.file);
   std::string known;
   for (const FileKind& kind : kFileKinds) {
-    if (kind.format == format) {
+    if (kind.format == format && options.verify) {
+      PrintIntact(options.file, format, kind.verify(options.file), options.json);
+      return;
+    }
+    if (kind.format == format && kind.report != nullptr) {
       kind.report(options.file, options.json);
       return;
     }
-    known += fmt::format("{}{}", known.empty() ? "" : ", ", kind.format);
+    if (kind.report != nullptr) known += fmt::format("{}{}", known.empty() ? "" : ", ", kind.format);
   }
-  throw InputError(fmt::format("{}: not a file flexmbs info reads ({}; it reads: {})", options.file,
+  throw InputError(fmt::format("{}: not a file flexmbs info reads ({}; it reads: {}; with --verify also {})",
+                               options.file,
                                format.empty() ? std::string("no 'format' attribute") : fmt::format("format '{}'", format),
-                               known));
+                               known, mbs::kResultsFormat));
 }
 
 }  // namespace
@@ -178,9 +207,13 @@ void RunInfo(const InfoOptions& options) {
 void AddInfoCommand(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Summarise a flexmbs file: a reduced body (.sid.h5): mass, modes, nodes, surfaces, provenance");
-  cmd->add_option("file", options->file, "The file (.sid.h5)")->required();
+      "info", "Summarise a flexmbs file: a reduced body (.sid.h5): mass, modes, nodes, surfaces, provenance; "
+              "or with --verify check that a body or results file is intact");
+  cmd->add_option("file", options->file, "The file (.sid.h5, or results .h5 with --verify)")->required();
   cmd->add_flag("--json", options->json, "Print the summary as JSON (keys documented in docs/cli.md)");
+  cmd->add_flag("--verify", options->verify,
+                "Read every value of the file (.sid.h5 or results) and check its checksums and content digest: "
+                "exit 0 if intact, else a one-line error and exit 2");
   cmd->callback([options] { RunInfo(*options); });
 }
 

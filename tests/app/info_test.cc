@@ -241,9 +241,9 @@ TEST_F(InfoTest, Hdf5FileOfAnotherKindIsAnInputError) {
     plain.Commit();
   }
   ExpectInputError(Run({"info", foreign.string()}),
-                   foreign.string() + ": not a file flexmbs info reads (format 'someone-else'; it reads: flexmbs-sid)");
+                   foreign.string() + ": not a file flexmbs info reads (format 'someone-else'; it reads: flexmbs-sid; with --verify also flexmbs-results)");
   ExpectInputError(Run({"info", unmarked.string()}),
-                   unmarked.string() + ": not a file flexmbs info reads (no 'format' attribute; it reads: flexmbs-sid)");
+                   unmarked.string() + ": not a file flexmbs info reads (no 'format' attribute; it reads: flexmbs-sid; with --verify also flexmbs-results)");
 }
 
 TEST_F(InfoTest, TruncatedBodyIsAnInputErrorForInfoAndExport) {
@@ -255,6 +255,24 @@ TEST_F(InfoTest, TruncatedBodyIsAnInputErrorForInfoAndExport) {
                         "sid-ascii"}),
                    truncated.string() + ": ");
   EXPECT_TRUE(OutputFiles().empty());
+}
+
+// `info --verify`: the reduced cube is intact (exit 0, one line); the same file with one byte of
+// its mode shapes flipped is refused by the checksum of the chunk holding it (exit 2, one line).
+TEST_F(InfoTest, VerifySaysIntactOrNamesTheDamage) {
+  const Outcome intact = Run({"info", "--verify", body_file_.string()});
+  EXPECT_EQ(intact.exit_code, kExitOk) << intact.err;
+  ASSERT_EQ(Lines(intact.out).size(), 1u) << intact.out;
+  EXPECT_TRUE(intact.out.starts_with(body_file_.string() + ": intact (flexmbs-sid; ")) << intact.out;
+  EXPECT_NE(intact.out.find("every checksum holds; content digest holds"), std::string::npos) << intact.out;
+
+  const fs::path damaged = dir_ / "damaged.sid.h5";
+  fs::copy_file(body_file_, damaged, fs::copy_options::overwrite_existing);
+  std::string bytes = ReadFile(damaged);
+  const std::size_t middle = bytes.size() / 2;  // inside /modes/phi, the largest dataset
+  bytes[middle] = static_cast<char>(bytes[middle] ^ 0x10);
+  std::ofstream(damaged, std::ios::binary | std::ios::trunc) << bytes;
+  ExpectInputError(Run({"info", "--verify", damaged.string()}), damaged.string() + ": ");
 }
 
 TEST_F(InfoTest, ExportOfAnUnknownFormatIsAnInputError) {

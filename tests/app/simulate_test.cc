@@ -306,6 +306,15 @@ TEST_F(BadSceneTest, NonFiniteNumberIsNamed) {
   ExpectRefused(text, "bodies.rod.rigid.mass");
 }
 
+// Issue 21: this interval failed inside ARKODE with exit 1; it is input, refused before the
+// results file is opened.
+TEST_F(BadSceneTest, OutputIntervalOfMoreThanTenMillionSamplesIsRefused) {
+  std::string text = kPendulum;
+  text.replace(text.find("output_interval: 0.01"), 21, "output_interval: 1e-300");
+  ExpectRefused(text, "simulation.output_interval: 1e-300 s asks for 1e+300 samples up to end_time 1 s, more than "
+                      "the limit of 1e+07");
+}
+
 TEST_F(BadSceneTest, BodyFileOfAnotherSchemaIsNamed) {
   flexmbs::h5::File old = flexmbs::h5::File::Create(dir_ / "old.sid.h5");
   old.root().SetStringAttribute("format", "flexmbs-sid");
