@@ -103,8 +103,10 @@ void DeflatedBlockLanczos::Append(const Matrix& Q, const Matrix& MQ) {
     const Index capacity = std::max(2 * Q_.cols(), stored_ + w);
     Matrix grown_Q(Q.rows(), capacity);
     Matrix grown_MQ(Q.rows(), capacity);
-    grown_Q.leftCols(stored_) = Q_.leftCols(stored_);
-    grown_MQ.leftCols(stored_) = MQ_.leftCols(stored_);
+    if (stored_ > 0) {  // the first block: Q_ is still 0 x 0, and Eigen refuses an n x 0 copy of it
+      grown_Q.leftCols(stored_) = Q_.leftCols(stored_);
+      grown_MQ.leftCols(stored_) = MQ_.leftCols(stored_);
+    }
     Q_.swap(grown_Q);
     MQ_.swap(grown_MQ);
   }
