@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <utility>
 
 #include "core/error.h"
 
@@ -41,6 +45,42 @@ herr_t AddObject(hid_t object, const char* name, const H5O_info_t* info, void* d
   return 0;
 }
 
+/// HDF5's signatures of the file structures that are neither superblock, object header nor
+/// data, and what they are.
+const std::map<std::string, std::string>& Signatures() {
+  static const std::map<std::string, std::string> signatures{
+      {"TREE", "a version-1 B-tree node (1.8 chunk index) and its unused entry slots"},
+      {"HEAP", "a local heap"},
+      {"SNOD", "a symbol table node"},
+      {"OCHK", "an object header continuation"},
+      {"FRHP", "a fractal heap header"},
+      {"FHDB", "a fractal heap block and its free space"},
+      {"FHIB", "a fractal heap indirect block"},
+      {"BTHD", "a version-2 B-tree header"},
+      {"BTIN", "a version-2 B-tree node"},
+      {"BTLF", "a version-2 B-tree leaf and its unused records"},
+      {"FAHD", "a fixed array header (1.10 chunk index)"},
+      {"FADB", "a fixed array data block"},
+      {"EAHD", "an extensible array header"},
+  };
+  return signatures;
+}
+
+/// Regions from each signature in `bytes` to the next signature or region start.
+void AddSignatureRegions(const std::string& bytes, std::vector<FileRegion>& map) {
+  std::vector<std::pair<std::uint64_t, std::string>> found;
+  for (const auto& [signature, kind] : Signatures()) {
+    for (std::size_t at = bytes.find(signature); at != std::string::npos; at = bytes.find(signature, at + 1)) {
+      found.emplace_back(at, "after the signature of " + kind);
+    }
+  }
+  std::vector<std::uint64_t> starts{bytes.size()};
+  for (const FileRegion& region : map) starts.push_back(region.begin);
+  for (const auto& [at, kind] : found) starts.push_back(at);
+  std::sort(starts.begin(), starts.end());
+  for (const auto& [at, kind] : found) map.push_back({at, *std::upper_bound(starts.begin(), starts.end(), at), kind});
+}
+
 }  // namespace
 
 std::vector<FileRegion> MapFile(const std::filesystem::path& path) {
@@ -51,6 +91,9 @@ std::vector<FileRegion> MapFile(const std::filesystem::path& path) {
   std::vector<FileRegion> map{{0, info.super.super_size, "superblock"}};
   H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_INC, &AddObject, &map, H5O_INFO_BASIC | H5O_INFO_HDR);
   H5Fclose(file);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  AddSignatureRegions(bytes, map);
   return map;
 }
 
@@ -58,7 +101,7 @@ std::string RegionOf(const std::vector<FileRegion>& map, std::uint64_t position)
   for (const FileRegion& region : map) {
     if (position >= region.begin && position < region.end) return region.kind;
   }
-  return "outside the superblock, object headers and data (free space, padding, indexes)";
+  return "no structure: free space or padding between structures";
 }
 
 std::string DamageTally::Summary(const std::string& title) const {

@@ -15,14 +15,15 @@ namespace flexmbs::testing {
 struct FileRegion {
   std::uint64_t begin = 0;
   std::uint64_t end = 0;
-  std::string kind;  ///< "superblock", "object header", "data chunk", "contiguous data"
+  std::string kind;  ///< "superblock", "object header", "data chunk", "contiguous data", "after ..."
 };
 
-/// The superblock, every object header and every chunk of raw data of the HDF5 file `path`.
+/// The superblock, every object header and every chunk of raw data of the HDF5 file `path`,
+/// then every other structure found by its signature ("TREE", "FAHD", ...), up to the next one.
 std::vector<FileRegion> MapFile(const std::filesystem::path& path);
 
-/// What a byte position is part of: the kind of the region holding it, or "outside the superblock,
-/// object headers and data (free space, padding, indexes)".
+/// What a byte position is part of: the kind of the first region holding it, or "no structure:
+/// free space or padding between structures".
 std::string RegionOf(const std::vector<FileRegion>& map, std::uint64_t position);
 
 /// Reads a file and returns a digest of every value it returned; throws flexmbs::InputError.
