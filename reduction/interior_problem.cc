@@ -175,7 +175,10 @@ void ThrowNotHeld(const FeModel& model, const BoundaryConditions& conditions) {
     for (std::size_t k = 0; k < held.size(); ++k) x.col(static_cast<Eigen::Index>(k)) = model.nodes.col(held[k]);
     const Eigen::Vector3d centre = x.rowwise().mean();
     x.colwise() -= centre;
-    const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::MatrixXd>(x).singularValues();
+    // min(3, held nodes) singular values; those of fewer than three nodes are zero beyond.
+    const Eigen::VectorXd computed = Eigen::JacobiSVD<Eigen::MatrixXd>(x).singularValues();
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    s.head(computed.size()) = computed;
     if (!(s(0) > 0.0)) {
       reason = fmt::format("{} held node{} at one point, about which the body can still rotate",
                            held.size() == 1 ? "its only" : "all its", held.size() == 1 ? " is" : "s are");
