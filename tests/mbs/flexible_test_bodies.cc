@@ -22,10 +22,10 @@ const eigensolvers::Eigensolver& Solver() {
 /// The meshed beam with its node sets "root", "tip", "mid", "corner" and matrices.
 FeReducedBody MeshedBeam(bool stiffening) {
   FeReducedBody fe;
-  fe.mesh = testing::HexBox(Eigen::Vector3i(6, 2, 2), kBeamSize, testing::Steel());
-  fe.mesh.node_sets["root"] = testing::NodesOnPlane(fe.mesh, 0, 0.0);
-  fe.mesh.node_sets["tip"] = testing::NodesOnPlane(fe.mesh, 0, kBeamSize.x());
-  fe.mesh.node_sets["mid"] = testing::NodesOnPlane(fe.mesh, 0, 0.5 * kBeamSize.x());
+  fe.mesh = flexmbs::testing::HexBox(Eigen::Vector3i(6, 2, 2), kBeamSize, flexmbs::testing::Steel());
+  fe.mesh.node_sets["root"] = flexmbs::testing::NodesOnPlane(fe.mesh, 0, 0.0);
+  fe.mesh.node_sets["tip"] = flexmbs::testing::NodesOnPlane(fe.mesh, 0, kBeamSize.x());
+  fe.mesh.node_sets["mid"] = flexmbs::testing::NodesOnPlane(fe.mesh, 0, 0.5 * kBeamSize.x());
   for (Index k = 0; k < fe.mesh.num_nodes(); ++k) {
     if ((fe.mesh.nodes.col(k) - Eigen::Vector3d(0.5 * kBeamSize.x(), kBeamSize.y(), kBeamSize.z())).norm() < 1e-12) {
       fe.mesh.node_sets["corner"] = {static_cast<int>(k)};

@@ -88,9 +88,9 @@ FeLink BuildLink(const LinkGeometry& geometry) {
   for (fem::ElementBlock& block : link.mesh.blocks) block.material = fem::testing::Steel();
   // The root face centred on Bo.
   fem::testing::Transform(&link.mesh, Matrix3d::Identity(), Vector3d(0.0, -0.5 * size.y(), -0.5 * size.z()));
-  const std::vector<int> root = testing::NodesOnPlane(link.mesh, 0, 0.0);
+  const std::vector<int> root = flexmbs::testing::NodesOnPlane(link.mesh, 0, 0.0);
   link.mesh.node_sets["root"] = root;
-  link.mesh.node_sets["tip"] = testing::NodesOnPlane(link.mesh, 0, geometry.length);
+  link.mesh.node_sets["tip"] = flexmbs::testing::NodesOnPlane(link.mesh, 0, geometry.length);
   fem::SystemMatrices system = fem::AssembleSystem(link.mesh, fem::MassMatrixKind::kConsistent);
   link.K = std::move(system.stiffness);
   link.M = std::move(system.mass);
@@ -105,7 +105,7 @@ FeLink BuildLink(const LinkGeometry& geometry) {
   const Eigen::SparseMatrix<double> K_oo = fem::testing::Submatrix(link.K, link.free_dofs, link.free_dofs);
   const Eigen::SparseMatrix<double> M_oo = fem::testing::Submatrix(link.M, link.free_dofs, link.free_dofs);
   // The clamped K_oo is positive definite: shift 0.
-  const testing::DenseEigen eigen = testing::SolveDense(K_oo, M_oo, 0.0);
+  const flexmbs::testing::DenseEigen eigen = flexmbs::testing::SolveDense(K_oo, M_oo, 0.0);
   link.eigenvalues = eigen.values;
 
   reduction::ReducedBasis& basis = link.basis;

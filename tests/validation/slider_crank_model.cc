@@ -71,7 +71,7 @@ SliderCrankRod BuildRod(const SliderCrankData& data, const Eigen::Vector3i& cell
   geometry.cells = cells;
   SliderCrankRod rod{BuildLink(geometry), {}};
   fem::Mesh& mesh = rod.link.mesh;
-  mesh.node_sets["mid"] = testing::NodesOnPlane(mesh, 0, 0.5 * data.rod_length);
+  mesh.node_sets["mid"] = flexmbs::testing::NodesOnPlane(mesh, 0, 0.5 * data.rod_length);
 
   const std::vector<Index> mirror = MirrorNodes(mesh);
   const Eigen::MatrixXd& Phi = rod.link.basis.Phi;
