@@ -22,12 +22,7 @@ void CheckRadius(const std::string& contact, std::string_view what, double radiu
 
 UnilateralContactKinematics FromPointContact(const contact::PointContactKinematics& c) {
   UnilateralContactKinematics k;
-  k.g_N = c.g_N;
-  k.n_W = c.n_W;
-  k.t1_W = c.t1_W;
-  k.t2_W = c.t2_W;
-  k.p_WA_W = c.p_WA_W;
-  k.p_WB_W = c.p_WB_W;
+  static_cast<contact::PointContactKinematics&>(k) = c;
   return k;
 }
 

@@ -1,13 +1,15 @@
 #pragma once
 // Unilateral (hard) contacts between two bodies for Moreau-Jean time stepping (docs/contact.md,
 // "Moreau-Jean time stepping"): a gap g_N >= 0, Newton's impact law with restitution e and Coulomb
-// friction mu, seen by the step through their kinematics only (gap, contact frame and the
-// Jacobians of the relative velocity), never through a geometry type of contact/.
+// friction mu, seen by the step through their kinematics only: the point-contact frame of
+// contact/geometry (gap, normal, tangents, contact points) and the Jacobians of the relative
+// velocity, never through a shape.
 
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
 
+#include "contact/geometry/point_contact.h"
 #include "mbs/body.h"
 #include "mbs/marker_ref.h"
 
@@ -28,13 +30,7 @@ struct UnilateralLaw {
 /// B [m], and the Jacobians of the relative velocity of A's material point at p_WA_W against B's
 /// at p_WB_W through the whole system's velocities u (rigid and modal coordinates of both bodies):
 /// U_N = W_N u [m/s] (dg_N/dt = U_N), [U_T1; U_T2] = W_T u.
-struct UnilateralContactKinematics {
-  double g_N = 0.0;
-  Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d t1_W = Eigen::Vector3d::UnitX();
-  Eigen::Vector3d t2_W = Eigen::Vector3d::UnitY();
-  Eigen::Vector3d p_WA_W = Eigen::Vector3d::Zero();
-  Eigen::Vector3d p_WB_W = Eigen::Vector3d::Zero();
+struct UnilateralContactKinematics : contact::PointContactKinematics {
   Eigen::RowVectorXd W_N;                        ///< 1 x num_velocities()
   Eigen::Matrix<double, 2, Eigen::Dynamic> W_T;  ///< 2 x num_velocities()
 };
