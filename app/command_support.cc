@@ -1,5 +1,6 @@
 #include "app/command_support.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
@@ -24,6 +25,18 @@ void Progress::Clear() {
   fmt::print(stderr, "\r\033[K");
   std::fflush(stderr);
   shown_ = false;
+}
+
+CLI::Validator WholeNumberAtLeastOne() {
+  return CLI::Validator(
+      [](std::string& text) {
+        long value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        return error == std::errc() && stop == end && value >= 1 ? std::string()
+                                                                 : fmt::format("{} is not a whole number >= 1", text);
+      },
+      "INT>=1");
 }
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {

@@ -2,6 +2,7 @@
 
 // Pieces every flexmbs command uses: terminal progress, timing, output checks, JSON.
 
+#include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <chrono>
 #include <filesystem>
@@ -30,6 +31,10 @@ class Progress {
   bool enabled_;
   bool shown_ = false;
 };
+
+/// A CLI11 check that an option is a whole number >= 1, whose message says so ("0 is not a whole
+/// number >= 1"); CLI11's PositiveNumber names its range up to the largest double instead.
+CLI::Validator WholeNumberAtLeastOne();
 
 /// Wall-clock seconds since `start`.
 double SecondsSince(std::chrono::steady_clock::time_point start);

@@ -263,7 +263,7 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--modes", options->modes,
                   "Full-model modes to compute (B a body file; default: A's system modes plus half as many, at "
                   "least 6 more)")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumberAtLeastOne());
   cmd->callback([options] { RunCompare(*options); });
 }
 

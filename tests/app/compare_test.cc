@@ -208,7 +208,8 @@ TEST_F(CompareTest, MissingFilesAndMisplacedOptionsAreInputErrors) {
   ExpectInputError(Flexmbs({"compare", file.string(), no_body.string()}), no_body.string() + ": cannot open the file");
   ExpectInputError(Flexmbs({"compare", file.string(), file.string(), "--modes", "20"}),
                    "--modes 20: only when B is a body file");
-  ExpectInputError(Flexmbs({"compare", file.string(), body.string(), "--modes", "0"}), "--modes");
+  ExpectInputError(Flexmbs({"compare", file.string(), body.string(), "--modes", "0"}),
+                   "--modes: 0 is not a whole number >= 1");
 }
 
 }  // namespace
