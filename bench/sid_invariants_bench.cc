@@ -161,7 +161,7 @@ void GeometricStiffening(const std::vector<int>& bars, const std::vector<int>& m
     const double t_loads =
         FastestSeconds(repeat, [&] { F = reduction::BuildStiffeningLoads(model, std::span(&bar.tip, 1)); });
     std::optional<reduction::InteriorProblem> interior;
-    std::optional<eigensolvers::ShiftedFactorization> factor;
+    std::optional<flexmbs::eigensolvers::ShiftedFactorization> factor;
     const double t_factor = FastestSeconds(1, [&] {
       interior = reduction::BuildInteriorProblem(model, bar.clamp);
       factor = reduction::FactorHeldInterior(model, bar.clamp, *interior);
