@@ -195,6 +195,16 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
                                           step, options.end_time, kMinStepEpsilons, min_step));
     }
   }
+  // The integrator's combinations (OdeIntegrator refuses them too, but only when the run starts,
+  // after the results file is opened): checked here to name the scene's line.
+  if (options.integrator.fixed_step > 0.0 && options.integrator.max_step > 0.0) {
+    node.Required("max_step").Fail("excludes fixed_step (a fixed step has no adaptivity to bound): give one of them");
+  }
+  if (options.integrator.newton == OdeNewton::kSparse &&
+      options.integrator.jacobian == OdeJacobian::kDifferenceQuotients) {
+    node.Required("newton").Fail(
+        "sparse solves with the model Jacobian: set jacobian to model, or newton to dense or auto");
+  }
   positive("baumgarte_frequency", &options.baumgarte_frequency);
   if (node.Has("redundant_pivot")) {
     const YamlNode item = node.Required("redundant_pivot");

@@ -315,6 +315,21 @@ TEST_F(BadSceneTest, OutputIntervalOfMoreThanTenMillionSamplesIsRefused) {
                       "the limit of 1e+07");
 }
 
+// Issue 22: both combinations were refused by the integrator when the run started, without
+// file, line or item, after the results file was opened (left behind, marked interrupted).
+TEST_F(BadSceneTest, MaxStepWithFixedStepIsRefusedBeforeTheResultsFile) {
+  std::string text = kPendulum;
+  text.replace(text.find("end_time: 1.0, "), 15, "end_time: 1.0, max_step: 1e-3, fixed_step: 1e-4, ");
+  ExpectRefused(text, "scene.yaml:17:39: simulation.max_step: excludes fixed_step");
+}
+
+TEST_F(BadSceneTest, SparseNewtonWithDifferenceQuotientsIsRefusedBeforeTheResultsFile) {
+  std::string text = kPendulum;
+  text.replace(text.find("end_time: 1.0, "), 15,
+               "end_time: 1.0, method: implicit, jacobian: difference_quotients, newton: sparse, ");
+  ExpectRefused(text, "simulation.newton: sparse solves with the model Jacobian: set jacobian to model");
+}
+
 TEST_F(BadSceneTest, BodyFileOfAnotherSchemaIsNamed) {
   flexmbs::h5::File old = flexmbs::h5::File::Create(dir_ / "old.sid.h5");
   old.root().SetStringAttribute("format", "flexmbs-sid");
