@@ -5,7 +5,9 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact/complementarity/friction_contact_problem.h"
@@ -87,37 +89,85 @@ SmoothStep SolveSmoothStep(const MultibodySystem& system, double t, double h, do
   return step;
 }
 
-/// The active contacts' local problem: H (3 per contact: W_N, W_T) and their restitution terms.
+/// Every contact point of the system at one state: its kinematics and the contact it belongs to.
+struct ContactPoints {
+  std::vector<UnilateralContactKinematics> kinematics;
+  std::vector<int> contact;  ///< per point: the index of its contact in the system
+};
+
+ContactPoints EvaluateContactPoints(const MultibodySystem& system, double t, const ConstVectorRef& y) {
+  ContactPoints points;
+  for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
+    for (UnilateralContactKinematics& point : system.unilateral_contact(k).Evaluate(t, system, y)) {
+      points.kinematics.push_back(std::move(point));
+      points.contact.push_back(k);
+    }
+  }
+  return points;
+}
+
+/// The active points' local problem: H (3 per point: W_N, W_T) and their restitution terms.
 struct ActiveContacts {
-  std::vector<int> index;  ///< contact indices of the system
+  std::vector<int> index;  ///< point indices into ContactPoints
   MatrixXd H;              ///< 3 n_a x num_velocities()
-  VectorXd restitution_term;  ///< e U_N,k per active contact
+  VectorXd restitution_term;  ///< e U_N,k per active point
   VectorXd mu;
 };
 
-/// The index set: contacts whose gap predicted half a step ahead is closed,
+/// The index set: points whose gap predicted half a step ahead is closed,
 /// g_N(x_k) + h/2 U_N,k <= 0 (Siconos' MoreauJeanOSI::addInteractionInIndexSet, gamma = 1/2), with
-/// their rows of H, e U_N,k and mu.
-ActiveContacts FindActiveContacts(const MultibodySystem& system,
-                                  const std::vector<UnilateralContactKinematics>& kinematics, double h,
+/// their rows of H, e U_N,k and mu of their contact's law.
+ActiveContacts FindActiveContacts(const MultibodySystem& system, const ContactPoints& points, double h,
                                   const VectorXd& v_k) {
   ActiveContacts active;
-  for (std::size_t k = 0; k < kinematics.size(); ++k) {
-    if (kinematics[k].g_N + 0.5 * h * kinematics[k].W_N.dot(v_k) <= 0.0) active.index.push_back(static_cast<int>(k));
+  for (std::size_t k = 0; k < points.kinematics.size(); ++k) {
+    const UnilateralContactKinematics& c = points.kinematics[k];
+    if (c.g_N + 0.5 * h * c.W_N.dot(v_k) <= 0.0) active.index.push_back(static_cast<int>(k));
   }
   const Index n_a = static_cast<Index>(active.index.size());
   active.H.resize(3 * n_a, v_k.size());
   active.restitution_term.resize(n_a);
   active.mu.resize(n_a);
   for (Index i = 0; i < n_a; ++i) {
-    const int k = active.index[static_cast<std::size_t>(i)];
-    const UnilateralContactKinematics& c = kinematics[static_cast<std::size_t>(k)];
+    const std::size_t k = static_cast<std::size_t>(active.index[static_cast<std::size_t>(i)]);
+    const UnilateralContactKinematics& c = points.kinematics[k];
+    const UnilateralLaw& law = system.unilateral_contact(points.contact[k]).law();
     active.H.row(3 * i) = c.W_N;
     active.H.middleRows(3 * i + 1, 2) = c.W_T;
-    active.restitution_term(i) = system.unilateral_contact(k).law().restitution * c.W_N.dot(v_k);
-    active.mu(i) = system.unilateral_contact(k).law().friction;
+    active.restitution_term(i) = law.restitution * c.W_N.dot(v_k);
+    active.mu(i) = law.friction;
   }
   return active;
+}
+
+/// The per-contact results of a step from its points: the end-of-step gaps (at y_next) with the
+/// normal velocity U_N = W_N(x_k) v_next at the smallest, and the active points' impulses P.
+std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, double t_next,
+                                                 const ConstVectorRef& y_next, const ContactPoints& points,
+                                                 const VectorXd& v_next, const ActiveContacts& active,
+                                                 const VectorXd& P) {
+  std::vector<ContactStepResult> results(static_cast<std::size_t>(system.num_unilateral_contacts()));
+  std::size_t point = 0;
+  for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
+    ContactStepResult& result = results[static_cast<std::size_t>(k)];
+    result.g_N = std::numeric_limits<double>::infinity();
+    for (const UnilateralContactKinematics& end : system.unilateral_contact(k).Evaluate(t_next, system, y_next)) {
+      if (end.g_N < result.g_N) {
+        result.g_N = end.g_N;
+        result.U_N = points.kinematics[point].W_N.dot(v_next);
+      }
+      ++point;
+    }
+  }
+  for (std::size_t i = 0; i < active.index.size(); ++i) {
+    const std::size_t k = static_cast<std::size_t>(points.contact[static_cast<std::size_t>(active.index[i])]);
+    const Index i3 = 3 * static_cast<Index>(i);
+    results[k].active = true;
+    ++results[k].active_points;
+    results[k].P_N += P(i3);
+    results[k].P_T += P.segment<2>(i3 + 1);
+  }
+  return results;
 }
 
 /// The impulses P (3 per contact: normal, t1, t2) of U = W P + q: frictionless (every mu = 0) the
@@ -183,11 +233,9 @@ MoreauJeanStepReport MoreauJeanStepper::Initial(double t, const ConstVectorRef& 
   MoreauJeanStepReport report;
   report.time = t;
   report.lambda = VectorXd::Zero(system_.num_constraints());
-  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
-    const UnilateralContactKinematics kinematics = system_.unilateral_contact(k).Evaluate(t, system_, y);
-    report.contacts.push_back({false, kinematics.g_N, kinematics.W_N.dot(y.tail(system_.num_velocities())), 0.0,
-                               Eigen::Vector2d::Zero()});
-  }
+  const ContactPoints points = EvaluateContactPoints(system_, t, y);
+  report.contacts =
+      SummarizeContacts(system_, t, y, points, y.tail(system_.num_velocities()), ActiveContacts{}, VectorXd());
   return report;
 }
 
@@ -200,11 +248,8 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
   const SmoothStep smooth = SolveSmoothStep(system_, t, h, theta, y, u_dot_);
   u_dot_ = smooth.dv_free / h;
 
-  std::vector<UnilateralContactKinematics> kinematics;
-  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
-    kinematics.push_back(system_.unilateral_contact(k).Evaluate(t, system_, y));
-  }
-  const ActiveContacts active = FindActiveContacts(system_, kinematics, h, v_k);
+  const ContactPoints points = EvaluateContactPoints(system_, t, y);
+  const ActiveContacts active = FindActiveContacts(system_, points, h, v_k);
   const Index n_a = static_cast<Index>(active.index.size());
 
   VectorXd v_next = v_k + smooth.dv_free;
@@ -239,19 +284,7 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
   report_.active_contacts = static_cast<int>(n_a);
   report_.lambda = VectorXd::Zero(system_.num_constraints());
   for (std::size_t r = 0; r < smooth.kept.size(); ++r) report_.lambda(smooth.kept[r]) = impulse(static_cast<Index>(r)) / h;
-  report_.contacts.assign(static_cast<std::size_t>(system_.num_unilateral_contacts()), ContactStepResult{});
-  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
-    const auto& c = kinematics[static_cast<std::size_t>(k)];
-    ContactStepResult& result = report_.contacts[static_cast<std::size_t>(k)];
-    result.U_N = c.W_N.dot(v_next);
-    result.g_N = system_.unilateral_contact(k).Evaluate(t + h, system_, y).g_N;
-  }
-  for (Index i = 0; i < n_a; ++i) {
-    ContactStepResult& result = report_.contacts[static_cast<std::size_t>(active.index[static_cast<std::size_t>(i)])];
-    result.active = true;
-    result.P_N = P(3 * i);
-    result.P_T = P.segment<2>(3 * i + 1);
-  }
+  report_.contacts = SummarizeContacts(system_, t + h, y, points, v_next, active, P);
   ++statistics_.steps;
   statistics_.max_active_contacts = std::max(statistics_.max_active_contacts, static_cast<int>(n_a));
   return report_;

@@ -28,19 +28,22 @@ struct MoreauJeanOptions {
 /// solver_tolerance > 0 and solver_max_iterations >= 1.
 void CheckMoreauJeanOptions(const MoreauJeanOptions& options);
 
-/// One contact's outcome of a step [t_k, t_k+1].
+/// One contact's outcome of a step [t_k, t_k+1], over its points (UnilateralContact::num_points).
 struct ContactStepResult {
-  bool active = false;  ///< in the step's index set: g_N(x_k) + h/2 U_N,k <= 0
-  double g_N = 0.0;     ///< gap at the end of the step, g_N(x_k+1) [m]
-  double U_N = 0.0;     ///< normal relative velocity at the end, W_N(x_k) v_k+1 [m/s]
-  double P_N = 0.0;     ///< normal impulse over the step [N s] (>= 0; 0 if inactive)
-  Eigen::Vector2d P_T = Eigen::Vector2d::Zero();  ///< tangential impulses along t1_W, t2_W [N s]
+  bool active = false;    ///< a point in the step's index set: g_N(x_k) + h/2 U_N,k <= 0
+  int active_points = 0;  ///< how many of its points were
+  double g_N = 0.0;       ///< the smallest gap at the end of the step, g_N(x_k+1) [m]
+  double U_N = 0.0;       ///< normal relative velocity at the end at that point, W_N(x_k) v_k+1 [m/s]
+  double P_N = 0.0;       ///< normal impulse over the step, summed over the points [N s] (>= 0)
+  /// Tangential impulses along t1_W, t2_W summed over the points [N s] (the points of a
+  /// surface_plane contact share the plane's tangents).
+  Eigen::Vector2d P_T = Eigen::Vector2d::Zero();
 };
 
 /// What one step did.
 struct MoreauJeanStepReport {
   double time = 0.0;        ///< t_k+1 [s]
-  int active_contacts = 0;  ///< size of the index set
+  int active_contacts = 0;  ///< size of the index set: contact points, summed over the contacts
   int solver_iterations = 0;  ///< Lemke pivots, or NSGS sweeps plus Newton steps (0 without active contacts)
   double solver_error = 0.0;  ///< the solver's error at its end
   std::vector<ContactStepResult> contacts;  ///< per contact of the system, in its order

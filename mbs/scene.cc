@@ -284,8 +284,8 @@ Scene LoadScene(const std::filesystem::path& file) {
   if (root.Has("contacts")) {
     const YamlNode contacts = root.Required("contacts");
     for (const YamlNode& item : contacts.AsList()) {
-      std::unique_ptr<UnilateralContact> contact =
-          ReadUnilateralContact(item, [&](const YamlNode& end) { return ReadMarkerRef(end, *scene.system); });
+      std::unique_ptr<UnilateralContact> contact = ReadUnilateralContact(
+          item, *scene.system, [&](const YamlNode& end) { return ReadMarkerRef(end, *scene.system); });
       if (!scene.options.moreau_jean) {
         item.Fail(fmt::format("contact '{}' is unilateral, which only simulation.method moreau_jean integrates "
                               "(compliant contact under explicit or implicit: the force elements sphere_plane_contact, "

@@ -1,11 +1,15 @@
 #include "mbs/scene_unilateral.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/error.h"
+#include "mbs/flexible_body.h"
+#include "mbs/surface_plane_contact.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -53,6 +57,37 @@ double ReadRadius(const YamlNode& node, std::string_view key, const std::string&
   return radius;
 }
 
+/// A flexible body's contact surface named by a contact entry.
+struct SurfaceRef {
+  MarkerRef origin;                          ///< the body frame's marker
+  const sid::ContactSurface* surface = nullptr;
+  Eigen::Index num_modes = 0;
+};
+
+/// The contact surface `surface` of the flexible body `body` of a contact entry; InputError at
+/// the item for an unknown body, a rigid body, or a surface the body's file does not carry.
+SurfaceRef ReadSurface(const YamlNode& node, const MultibodySystem& system, const std::string& name) {
+  const YamlNode body_node = node.Required("body");
+  const std::string body_name = body_node.AsString();
+  const int b = system.FindBody(body_name);
+  if (b < 0) body_node.Fail(fmt::format("contact '{}': no body '{}'", name, body_name));
+  const auto* flexible = dynamic_cast<const FlexibleBody*>(&system.body(b));
+  if (flexible == nullptr) {
+    body_node.Fail(fmt::format("contact '{}': body '{}' is rigid; surfaces are a flexible body's", name, body_name));
+  }
+  const YamlNode surface_node = node.Required("surface");
+  const std::string surface_name = surface_node.AsString();
+  std::vector<std::string> names;
+  for (const sid::ContactSurface& surface : flexible->data().surfaces) {
+    if (surface.name == surface_name) {
+      return {MarkerRef::OnBody(b, flexible->FindMarker(FlexibleBody::kOriginMarker)), &surface, flexible->num_modes()};
+    }
+    names.push_back(surface.name);
+  }
+  surface_node.Fail(fmt::format("contact '{}': body '{}' carries no contact surface '{}' (it has: {})", name,
+                                body_name, surface_name, names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+}
+
 }  // namespace
 
 std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulation, bool selected) {
@@ -77,7 +112,7 @@ std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulatio
   return options;
 }
 
-std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node,
+std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, const MultibodySystem& system,
                                                          const std::function<MarkerRef(const YamlNode&)>& read_marker) {
   const std::string name = node.Required("name").AsString();
   const YamlNode type = node.Required("type");
@@ -98,7 +133,17 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node,
       return std::make_unique<SphereSphereUnilateral>(name, sphere1, sphere2, radius1, radius2, law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere", name, kind));
+  if (kind == "surface_plane") {
+    node.RejectUnknownKeys({"name", "type", "body", "surface", "plane", "law", "restitution", "friction"});
+    const SurfaceRef surface = ReadSurface(node, system, name);
+    const MarkerRef plane = read_marker(node.Required("plane"));
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] {
+      return std::make_unique<SurfacePlaneUnilateral>(name, surface.origin, *surface.surface, surface.num_modes, plane,
+                                                      law);
+    });
+  }
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, surface_plane", name, kind));
 }
 
 }  // namespace flexmbs::mbs

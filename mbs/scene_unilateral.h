@@ -10,6 +10,7 @@
 #include "core/yaml_node.h"
 #include "mbs/marker_ref.h"
 #include "mbs/moreau_jean.h"
+#include "mbs/multibody_system.h"
 #include "mbs/unilateral_contact.h"
 
 namespace flexmbs::mbs {
@@ -21,12 +22,14 @@ namespace flexmbs::mbs {
 std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulation, bool selected);
 
 /// One entry of `contacts:`: `{name, type: sphere_plane, sphere: <marker>, plane: <marker>,
-/// radius}` or `{name, type: sphere_sphere, sphere1, sphere2, radius1, radius2}`, with
+/// radius}`, `{name, type: sphere_sphere, sphere1, sphere2, radius1, radius2}` or `{name, type:
+/// surface_plane, body: <flexible body of `system`>, surface: <its contact surface>, plane:
+/// <marker>}`, with
 /// `law: unilateral` (the default and the only law here: compliant laws are force elements),
 /// `restitution` (default 0, in [0, 1]) and `friction` (default 0, >= 0). `read_marker` reads a
 /// marker entry ({body, marker} or the ground). Every bad key or value is an InputError naming
 /// the file, the item and the value.
-std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node,
+std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, const MultibodySystem& system,
                                                          const std::function<MarkerRef(const YamlNode&)>& read_marker);
 
 }  // namespace flexmbs::mbs

@@ -26,18 +26,6 @@ UnilateralContactKinematics FromPointContact(const contact::PointContactKinemati
   return k;
 }
 
-/// Adds sign [n; t1; t2]^T (J_v - [p - p_M]x J_w) of marker `ref` into the columns of its body.
-void AddPointJacobian(const MultibodySystem& system, const MarkerRef& ref, const MarkerKinematics& marker,
-                      const Eigen::Vector3d& p_W, double sign, UnilateralContactKinematics* k) {
-  if (ref.is_ground()) return;
-  const Eigen::MatrixXd J_p =
-      marker.jacobian.topRows<3>() - Skew(p_W - marker.p_WM_W) * marker.jacobian.bottomRows<3>();
-  const Eigen::Index column = system.velocity_offset(ref.body), n = J_p.cols();
-  k->W_N.segment(column, n) += sign * k->n_W.transpose() * J_p;
-  k->W_T.middleCols(column, n).row(0) += sign * k->t1_W.transpose() * J_p;
-  k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * J_p;
-}
-
 }  // namespace
 
 UnilateralContact::UnilateralContact(std::string name, MarkerRef a, MarkerRef b, UnilateralLaw law)
@@ -54,25 +42,41 @@ UnilateralContact::UnilateralContact(std::string name, MarkerRef a, MarkerRef b,
   }
 }
 
-UnilateralContactKinematics UnilateralContact::Evaluate(double t, const MultibodySystem& system,
-                                                        const ConstVectorRef& y) const {
-  const MarkerKinematics a = system.MarkerState(a_, y), b = system.MarkerState(b_, y);
-  UnilateralContactKinematics k;
+std::vector<UnilateralContactKinematics> UnilateralContact::Evaluate(double t, const MultibodySystem& system,
+                                                                   const ConstVectorRef& y) const {
   try {
-    k = Geometry(a, b);
+    return EvaluatePoints(system, y);
   } catch (const contact::DegenerateContactError& e) {
     throw SimulationError(t, fmt::format("t = {:.9g} s: contact '{}': {}", t, name_, e.what()));
   }
+}
+
+void UnilateralContact::AddPointJacobian(const MultibodySystem& system, const MarkerRef& ref,
+                                         const MarkerKinematics& marker, const Eigen::Vector3d& p_W, double sign,
+                                         UnilateralContactKinematics* k) {
+  if (ref.is_ground()) return;
+  const Eigen::MatrixXd J_p =
+      marker.jacobian.topRows<3>() - Skew(p_W - marker.p_WM_W) * marker.jacobian.bottomRows<3>();
+  const Eigen::Index column = system.velocity_offset(ref.body), n = J_p.cols();
+  k->W_N.segment(column, n) += sign * k->n_W.transpose() * J_p;
+  k->W_T.middleCols(column, n).row(0) += sign * k->t1_W.transpose() * J_p;
+  k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * J_p;
+}
+
+std::vector<UnilateralContactKinematics> ShapePairUnilateral::EvaluatePoints(const MultibodySystem& system,
+                                                                             const ConstVectorRef& y) const {
+  const MarkerKinematics a = system.MarkerState(marker_a(), y), b = system.MarkerState(marker_b(), y);
+  UnilateralContactKinematics k = Geometry(a, b);
   k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
   k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
-  AddPointJacobian(system, a_, a, k.p_WA_W, 1.0, &k);
-  AddPointJacobian(system, b_, b, k.p_WB_W, -1.0, &k);
-  return k;
+  AddPointJacobian(system, marker_a(), a, k.p_WA_W, 1.0, &k);
+  AddPointJacobian(system, marker_b(), b, k.p_WB_W, -1.0, &k);
+  return {k};
 }
 
 SpherePlaneUnilateral::SpherePlaneUnilateral(std::string name, MarkerRef sphere, MarkerRef plane, double radius,
                                              UnilateralLaw law)
-    : UnilateralContact(std::move(name), std::move(sphere), std::move(plane), law), radius_(radius) {
+    : ShapePairUnilateral(std::move(name), std::move(sphere), std::move(plane), law), radius_(radius) {
   CheckRadius(this->name(), "radius [m]", radius_);
 }
 
@@ -82,7 +86,7 @@ UnilateralContactKinematics SpherePlaneUnilateral::Geometry(const MarkerKinemati
 
 SphereSphereUnilateral::SphereSphereUnilateral(std::string name, MarkerRef sphere1, MarkerRef sphere2, double radius1,
                                                double radius2, UnilateralLaw law)
-    : UnilateralContact(std::move(name), std::move(sphere1), std::move(sphere2), law),
+    : ShapePairUnilateral(std::move(name), std::move(sphere1), std::move(sphere2), law),
       radius1_(radius1), radius2_(radius2) {
   CheckRadius(this->name(), "radius1 [m]", radius1_);
   CheckRadius(this->name(), "radius2 [m]", radius2_);

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "contact/geometry/point_contact.h"
 #include "mbs/body.h"
@@ -35,8 +36,9 @@ struct UnilateralContactKinematics : contact::PointContactKinematics {
   Eigen::Matrix<double, 2, Eigen::Dynamic> W_T;  ///< 2 x num_velocities()
 };
 
-/// A unilateral contact between a shape on marker a (body A) and a shape on marker b (body B);
-/// either may be the ground, not both, and not both on one body. Immutable after construction.
+/// A unilateral contact between body A (marker a) and body B (marker b): one point between two
+/// shapes on markers, or many (the vertices of a flexible body's contact surface); either body
+/// may be the ground, not both, and not both the same body. Immutable after construction.
 class UnilateralContact {
  public:
   virtual ~UnilateralContact() = default;
@@ -44,26 +46,35 @@ class UnilateralContact {
   UnilateralContact& operator=(const UnilateralContact&) = delete;
 
   const std::string& name() const { return name_; }
-  /// The scene's type name: "sphere_plane", "sphere_sphere".
+  /// The scene's type name: "sphere_plane", "sphere_sphere", "surface_plane".
   virtual std::string_view type() const = 0;
+  /// The number of contact points, fixed for the run: 1 for two shapes, the vertices of a surface.
+  virtual int num_points() const = 0;
   const UnilateralLaw& law() const { return law_; }
   const MarkerRef& marker_a() const { return a_; }
   const MarkerRef& marker_b() const { return b_; }
 
-  /// The kinematics at (t, y). The velocity of a point at offset r from a marker's origin is
-  /// J_v u - [r]x J_w u (the marker's jacobian rows, MultibodySystem::MarkerState), so W_N and W_T
-  /// carry A's point Jacobian at p_WA_W minus B's at p_WB_W, projected on the frame. Throws
-  /// SimulationError at t naming the contact where the geometry has no normal.
-  UnilateralContactKinematics Evaluate(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// The kinematics of every point at (t, y), num_points() of them in a fixed order; W_N and W_T
+  /// of a point carry the velocity Jacobian of A's material point at p_WA_W minus B's at p_WB_W,
+  /// projected on its frame. Throws SimulationError at t naming the contact where the geometry
+  /// has no normal.
+  std::vector<UnilateralContactKinematics> Evaluate(double t, const MultibodySystem& system,
+                                                    const ConstVectorRef& y) const;
 
  protected:
   /// Checks the law (InputError naming the contact: e outside [0, 1], mu < 0 or not finite) and
   /// the markers (both the ground, or both on one body).
   UnilateralContact(std::string name, MarkerRef a, MarkerRef b, UnilateralLaw law);
 
-  /// The geometry between the two markers: g_N, the frame and the contact points (W_N, W_T left
-  /// empty). May throw contact::DegenerateContactError.
-  virtual UnilateralContactKinematics Geometry(const MarkerKinematics& a, const MarkerKinematics& b) const = 0;
+  /// The points' kinematics at y (Evaluate's). May throw contact::DegenerateContactError.
+  virtual std::vector<UnilateralContactKinematics> EvaluatePoints(const MultibodySystem& system,
+                                                                  const ConstVectorRef& y) const = 0;
+
+  /// Adds sign [n; t1; t2]^T (J_v - [p_W - p_M]x J_w) to the columns of the body of marker `ref`
+  /// in k->W_N, k->W_T (sized num_velocities()): the velocity Jacobian of the material point at
+  /// p_W [m] moving with the marker's frame (`marker` = MarkerState(ref, y)). Nothing for the ground.
+  static void AddPointJacobian(const MultibodySystem& system, const MarkerRef& ref, const MarkerKinematics& marker,
+                               const Eigen::Vector3d& p_W, double sign, UnilateralContactKinematics* k);
 
  private:
   std::string name_;
@@ -71,10 +82,27 @@ class UnilateralContact {
   UnilateralLaw law_;
 };
 
+/// A unilateral contact of one point between a shape on marker a and a shape on marker b.
+class ShapePairUnilateral : public UnilateralContact {
+ public:
+  int num_points() const final { return 1; }
+
+ protected:
+  using UnilateralContact::UnilateralContact;
+
+  /// The geometry between the two markers: g_N, the frame and the contact points (W_N, W_T left
+  /// empty). May throw contact::DegenerateContactError.
+  virtual UnilateralContactKinematics Geometry(const MarkerKinematics& a, const MarkerKinematics& b) const = 0;
+
+ private:
+  std::vector<UnilateralContactKinematics> EvaluatePoints(const MultibodySystem& system,
+                                                          const ConstVectorRef& y) const final;
+};
+
 /// A sphere of radius r [m] centred on marker S (body A) against the plane through the origin of
 /// marker P (body B) with outward normal P's z axis, as the compliant SpherePlaneContact
 /// (mbs/contact_force.h): g_N = n . (p_S - p_P) - r (contact::SpherePlane).
-class SpherePlaneUnilateral final : public UnilateralContact {
+class SpherePlaneUnilateral final : public ShapePairUnilateral {
  public:
   /// radius > 0 [m]; InputError naming the contact otherwise (and as UnilateralContact).
   SpherePlaneUnilateral(std::string name, MarkerRef sphere, MarkerRef plane, double radius, UnilateralLaw law);
@@ -88,7 +116,7 @@ class SpherePlaneUnilateral final : public UnilateralContact {
 /// Two spheres of radii r1, r2 [m] centred on markers S1 (body A) and S2 (body B):
 /// g_N = |p_S1 - p_S2| - r1 - r2, n from S2 to S1 (contact::SphereSphere). Coincident centres:
 /// SimulationError.
-class SphereSphereUnilateral final : public UnilateralContact {
+class SphereSphereUnilateral final : public ShapePairUnilateral {
  public:
   /// radius1, radius2 > 0 [m]; InputError naming the contact otherwise (and as UnilateralContact).
   SphereSphereUnilateral(std::string name, MarkerRef sphere1, MarkerRef sphere2, double radius1, double radius2,

@@ -69,7 +69,7 @@ TEST_F(UnilateralSceneTest, ContactsAndMoreauJeanKeysLoad) {
   EXPECT_EQ(scene.options.moreau_jean->step, 1e-3);
   EXPECT_EQ(scene.options.moreau_jean->theta, 0.6);
   // The gap of the floor at the initial state: 1.1 - 0.1 m.
-  const UnilateralContactKinematics k = floor.Evaluate(0.0, *scene.system, scene.initial_state);
+  const UnilateralContactKinematics k = floor.Evaluate(0.0, *scene.system, scene.initial_state).front();
   EXPECT_NEAR(k.g_N, 1.0, 1e-15);
   // Without moreau_jean the keys of the ODE methods stay as they were.
   const Scene explicit_scene = LoadScene(Write(std::string(kBodies) + "simulation: {end_time: 1}\n"));

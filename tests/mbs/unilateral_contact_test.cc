@@ -50,11 +50,11 @@ TEST(UnilateralContact, JacobiansGiveTheGapRateAndTheMaterialPointsRelativeVeloc
   const VectorXd u = y.tail(system.num_velocities());
   for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
     const UnilateralContact& contact = system.unilateral_contact(k);
-    const UnilateralContactKinematics c = contact.Evaluate(0.0, system, y);
+    const UnilateralContactKinematics c = contact.Evaluate(0.0, system, y).front();
     // The gap's rate by central differences along the motion (positions moved by +-dt u).
     const double dt = 1e-6;
-    const double rate = (contact.Evaluate(0.0, system, Advance(system, y, dt)).g_N -
-                         contact.Evaluate(0.0, system, Advance(system, y, -dt)).g_N) /
+    const double rate = (contact.Evaluate(0.0, system, Advance(system, y, dt)).front().g_N -
+                         contact.Evaluate(0.0, system, Advance(system, y, -dt)).front().g_N) /
                         (2.0 * dt);
     EXPECT_NEAR(c.W_N.dot(u), rate, 1e-8 * (1.0 + std::abs(rate))) << contact.name();
     // The material points' relative velocity from the markers' own velocities.
