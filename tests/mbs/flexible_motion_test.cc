@@ -32,13 +32,14 @@ constexpr double kSoftening = 1e-4;
 // entry): its local errors (<= 1e-12 of each entry) add up over 1e5 steps to a global error of
 // ~1e-8 of the state in the worst case, below it where they do not accumulate. P and L are not
 // invariants of the Runge-Kutta map (they depend on R(e) and q nonlinearly), so they drift by
-// the same global error projected on them: measured 3e-13 (P) and 1.3e-12 (L) relative over
-// 1.02e5 steps. The requested bound is 1e-10.
+// the same global error projected on them, relative over 1.02e5 steps: measured 2.5e-13 (P) and
+// 1.3e-12 (L), the largest of the two bodies (issue 22: was 1e-10 for both).
 constexpr double kRelativeTolerance = 1e-12;
-constexpr double kMomentumTolerance = 1e-10;
-// The energy holds to the global error too: measured 4e-12 relative; asserted at the
-// bound of the accumulated local errors, 1e5 steps x 1e-12 = 1e-7.
-constexpr double kEnergyTolerance = 1e-7;
+constexpr double kLinearMomentumTolerance = 3e-12;
+constexpr double kAngularMomentumTolerance = 1e-11;
+// The energy holds to the global error too: measured 5.8e-12 relative (was asserted at the
+// bound of the accumulated local errors, 1e5 steps x 1e-12 = 1e-7).
+constexpr double kEnergyTolerance = 5e-11;
 constexpr long kMinimumSteps = 100000;
 
 struct Drift {
@@ -107,8 +108,8 @@ TEST(FreeFloatingFlexibleBody, KeepsMomentumAndEnergyOverAHundredThousandSteps) 
     std::cout << c.name << ": " << run.steps << " steps, drift P " << run.P_drift << ", L " << run.L_drift << ", E "
               << run.E_drift << "\n";
     EXPECT_GE(run.steps, kMinimumSteps) << c.name;
-    EXPECT_LT(run.P_drift, kMomentumTolerance) << c.name;
-    EXPECT_LT(run.L_drift, kMomentumTolerance) << c.name;
+    EXPECT_LT(run.P_drift, kLinearMomentumTolerance) << c.name;
+    EXPECT_LT(run.L_drift, kAngularMomentumTolerance) << c.name;
     EXPECT_LT(run.E_drift, kEnergyTolerance) << c.name;
   }
 }
