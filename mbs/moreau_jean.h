@@ -78,8 +78,10 @@ struct MoreauJeanStatistics {
 /// the Euler parameters normalised. The KKT system [A G^T; G 0] is solved densely (full-pivot
 /// LU); the contacts see the Delassus operator W = H A_c^-1 H^T (A_c^-1 the velocity block of the
 /// KKT inverse) and the free local velocity q = H v_free + (e U_N,k, 0, 0). Frictionless steps
-/// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), others SolveFrictionContact (d = 3). The
-/// bodies' acceleration-dependent forces (geometric stiffening) enter by one corrector of the
+/// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), and where Lemke misses the tolerance (a
+/// singular W_NN from redundant contact points: its pivots lose accuracy) by the proximal Newton
+/// solver with mu = 0; others SolveFrictionContact (d = 3). The bodies' acceleration-dependent
+/// forces (geometric stiffening) enter by one corrector of the
 /// free velocity with u' = (v_free - v_k) / h (as MultibodySystem::Accelerations); the contact
 /// impulses' own stiffening is left out.
 class MoreauJeanStepper {
