@@ -113,42 +113,54 @@ RotationCoefficients Coefficients(double t) {
   return out;
 }
 
+/// Throws InputError naming the body for SID data FlexibleBody cannot use (its constructor's
+/// comment lists them).
+void CheckReducedBody(const sid::ReducedBody& d, const std::string& body_name) {
+  const Index n = d.num_modes();
+  if (!(d.mass > 0.0)) Fail(body_name, fmt::format("mass {} kg must be > 0", d.mass));
+  if (static_cast<Index>(d.mode_names.size()) != n || static_cast<Index>(d.mode_kinds.size()) != n) {
+    Fail(body_name, fmt::format("{} mode names and {} kinds for {} modes", d.mode_names.size(), d.mode_kinds.size(), n));
+  }
+  CheckBlock(body_name, d.mdCM, "mdCM", 3, 1, 1, n);
+  CheckBlock(body_name, d.J, "J", 3, 3, 2, n);
+  CheckBlock(body_name, d.Ct, "Ct", n, 3, 1, n);
+  CheckBlock(body_name, d.Cr, "Cr", n, 3, 1, n);
+  CheckBlock(body_name, d.Me, "Me", n, n, 0, n);
+  CheckBlock(body_name, d.Gr, "Gr", 3, 3 * n, 1, n);
+  CheckBlock(body_name, d.Ge, "Ge", n, 3 * n, 0, n);
+  CheckBlock(body_name, d.Oe, "Oe", n, 6, 1, n);
+  CheckBlock(body_name, d.Ke, "Ke", n, n, 0, n);
+  CheckBlock(body_name, d.De, "De", n, n, 0, n);
+  CheckBlock(body_name, d.ksigma, "ksigma", n, 1, 0, n);
+  const sid::GeometricStiffening& K0 = d.stiffening;
+  if (K0.empty()) {
+    if (d.Ct.order() > 0) Fail(body_name, "Ct has order-1 (stiffening) terms but the body has no stiffening matrices");
+  } else {
+    for (const auto* list : {&K0.K0t, &K0.K0r}) {
+      for (const MatrixXd& matrix : *list) {
+        if (matrix.rows() != n || matrix.cols() != n) Fail(body_name, "stiffening matrices K0t/K0r are not n x n");
+      }
+    }
+    for (const MatrixXd& matrix : K0.K0omega) {
+      if (matrix.rows() != n || matrix.cols() != n) Fail(body_name, "stiffening matrices K0omega are not n x n");
+    }
+  }
+  CheckNoRigidBodyMotion(d, body_name);
+}
+
 }  // namespace
 
 FlexibleBody::FlexibleBody(std::string name, sid::ReducedBody data, bool geometric_stiffening)
     : name_(std::move(name)), data_(std::move(data)), geometric_stiffening_(geometric_stiffening), n_(data_.num_modes()) {
+  CheckReducedBody(data_, name_);
+  CopyInvariants();
+  ReadNodes();
+}
+
+void FlexibleBody::CopyInvariants() {
   const Index n = n_;
   const sid::ReducedBody& d = data_;
-  if (!(d.mass > 0.0)) Fail(name_, fmt::format("mass {} kg must be > 0", d.mass));
-  if (static_cast<Index>(d.mode_names.size()) != n || static_cast<Index>(d.mode_kinds.size()) != n) {
-    Fail(name_, fmt::format("{} mode names and {} kinds for {} modes", d.mode_names.size(), d.mode_kinds.size(), n));
-  }
-  CheckBlock(name_, d.mdCM, "mdCM", 3, 1, 1, n);
-  CheckBlock(name_, d.J, "J", 3, 3, 2, n);
-  CheckBlock(name_, d.Ct, "Ct", n, 3, 1, n);
-  CheckBlock(name_, d.Cr, "Cr", n, 3, 1, n);
-  CheckBlock(name_, d.Me, "Me", n, n, 0, n);
-  CheckBlock(name_, d.Gr, "Gr", 3, 3 * n, 1, n);
-  CheckBlock(name_, d.Ge, "Ge", n, 3 * n, 0, n);
-  CheckBlock(name_, d.Oe, "Oe", n, 6, 1, n);
-  CheckBlock(name_, d.Ke, "Ke", n, n, 0, n);
-  CheckBlock(name_, d.De, "De", n, n, 0, n);
-  CheckBlock(name_, d.ksigma, "ksigma", n, 1, 0, n);
   const sid::GeometricStiffening& K0 = d.stiffening;
-  if (K0.empty()) {
-    if (d.Ct.order() > 0) Fail(name_, "Ct has order-1 (stiffening) terms but the body has no stiffening matrices");
-  } else {
-    for (const auto* list : {&K0.K0t, &K0.K0r}) {
-      for (const MatrixXd& matrix : *list) {
-        if (matrix.rows() != n || matrix.cols() != n) Fail(name_, "stiffening matrices K0t/K0r are not n x n");
-      }
-    }
-    for (const MatrixXd& matrix : K0.K0omega) {
-      if (matrix.rows() != n || matrix.cols() != n) Fail(name_, "stiffening matrices K0omega are not n x n");
-    }
-  }
-  CheckNoRigidBodyMotion(d, name_);
-
   mass_ = d.mass;
   mdCM0_ = d.mdCM.m0.col(0);
   mdCM1_ = Eigen::Matrix3Xd::Zero(3, n);
@@ -178,8 +190,11 @@ FlexibleBody::FlexibleBody(std::string name, sid::ReducedBody data, bool geometr
   Gr1_ = MatrixXd::Zero(9 * n, n);
   for (Index k = 0; k < static_cast<Index>(d.Gr.m1.size()); ++k) Gr1_.col(k) = d.Gr.m1[static_cast<std::size_t>(k)].reshaped();
   Ge0_ = d.Ge.m0;
+}
 
-  for (const sid::Node& node : d.nodes) {
+void FlexibleBody::ReadNodes() {
+  const Index n = n_;
+  for (const sid::Node& node : data_.nodes) {
     const std::string where = fmt::format("node '{}'", node.name);
     if (node.name == kOriginMarker) Fail(name_, where + " has the name of the body-frame marker");
     for (const NodeFrame& other : nodes_) {

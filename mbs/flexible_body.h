@@ -137,6 +137,11 @@ class FlexibleBody final : public Body {
     Eigen::Matrix3d J;
     Eigen::MatrixX3d Ct, Cr;  ///< n x 3
   };
+  /// Constructor steps after the checks: the SID invariants into the members M_b and h_b use
+  /// (order-1 parts kinematic only: the stiffening goes to stiffening_), then the node markers
+  /// (InputError for a node named "origin" or twice, or an AP0 that is not a rotation).
+  void CopyInvariants();
+  void ReadNodes();
   /// The kinematic blocks at q.
   Blocks Evaluate(const Eigen::VectorXd& q) const;
   /// M_kin u, plus dJ w in the rotational row, split as [translation (W); rotation (B); elastic].

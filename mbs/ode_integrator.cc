@@ -366,6 +366,89 @@ struct OdeIntegrator::Impl {
                         void* data) {
     if (code < 0) static_cast<Impl*>(data)->arkode_error = fmt::format("{}: {}", function, message);
   }
+
+  // Constructor steps. The SUNDIALS context, the state vector y over `state` and ERKStep
+  // (Dormand-Prince 7(4)5) or ARKStep (the ARK4(3)6L[2]SA DIRK table alone) at t0.
+  void CreateStepper(double t0) {
+    FLEXMBS_CHECK(SUNContext_Create(nullptr, &context) == 0, "SUNContext_Create failed");
+    y = N_VMake_Serial(problem.size, state.data(), context);
+    FLEXMBS_CHECK(y != nullptr, "N_VMake_Serial failed");
+    if (options.method == OdeMethod::kExplicit) {
+      arkode = ERKStepCreate(&Impl::Rhs, t0, y, context);
+      FLEXMBS_CHECK(arkode != nullptr, "ERKStepCreate failed");
+      Check(ERKStepSetTableNum(arkode, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
+      return;
+    }
+    // Implicit only: no explicit right-hand side, the DIRK table alone.
+    arkode = ARKStepCreate(nullptr, &Impl::Rhs, t0, y, context);
+    FLEXMBS_CHECK(arkode != nullptr, "ARKStepCreate failed");
+    Check(ARKStepSetTableNum(arkode, ARKODE_ARK436L2SA_DIRK_6_3_4, ARKODE_ERK_NONE), "ARKStepSetTableNum");
+  }
+
+  // The implicit method's Newton solver: problem.newton_solver behind ARKODE's Newton
+  // (OdeNewton::kSparse), else dense LU; then its settings.
+  void AttachNewton() {
+    sparse_newton = UsesSparseNewton(problem, options);
+    if (sparse_newton) {
+      matrix = NewNewtonMatrix(context);
+      linear_solver = SUNLinSolNewEmpty(context);
+      FLEXMBS_CHECK(matrix != nullptr && linear_solver != nullptr, "Newton solver not created");
+      linear_solver->content = this;
+      linear_solver->ops->gettype = &Impl::NewtonSolverType;
+      linear_solver->ops->getid = &Impl::NewtonSolverId;
+      linear_solver->ops->setup = &Impl::NewtonSetup;
+      linear_solver->ops->solve = &Impl::NewtonSolve;
+      linear_solver->ops->free = &Impl::NewtonSolverFree;
+      Check(ARKStepSetLinearSolver(arkode, linear_solver, matrix), "ARKStepSetLinearSolver");
+      Check(ARKStepSetJacFn(arkode, &Impl::NewtonJacobian), "ARKStepSetJacFn");
+    } else {
+      // Newton on the stage equations with dense LU of I - gamma h df/dy. Without
+      // problem.jacobian (or with OdeJacobian::kDifferenceQuotients) ARKODE forms df/dy by
+      // difference quotients (arkLsDQJac: one rhs call per column); an analytic Jacobian goes
+      // through ARKStepSetJacFn (any ARKLsJacFn filling the dense SUNMatrix column-major).
+      matrix = SUNDenseMatrix(problem.size, problem.size, context);
+      linear_solver = SUNLinSol_Dense(y, matrix, context);
+      FLEXMBS_CHECK(matrix != nullptr && linear_solver != nullptr,
+                    "dense linear solver not created");
+      Check(ARKStepSetLinearSolver(arkode, linear_solver, matrix), "ARKStepSetLinearSolver");
+      if (problem.jacobian && options.jacobian == OdeJacobian::kModel) {
+        Check(ARKStepSetJacFn(arkode, &Impl::Jacobian), "ARKStepSetJacFn");
+      }
+    }
+    // Refactor I - gamma h df/dy whenever gamma changes. ARKODE's default (only beyond a 20 %
+    // change) keeps a stale matrix while its Newton test judges the first iterate with the
+    // convergence rate of an earlier solve (reset only by a refactorisation): after exact
+    // solves (a linear problem) that rate is tiny, the first iterate is accepted, and the
+    // stage error is (change of gamma) x (correction), 1e5 x the tolerance on an oscillator.
+    Check(ARKStepSetDeltaGammaMax(arkode, kDeltaGammaMax), "ARKStepSetDeltaGammaMax");
+    // A fixed step cannot be cut when Newton stalls: give it more iterations.
+    if (options.fixed_step > 0.0) {
+      Check(ARKStepSetMaxNonlinIters(arkode, kFixedStepNewtonIterations), "ARKStepSetMaxNonlinIters");
+    }
+    // ARKODE's Hermite dense output uses f at the step ends, which amplifies errors in stiff
+    // components by their large Lipschitz constant; its Lagrange module is meant for stiff
+    // problems.
+    Check(ARKStepSetInterpolantType(arkode, ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
+  }
+
+  // The settings of either method: user data, error handler, tolerances, step limits, the
+  // post-processing of steps (projection, the fixed step's finiteness check) and the events.
+  void ConfigureCommon() {
+    Check(api->set_user_data(arkode, this), "SetUserData");
+    Check(api->set_err_handler(arkode, &Impl::KeepError, this), "SetErrHandlerFn");
+    Check(api->set_tolerances(arkode, options.relative_tolerance, options.absolute_tolerance), "SStolerances");
+    Check(api->set_max_num_steps(arkode, options.max_steps_per_call), "SetMaxNumSteps");
+    Check(api->set_max_step(arkode, options.max_step), "SetMaxStep");
+    SetFirstStep();
+    if (problem.project || options.fixed_step > 0.0) {
+      Check(api->set_postprocess_step(arkode, &Impl::PostprocessStep), "SetPostprocessStepFn");
+    }
+    if (problem.num_events > 0) {
+      Check(api->root_init(arkode, problem.num_events, &Impl::Events), "RootInit");
+      // An event function that is zero at the start (a contact that just closed) is normal.
+      Check(api->set_no_inactive_root_warn(arkode), "SetNoInactiveRootWarn");
+    }
+  }
 };
 
 OdeIntegrator::OdeIntegrator(OdeProblem problem, const OdeOptions& options, double t0,
@@ -385,77 +468,9 @@ OdeIntegrator::OdeIntegrator(OdeProblem problem, const OdeOptions& options, doub
   m.state = y0;
   m.event_directions.assign(static_cast<std::size_t>(m.problem.num_events), 0);
 
-  FLEXMBS_CHECK(SUNContext_Create(nullptr, &m.context) == 0, "SUNContext_Create failed");
-  m.y = N_VMake_Serial(m.problem.size, m.state.data(), m.context);
-  FLEXMBS_CHECK(m.y != nullptr, "N_VMake_Serial failed");
-  if (options.method == OdeMethod::kExplicit) {
-    m.arkode = ERKStepCreate(&Impl::Rhs, t0, m.y, m.context);
-    FLEXMBS_CHECK(m.arkode != nullptr, "ERKStepCreate failed");
-    m.Check(ERKStepSetTableNum(m.arkode, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
-  } else {
-    // Implicit only: no explicit right-hand side, the DIRK table alone.
-    m.arkode = ARKStepCreate(nullptr, &Impl::Rhs, t0, m.y, m.context);
-    FLEXMBS_CHECK(m.arkode != nullptr, "ARKStepCreate failed");
-    m.Check(ARKStepSetTableNum(m.arkode, ARKODE_ARK436L2SA_DIRK_6_3_4, ARKODE_ERK_NONE),
-            "ARKStepSetTableNum");
-    m.sparse_newton = UsesSparseNewton(m.problem, options);
-    if (m.sparse_newton) {
-      m.matrix = NewNewtonMatrix(m.context);
-      m.linear_solver = SUNLinSolNewEmpty(m.context);
-      FLEXMBS_CHECK(m.matrix != nullptr && m.linear_solver != nullptr, "Newton solver not created");
-      m.linear_solver->content = &m;
-      m.linear_solver->ops->gettype = &Impl::NewtonSolverType;
-      m.linear_solver->ops->getid = &Impl::NewtonSolverId;
-      m.linear_solver->ops->setup = &Impl::NewtonSetup;
-      m.linear_solver->ops->solve = &Impl::NewtonSolve;
-      m.linear_solver->ops->free = &Impl::NewtonSolverFree;
-      m.Check(ARKStepSetLinearSolver(m.arkode, m.linear_solver, m.matrix), "ARKStepSetLinearSolver");
-      m.Check(ARKStepSetJacFn(m.arkode, &Impl::NewtonJacobian), "ARKStepSetJacFn");
-    } else {
-      // Newton on the stage equations with dense LU of I - gamma h df/dy. Without
-      // problem.jacobian (or with OdeJacobian::kDifferenceQuotients) ARKODE forms df/dy by
-      // difference quotients (arkLsDQJac: one rhs call per column); an analytic Jacobian goes
-      // through ARKStepSetJacFn (any ARKLsJacFn filling the dense SUNMatrix column-major).
-      m.matrix = SUNDenseMatrix(m.problem.size, m.problem.size, m.context);
-      m.linear_solver = SUNLinSol_Dense(m.y, m.matrix, m.context);
-      FLEXMBS_CHECK(m.matrix != nullptr && m.linear_solver != nullptr,
-                    "dense linear solver not created");
-      m.Check(ARKStepSetLinearSolver(m.arkode, m.linear_solver, m.matrix), "ARKStepSetLinearSolver");
-      if (m.problem.jacobian && options.jacobian == OdeJacobian::kModel) {
-        m.Check(ARKStepSetJacFn(m.arkode, &Impl::Jacobian), "ARKStepSetJacFn");
-      }
-    }
-    // Refactor I - gamma h df/dy whenever gamma changes. ARKODE's default (only beyond a 20 %
-    // change) keeps a stale matrix while its Newton test judges the first iterate with the
-    // convergence rate of an earlier solve (reset only by a refactorisation): after exact
-    // solves (a linear problem) that rate is tiny, the first iterate is accepted, and the
-    // stage error is (change of gamma) x (correction), 1e5 x the tolerance on an oscillator.
-    m.Check(ARKStepSetDeltaGammaMax(m.arkode, kDeltaGammaMax), "ARKStepSetDeltaGammaMax");
-    // A fixed step cannot be cut when Newton stalls: give it more iterations.
-    if (options.fixed_step > 0.0) {
-      m.Check(ARKStepSetMaxNonlinIters(m.arkode, kFixedStepNewtonIterations),
-              "ARKStepSetMaxNonlinIters");
-    }
-    // ARKODE's Hermite dense output uses f at the step ends, which amplifies errors in stiff
-    // components by their large Lipschitz constant; its Lagrange module is meant for stiff
-    // problems.
-    m.Check(ARKStepSetInterpolantType(m.arkode, ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
-  }
-  m.Check(m.api->set_user_data(m.arkode, &m), "SetUserData");
-  m.Check(m.api->set_err_handler(m.arkode, &Impl::KeepError, &m), "SetErrHandlerFn");
-  m.Check(m.api->set_tolerances(m.arkode, options.relative_tolerance, options.absolute_tolerance),
-          "SStolerances");
-  m.Check(m.api->set_max_num_steps(m.arkode, options.max_steps_per_call), "SetMaxNumSteps");
-  m.Check(m.api->set_max_step(m.arkode, options.max_step), "SetMaxStep");
-  m.SetFirstStep();
-  if (m.problem.project || options.fixed_step > 0.0) {
-    m.Check(m.api->set_postprocess_step(m.arkode, &Impl::PostprocessStep), "SetPostprocessStepFn");
-  }
-  if (m.problem.num_events > 0) {
-    m.Check(m.api->root_init(m.arkode, m.problem.num_events, &Impl::Events), "RootInit");
-    // An event function that is zero at the start (a contact that just closed) is normal.
-    m.Check(m.api->set_no_inactive_root_warn(m.arkode), "SetNoInactiveRootWarn");
-  }
+  m.CreateStepper(t0);
+  if (options.method != OdeMethod::kExplicit) m.AttachNewton();
+  m.ConfigureCommon();
 }
 
 OdeIntegrator::~OdeIntegrator() = default;
