@@ -47,6 +47,7 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
     const mbs::UnilateralContact& contact = system.unilateral_contact(k);
     layout.contacts.push_back({contact.name(), std::string(contact.type())});
   }
+  layout.events = scene.options.event_driven.has_value();
   const mbs::OdeOptions& ode = scene.options.integrator;
   const std::string jacobian = ode.method == mbs::OdeMethod::kImplicit
                                    ? fmt::format(", jacobian {}, newton {}", mbs::OdeJacobianName(ode.jacobian),
@@ -57,8 +58,10 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
                        {"integrator", scene.options.moreau_jean
                                           ? fmt::format("moreau_jean, step {:g}, theta {:g}",
                                                         scene.options.moreau_jean->step, scene.options.moreau_jean->theta)
-                                          : fmt::format("{}, rtol {:g}, atol {:g}{}", mbs::OdeMethodName(ode.method),
-                                                        ode.relative_tolerance, ode.absolute_tolerance, jacobian)},
+                                          : fmt::format("{}{}, rtol {:g}, atol {:g}{}",
+                                                        scene.options.event_driven ? "event_driven, between events " : "",
+                                                        mbs::OdeMethodName(ode.method), ode.relative_tolerance,
+                                                        ode.absolute_tolerance, jacobian)},
                        {"redundant_constraints", initial.redundancy.Describe(system)}};
   for (std::size_t b = 0; b < scene.body_files.size(); ++b) {
     if (scene.body_files[b].empty()) continue;
@@ -123,6 +126,15 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
       j["contact_solver_iterations"] = stats.moreau_jean.solver_iterations;
       j["max_contact_solver_error"] = stats.moreau_jean.max_solver_error;
     }
+    if (scene.options.event_driven) {
+      const mbs::EventDrivenStatistics& events = stats.event_driven;
+      j["events"] = events.events;
+      j["impacts"] = events.impacts;
+      j["separations"] = events.separations;
+      j["closings"] = events.closings;
+      j["max_impact_points"] = events.max_impact_points;
+      j["max_lcp_error"] = events.max_lcp_error;
+    }
     if (implicit) {
       j["newton"] = NewtonUsed(stats.integrator);
       j["newton_iterations"] = stats.integrator.newton_iterations;
@@ -160,6 +172,12 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
                scene.system->num_unilateral_contacts(), stats.moreau_jean.contact_solves,
                stats.moreau_jean.max_active_contacts, stats.moreau_jean.solver_iterations,
                stats.moreau_jean.max_solver_error);
+  }
+  if (scene.options.event_driven) {
+    fmt::print("events          {} ({} impacts, at most {} points in one, {} closings, {} separations), largest LCP "
+               "error {:.3g}\n",
+               stats.event_driven.events, stats.event_driven.impacts, stats.event_driven.max_impact_points,
+               stats.event_driven.closings, stats.event_driven.separations, stats.event_driven.max_lcp_error);
   }
   if (implicit) {
     fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,
@@ -202,7 +220,8 @@ void RunSimulate(const SimulateOptions& options) {
   };
   mbs::SimulationStatistics stats;
   try {
-    stats = mbs::Simulate(*scene.system, scene.options, y0, record, record_contacts);
+    stats = mbs::Simulate(*scene.system, scene.options, y0, record, record_contacts,
+                          [&](const mbs::ContactEvent& event) { writer.AppendEvent(event); });
   } catch (const mbs::SimulationError& e) {
     progress.Clear();
     writer.Finish(e.what(), false);

@@ -26,6 +26,27 @@ struct ContactSeries {
   h5::AppendableDataset gap, normal_impulse, tangential_impulse, active;
 };
 
+/// The datasets of events/, one row per contact point and event.
+struct EventSeries {
+  h5::AppendableDataset time, kind, contact, point, normal_velocity_before, normal_velocity_after, normal_impulse,
+      kinetic_energy_before, kinetic_energy_after, closed_after;
+};
+
+EventSeries CreateEvents(h5::Group& root) {
+  h5::Group group = root.CreateGroup("events");
+  group.SetStringAttribute("kind_values", "1 impact, 2 separation");
+  return {group.CreateAppendable("time", {}, "s"),
+          group.CreateAppendable("kind", {}, "1"),
+          group.CreateAppendable("contact", {}, "1"),
+          group.CreateAppendable("point", {}, "1"),
+          group.CreateAppendable("normal_velocity_before", {}, "m/s"),
+          group.CreateAppendable("normal_velocity_after", {}, "m/s"),
+          group.CreateAppendable("normal_impulse", {}, "N s"),
+          group.CreateAppendable("kinetic_energy_before", {}, "J"),
+          group.CreateAppendable("kinetic_energy_after", {}, "J"),
+          group.CreateAppendable("closed_after", {}, "1")};
+}
+
 }  // namespace
 
 struct ResultsWriter::Impl {
@@ -34,6 +55,7 @@ struct ResultsWriter::Impl {
   std::vector<BodySeries> bodies;
   std::vector<JointSeries> joints;
   std::vector<ContactSeries> contacts;
+  std::optional<EventSeries> events;
   std::chrono::steady_clock::time_point last_flush = std::chrono::steady_clock::now();
   double flush_interval_seconds = 1.0;
   bool finished = false;
@@ -99,6 +121,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsLay
                                  group.CreateAppendable("active", {}, "1")});
     }
   }
+  if (layout.events) impl_->events = CreateEvents(root);
   std::map<std::string, std::string> provenance = layout.provenance;
   provenance["tool_version"] = std::string(Version());
   std::vector<std::string> keys, values;
@@ -158,6 +181,26 @@ void ResultsWriter::Append(const ResultsSample& sample) {
   impl.total->AppendRow(sample.kinetic_energy + sample.potential_energy);
   // Time last: a reader takes the length of /time as the number of complete samples.
   impl.time->AppendRow(sample.time);
+  const double since_flush =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - impl.last_flush).count();
+  if (since_flush >= impl.flush_interval_seconds) Flush();
+}
+
+void ResultsWriter::AppendEvent(const ContactEvent& event) {
+  Impl& impl = *impl_;
+  FLEXMBS_CHECK(!impl.finished && impl.events.has_value(), "results file without events, or already finished");
+  EventSeries& series = *impl.events;
+  // Time last, as in Append: its length counts the complete rows.
+  series.kind.AppendRow(static_cast<double>(static_cast<int>(event.kind)));
+  series.contact.AppendRow(static_cast<double>(event.contact));
+  series.point.AppendRow(static_cast<double>(event.point));
+  series.normal_velocity_before.AppendRow(event.normal_velocity_before);
+  series.normal_velocity_after.AppendRow(event.normal_velocity_after);
+  series.normal_impulse.AppendRow(event.normal_impulse);
+  series.kinetic_energy_before.AppendRow(event.kinetic_energy_before);
+  series.kinetic_energy_after.AppendRow(event.kinetic_energy_after);
+  series.closed_after.AppendRow(event.closed_after ? 1.0 : 0.0);
+  series.time.AppendRow(event.time);
   const double since_flush =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - impl.last_flush).count();
   if (since_flush >= impl.flush_interval_seconds) Flush();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/h5_file.h"
+#include "mbs/event_driven.h"
 
 namespace flexmbs::mbs {
 
@@ -47,6 +48,9 @@ struct ResultsLayout {
   std::vector<Body> bodies;
   std::vector<Joint> joints;
   std::vector<Contact> contacts;
+  /// Event-driven runs: the group events/ with one row per contact point at each event
+  /// (ResultsWriter::AppendEvent).
+  bool events = false;
   /// Scene file, integrator, tolerances, tool version, ...: written as /provenance.
   std::map<std::string, std::string> provenance;
 };
@@ -90,6 +94,10 @@ class ResultsWriter {
   /// Appends one sample; flushes if the last flush is older than the interval. Precondition:
   /// the sample's sizes match the layout (InternalError otherwise).
   void Append(const ResultsSample& sample);
+  /// Appends one contact point's event to events/ (time, kind, contact, point, normal velocities
+  /// before and after, normal impulse, kinetic energies before and after, closed after);
+  /// flushes as Append. Precondition: the layout has events (InternalError otherwise).
+  void AppendEvent(const ContactEvent& event);
   /// Writes everything so far to disk.
   void Flush();
   /// Records why the run ended (`termination`: "end time reached", "failed at t = ...") and

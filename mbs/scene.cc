@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "mbs/event_driven_scene.h"
 #include "mbs/force_element.h"
 #include "mbs/joint.h"
 #include "mbs/scene_bodies.h"
@@ -128,7 +129,7 @@ constexpr double kMinStepEpsilons = 64.0;
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
                           "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot",
-                          "step", "theta"});
+                          "step", "theta", "rest_velocity", "gap_tolerance", "max_events"});
   SimulationOptions options;
   options.end_time = node.Required("end_time").AsDouble();
   if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
@@ -143,7 +144,7 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
                           options.output_interval, options.end_time / options.output_interval, options.end_time,
                           kMaxOutputSamples));
   }
-  bool moreau_jean = false;
+  bool moreau_jean = false, event_driven = false;
   if (node.Has("method")) {
     const YamlNode method = node.Required("method");
     const std::string name = method.AsString();
@@ -151,11 +152,14 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
       options.integrator.method = OdeMethod::kImplicit;
     } else if (name == "moreau_jean") {
       moreau_jean = true;
+    } else if (name == "event_driven") {
+      event_driven = true;
     } else if (name != "explicit") {
-      method.Fail(fmt::format("'{}' must be one of: explicit, implicit, moreau_jean", name));
+      method.Fail(fmt::format("'{}' must be one of: explicit, implicit, moreau_jean, event_driven", name));
     }
   }
   options.moreau_jean = ReadMoreauJeanOptions(node, moreau_jean);
+  options.event_driven = ReadEventDrivenOptions(node, event_driven);
   if (node.Has("jacobian")) {
     const YamlNode jacobian = node.Required("jacobian");
     const std::string name = jacobian.AsString();
@@ -286,9 +290,14 @@ Scene LoadScene(const std::filesystem::path& file) {
     for (const YamlNode& item : contacts.AsList()) {
       std::unique_ptr<UnilateralContact> contact = ReadUnilateralContact(
           item, *scene.system, [&](const YamlNode& end) { return ReadMarkerRef(end, *scene.system); });
-      if (!scene.options.moreau_jean) {
-        item.Fail(fmt::format("contact '{}' is unilateral, which only simulation.method moreau_jean integrates "
-                              "(compliant contact under explicit or implicit: the force elements sphere_plane_contact, "
+      if (scene.options.event_driven && contact->law().friction > 0.0) {
+        item.Required("friction").Fail(fmt::format("{:g}: method event_driven integrates frictionless contacts only "
+                                                   "(friction 0); Coulomb friction under method moreau_jean",
+                                                   contact->law().friction));
+      }
+      if (!scene.options.moreau_jean && !scene.options.event_driven) {
+        item.Fail(fmt::format("contact '{}' is unilateral, which only simulation.method moreau_jean or "
+                              "event_driven integrates (compliant contact under explicit or implicit: the force elements sphere_plane_contact, "
                               "sphere_sphere_contact)",
                               contact->name()));
       }

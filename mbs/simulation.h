@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mbs/constraint_projection.h"
+#include "mbs/event_driven.h"
 #include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
 #include "mbs/ode_integrator.h"
@@ -32,6 +33,9 @@ struct SimulationOptions {
   /// Set: Moreau-Jean time stepping (mbs/moreau_jean.h, the system's unilateral contacts) instead
   /// of the ODE integrator, whose settings are then unused.
   std::optional<MoreauJeanOptions> moreau_jean;
+  /// Set: event-driven integration of the unilateral contacts (mbs/event_driven_simulation.h):
+  /// `integrator` between the events, impacts and contact switches at them.
+  std::optional<EventDrivenOptions> event_driven;
 };
 
 /// What a run did.
@@ -49,6 +53,7 @@ struct SimulationStatistics {
   double dropped_row_limit_share = 0.0;
   double baumgarte_frequency = 0.0;   ///< the omega_B used [rad/s]
   MoreauJeanStatistics moreau_jean;   ///< Moreau-Jean runs only (integrator.steps counts its steps too)
+  EventDrivenStatistics event_driven; ///< event-driven runs only
   double wall_seconds = 0.0;
 };
 
@@ -60,6 +65,10 @@ using OutputCallback = std::function<void(double t, const Eigen::VectorXd& y, co
 /// shorter than 1e-9 output intervals is merged into the one before).
 std::vector<double> OutputTimes(const SimulationOptions& options);
 
+/// The omega_B [rad/s] of a run: options.baumgarte_frequency if >= 0, else 1 / h with h the fixed
+/// step, else the maximum step, else the output interval.
+double BaumgarteFrequency(const SimulationOptions& options);
+
 /// Integrates `system` from y0 at options.start_time to options.end_time; the implicit method
 /// solves its Newton systems as options.integrator.newton says, sparse by KktNewtonSolver
 /// (mbs/kkt_newton_solver.h), dense with the model Jacobian (SystemJacobian). Sets the system's
@@ -68,9 +77,12 @@ std::vector<double> OutputTimes(const SimulationOptions& options);
 /// conditions, SimulationError (with the time) when the integration fails; a failure near a
 /// singular configuration is reported with the joints of the loop, a dropped row that stops
 /// holding as a change of the redundancy (DroppedRowWatch, after every projection). With
-/// options.moreau_jean the run is SimulateMoreauJean's (mbs/moreau_jean_simulation.h), which also
-/// calls contact_output; without it a system with unilateral contacts is an InputError.
+/// options.moreau_jean the run is SimulateMoreauJean's (mbs/moreau_jean_simulation.h), with
+/// options.event_driven SimulateEventDriven's (mbs/event_driven_simulation.h, which also calls
+/// event_output), both calling contact_output; with neither a system with unilateral contacts is
+/// an InputError.
 SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& options, Eigen::VectorXd y0,
-                              const OutputCallback& output, const ContactOutputCallback& contact_output = {});
+                              const OutputCallback& output, const ContactOutputCallback& contact_output = {},
+                              const EventOutputCallback& event_output = {});
 
 }  // namespace flexmbs::mbs

@@ -1,0 +1,151 @@
+// The scene keys of `simulation.method: event_driven` (mbs/event_driven_scene.h, docs/scene.md):
+// the documented scene runs through `flexmbs simulate` into a results file whose events/ group
+// holds the closed-form impacts and which `flexmbs info --verify` finds intact; every key the
+// method does not take, and friction > 0, is one located line and exit 2 with no results file.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "core/h5_file.h"
+#include "mbs/scene.h"
+#include "tests/app/flexmbs_process.h"
+#include "tests/input_error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+namespace fs = std::filesystem;
+using flexmbs::testing::Outcome;
+
+/// The first ```yaml block after `heading` in docs/scene.md.
+std::string SceneOfSection(const std::string& heading) {
+  std::ifstream in(fs::path(FLEXMBS_SOURCE_DIR) / "docs" / "scene.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string page = text.str();
+  const std::size_t section = page.find(heading);
+  if (section == std::string::npos) return "";
+  const std::size_t start = page.find("```yaml\n", section);
+  const std::size_t end = page.find("```\n", start + 8);
+  if (start == std::string::npos || end == std::string::npos) return "";
+  return page.substr(start + 8, end - start - 8);
+}
+
+class EventDrivenSceneTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("flexmbs_event_driven_scene_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    scene_ = SceneOfSection("### `method: event_driven`");
+    ASSERT_NE(scene_.find("method: event_driven"), std::string::npos)
+        << "the example is gone from docs/scene.md";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path Write(const std::string& text) const {
+    std::ofstream(dir_ / "scene.yaml") << text;
+    return dir_ / "scene.yaml";
+  }
+  /// The documented scene with `from` replaced by `to`.
+  std::string Changed(const std::string& from, const std::string& to) const {
+    std::string text = scene_;
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+  }
+  Outcome Simulate(const std::string& text, bool json = false) const {
+    std::vector<std::string> args{"simulate", Write(text).string(), "-o",
+                                  (dir_ / "results.h5").string()};
+    if (json) args.push_back("--json");
+    return flexmbs::testing::RunFlexmbs(args, dir_);
+  }
+  fs::path dir_;
+  std::string scene_;
+};
+
+TEST_F(EventDrivenSceneTest, TheDocumentedSceneLoadsItsKeys) {
+  const Scene scene = LoadScene(Write(scene_));
+  ASSERT_TRUE(scene.options.event_driven.has_value());
+  EXPECT_FALSE(scene.options.moreau_jean.has_value());
+  EXPECT_EQ(scene.options.event_driven->rest_velocity, 1e-4);
+  EXPECT_EQ(scene.options.event_driven->gap_tolerance, 1e-9);
+  EXPECT_EQ(scene.options.event_driven->max_events, 10000);
+  EXPECT_EQ(scene.options.integrator.relative_tolerance, 1e-10);
+}
+
+TEST_F(EventDrivenSceneTest, RunsThroughTheCliIntoAVerifiedResultsFileWithItsEvents) {
+  const Outcome run = Simulate(scene_, true);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  const long impacts = report["impacts"];
+  EXPECT_GT(impacts, 50);
+  EXPECT_EQ(report["closings"], 1);
+  const h5::File file = h5::File::Open(dir_ / "results.h5");
+  const h5::Group events = file.root().OpenGroup("events");
+  const Eigen::VectorXd time = events.ReadVector("time"), kind = events.ReadVector("kind");
+  const Eigen::VectorXd before = events.ReadVector("normal_velocity_before");
+  const Eigen::VectorXd after = events.ReadVector("normal_velocity_after");
+  ASSERT_EQ(time.size(), impacts);
+  // The first impact: t_1 = sqrt(2 h0 / g), U_N- = -sqrt(2 g h0), U_N+ = -e U_N-.
+  constexpr double h0 = 1.0, g = 9.81, e = 0.9;
+  EXPECT_EQ(kind(0), 1.0);
+  EXPECT_NEAR(time(0), std::sqrt(2.0 * h0 / g), 1e-12);
+  EXPECT_NEAR(before(0), -std::sqrt(2.0 * g * h0), 1e-12);
+  EXPECT_NEAR(after(0), e * std::sqrt(2.0 * g * h0), 1e-12);
+  EXPECT_EQ(events.ReadVector("closed_after")(time.size() - 1), 1.0);
+  // Resting at the end: the floor's impulse over the last interval is m g times its length.
+  const h5::Group floor = file.root().OpenGroup("contacts").OpenGroup("floor");
+  const Eigen::VectorXd impulse = floor.ReadVector("normal_impulse"),
+                        active = floor.ReadVector("active");
+  EXPECT_NEAR(impulse(impulse.size() - 1), 1.0 * g * 0.01, 1e-10);
+  EXPECT_EQ(active(active.size() - 1), 1.0);
+  const Outcome verify =
+      flexmbs::testing::RunFlexmbs({"info", (dir_ / "results.h5").string(), "--verify"}, dir_);
+  EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
+}
+
+TEST_F(EventDrivenSceneTest, KeysItDoesNotTakeAreOneLocatedLineAndExit2) {
+  struct Case {
+    std::string from, to, expected;
+  };
+  const Case cases[] = {
+      {"  method: event_driven\n", "  method: event_driven\n  step: 0.001\n",
+       "simulation.step: only for method moreau_jean"},
+      {"  method: event_driven\n", "  method: event_driven\n  fixed_step: 0.001\n",
+       "simulation.fixed_step: not for method event_driven"},
+      {"  method: event_driven\n", "  method: event_driven\n  jacobian: model\n",
+       "simulation.jacobian: not for method event_driven"},
+      {"friction: 0 ", "friction: 0.3 ",
+       "contacts[0].friction: 0.3: method event_driven integrates frictionless contacts only"},
+      {"rest_velocity: 1.0e-4", "rest_velocity: -1",
+       "simulation.rest_velocity: -1 must be finite and > 0"},
+      {"max_events: 10000", "max_events: 2.5",
+       "simulation.max_events: 2.5 must be a whole number >= 1"},
+      {"method: event_driven", "method: moreau_jean\n  step: 0.001",
+       "simulation.rest_velocity: only for method "
+       "event_driven"},
+      {"method: event_driven", "method: event_drivn",
+       "'event_drivn' must be one of: explicit, implicit, moreau_jean, "
+       "event_driven"},
+  };
+  for (const Case& c : cases) {
+    const std::string text = Changed(c.from, c.to);
+    const std::string message =
+        flexmbs::testing::InputErrorMessage([&] { LoadScene(Write(text)); });
+    EXPECT_NE(message.find("scene.yaml:"), std::string::npos) << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    const Outcome run = Simulate(text);
+    EXPECT_EQ(run.exit_code, flexmbs::testing::kExitInputError) << c.to << ": " << run.err;
+    EXPECT_EQ(flexmbs::testing::Lines(run.err).size(), 1u) << run.err;
+    EXPECT_FALSE(fs::exists(dir_ / "results.h5")) << c.to;
+  }
+}
+
+}  // namespace
+}  // namespace flexmbs::mbs
