@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Preprocesses the steel cantilever: the FE model report, then two reduced bodies (clamped
 # normal modes; Craig-Bampton with a tip marker, a contact surface, damping and geometric
-# stiffening), its summary and its SIMPACK ASCII SID export, written to out/.
+# stiffening), its summary and its SIMPACK ASCII SID export, written to out/; then checks what
+# README.md says the case shows (check.py; exit 1 if a check fails).
 # Usage: run.sh [path/to/flexmbs]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -15,4 +16,7 @@ mkdir -p "$out"
 "$flexmbs" compare "$out/beam.sid.h5" "$out/beam_cb.sid.h5"
 "$flexmbs" info "$out/beam_cb.sid.h5"
 "$flexmbs" export "$out/beam_cb.sid.h5" -o "$out/beam_cb.SID_FEM" --format sid-ascii
+"$flexmbs" info "$out/beam.sid.h5" --json > "$out/beam.info.json"
+"$flexmbs" info "$out/beam_cb.sid.h5" --json > "$out/beam_cb.info.json"
+/usr/bin/python3 "$here/check.py" "$out"
 echo "wrote $out/beam.mesh.json, $out/beam.sid.h5, $out/beam_cb.sid.h5, $out/beam_cb.SID_FEM"
