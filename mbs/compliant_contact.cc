@@ -18,8 +18,23 @@ struct End {
   Eigen::MatrixXd point_jacobian;
 };
 
-Eigen::MatrixXd PointJacobian(const MarkerKinematics& marker, const Eigen::Vector3d& p_Wc_W) {
-  return marker.jacobian.topRows<3>() - Skew(p_Wc_W - marker.p_WM_W) * marker.jacobian.bottomRows<3>();
+/// The Jacobian of the end's point at c through its body's velocities: the marker frame's
+/// material point, plus modal_W on the body's modal columns (the last modal_W.cols()) for a
+/// surface point.
+Eigen::MatrixXd PointJacobian(const MarkerKinematics& marker, const Eigen::Vector3d& p_Wc_W,
+                              const Eigen::Matrix3Xd& modal_W) {
+  Eigen::MatrixXd J = marker.jacobian.topRows<3>() - Skew(p_Wc_W - marker.p_WM_W) * marker.jacobian.bottomRows<3>();
+  if (modal_W.cols() > 0) J.rightCols(modal_W.cols()) += modal_W;
+  return J;
+}
+
+/// Adds modal_W^T f_W to the modal rows of the end's body (nothing for a marker's point).
+void AddModalLoad(const MultibodySystem& system, const MarkerRef& end, const Eigen::Matrix3Xd& modal_W,
+                  const Eigen::Vector3d& f_W, Eigen::Ref<Eigen::VectorXd> h) {
+  if (modal_W.cols() == 0) return;
+  const Eigen::Index body = end.body;
+  const Eigen::Index last = system.velocity_offset(body) + system.body(body).num_velocities();
+  h.segment(last - modal_W.cols(), modal_W.cols()) += modal_W.transpose() * f_W;
 }
 
 /// Adds sign_i sign_j J_i^T K J_j over the non-ground ends to out (num_velocities() square).
@@ -48,7 +63,8 @@ CompliantContact::Loads CompliantContact::Evaluate(const ContactPoint& point) co
   const auto material_velocity = [&](const MarkerKinematics& M) {
     return Eigen::Vector3d(M.v_WM_W + M.w_WM_W.cross(point.p_Wc_W - M.p_WM_W));
   };
-  loads.v_rel_W = material_velocity(point.a) - material_velocity(point.b);
+  loads.v_rel_W = material_velocity(point.a) + point.modal_velocity_a_W - material_velocity(point.b) -
+                  point.modal_velocity_b_W;
   const double rate = -n.dot(loads.v_rel_W);
   loads.normal = contact::Evaluate(law_.normal, point.penetration, rate);
   if (law_.friction && loads.normal.force > 0.0) {
@@ -64,6 +80,8 @@ void CompliantContact::AddForces(const MultibodySystem& system, const ContactPoi
   const Eigen::Vector3d f_W = loads.normal.force * point.n_W + loads.tangential.force;
   system.AddMarkerLoad(a_, point.a, f_W, (point.p_Wc_W - point.a.p_WM_W).cross(f_W), h);
   system.AddMarkerLoad(b_, point.b, -f_W, (point.p_Wc_W - point.b.p_WM_W).cross(-f_W), h);
+  AddModalLoad(system, a_, point.modal_a, f_W, h);
+  AddModalLoad(system, b_, point.modal_b, -f_W, h);
 }
 
 void CompliantContact::AddForceJacobian(const MultibodySystem& system, const ContactPoint& point,
@@ -83,8 +101,9 @@ void CompliantContact::AddForceJacobian(const MultibodySystem& system, const Con
   const Eigen::Matrix3d K_x =
       along * dF_dd + F.force * N -
       T.d_slip * (n * loads.v_rel_W.transpose() + n.dot(loads.v_rel_W) * Eigen::Matrix3d::Identity()) * N;
-  const std::array<End, 2> ends{End{&a_, 1.0, a_.is_ground() ? Eigen::MatrixXd() : PointJacobian(point.a, point.p_Wc_W)},
-                                End{&b_, -1.0, b_.is_ground() ? Eigen::MatrixXd() : PointJacobian(point.b, point.p_Wc_W)}};
+  const std::array<End, 2> ends{
+      End{&a_, 1.0, a_.is_ground() ? Eigen::MatrixXd() : PointJacobian(point.a, point.p_Wc_W, point.modal_a)},
+      End{&b_, -1.0, b_.is_ground() ? Eigen::MatrixXd() : PointJacobian(point.b, point.p_Wc_W, point.modal_b)}};
   AddCoupling(system, ends, K_x, dh_dx);
   AddCoupling(system, ends, K_u, dh_du);
 }

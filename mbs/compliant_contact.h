@@ -46,10 +46,16 @@ struct ContactPoint {
   /// dn/dd [1/m]: the normal's turning by a relative displacement d of A's material point at c
   /// against B's (sphere on sphere: (I - n n^T) / l; zero where n turns only with a body).
   Eigen::Matrix3d n_turning = Eigen::Matrix3d::Zero();
+  /// Where an end is a point of a reduced body's contact surface (mbs/surface_state.h) and its
+  /// marker the body frame: the point's velocity per modal velocity of that body, R sum_i w_i
+  /// phi_i (3 x n) [m/q], and the modal share of its velocity [m/s]. Empty and zero where the end
+  /// is a material point of its marker's frame.
+  Eigen::Matrix3Xd modal_a, modal_b;
+  Eigen::Vector3d modal_velocity_a_W = Eigen::Vector3d::Zero(), modal_velocity_b_W = Eigen::Vector3d::Zero();
 };
 
 /// The loads of a law at a ContactPoint. With v_rel the velocity of A's material point at c
-/// relative to B's, delta' = -n . v_rel and v_T = v_rel + delta' n (the slip), A carries
+/// relative to B's (a surface point's modal share included), delta' = -n . v_rel and v_T = v_rel + delta' n (the slip), A carries
 /// f = F_N(delta, delta') n + F_T(v_T, F_N) at c, and B carries -f at c.
 class CompliantContact {
  public:
@@ -64,6 +70,8 @@ class CompliantContact {
   /// the lever arms' and the slip's change by a body's rotation (the load times that rotation).
   void AddForceJacobian(const MultibodySystem& system, const ContactPoint& point, Eigen::Ref<Eigen::MatrixXd> dh_dx,
                         Eigen::Ref<Eigen::MatrixXd> dh_du) const;
+  /// The normal force F_N [N] at `point` (0 apart).
+  double NormalForce(const ContactPoint& point) const { return Evaluate(point).normal.force; }
   /// The normal law's spring energy at `point` [J] (contact::ElasticEnergy).
   double PotentialEnergy(const ContactPoint& point) const;
 

@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "mbs/flexible_body.h"
-#include "mbs/surface_plane_contact.h"
+#include "mbs/surface_unilateral.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -143,7 +143,19 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                       law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, surface_plane", name, kind));
+  if (kind == "sphere_surface") {
+    node.RejectUnknownKeys({"name", "type", "sphere", "radius", "body", "surface", "law", "restitution", "friction"});
+    const MarkerRef sphere = read_marker(node.Required("sphere"));
+    const double radius = ReadRadius(node, "radius", name);
+    const SurfaceRef surface = ReadSurface(node, system, name);
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] {
+      return std::make_unique<SphereSurfaceUnilateral>(name, sphere, radius, surface.origin, *surface.surface,
+                                                       surface.num_modes, law);
+    });
+  }
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, surface_plane, sphere_surface",
+                        name, kind));
 }
 
 }  // namespace flexmbs::mbs

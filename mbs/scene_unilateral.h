@@ -24,7 +24,7 @@ std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulatio
 /// One entry of `contacts:`: `{name, type: sphere_plane, sphere: <marker>, plane: <marker>,
 /// radius}`, `{name, type: sphere_sphere, sphere1, sphere2, radius1, radius2}` or `{name, type:
 /// surface_plane, body: <flexible body of `system`>, surface: <its contact surface>, plane:
-/// <marker>}`, with
+/// <marker>}` or `{name, type: sphere_surface, sphere, radius, body, surface}`, with
 /// `law: unilateral` (the default and the only law here: compliant laws are force elements),
 /// `restitution` (default 0, in [0, 1]) and `friction` (default 0, >= 0). `read_marker` reads a
 /// marker entry ({body, marker} or the ground). Every bad key or value is an InputError naming

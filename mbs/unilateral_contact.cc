@@ -63,6 +63,14 @@ void UnilateralContact::AddPointJacobian(const MultibodySystem& system, const Ma
   k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * J_p;
 }
 
+void UnilateralContact::AddModalJacobian(Eigen::Index column, const Eigen::Matrix3Xd& modal_W, double sign,
+                                         UnilateralContactKinematics* k) {
+  const Eigen::Index n = modal_W.cols();
+  k->W_N.segment(column, n) += sign * k->n_W.transpose() * modal_W;
+  k->W_T.middleCols(column, n).row(0) += sign * k->t1_W.transpose() * modal_W;
+  k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * modal_W;
+}
+
 std::vector<UnilateralContactKinematics> ShapePairUnilateral::EvaluatePoints(const MultibodySystem& system,
                                                                              const ConstVectorRef& y) const {
   const MarkerKinematics a = system.MarkerState(marker_a(), y), b = system.MarkerState(marker_b(), y);

@@ -46,7 +46,7 @@ class UnilateralContact {
   UnilateralContact& operator=(const UnilateralContact&) = delete;
 
   const std::string& name() const { return name_; }
-  /// The scene's type name: "sphere_plane", "sphere_sphere", "surface_plane".
+  /// The scene's type name: "sphere_plane", "sphere_sphere", "surface_plane", "sphere_surface".
   virtual std::string_view type() const = 0;
   /// The number of contact points, fixed for the run: 1 for two shapes, the vertices of a surface.
   virtual int num_points() const = 0;
@@ -75,6 +75,10 @@ class UnilateralContact {
   /// p_W [m] moving with the marker's frame (`marker` = MarkerState(ref, y)). Nothing for the ground.
   static void AddPointJacobian(const MultibodySystem& system, const MarkerRef& ref, const MarkerKinematics& marker,
                                const Eigen::Vector3d& p_W, double sign, UnilateralContactKinematics* k);
+  /// Adds sign [n; t1; t2]^T modal_W to the columns from `column` on: a reduced body's surface
+  /// point moving with its modal velocities by modal_W (3 x n) [m/q] (mbs/surface_state.h).
+  static void AddModalJacobian(Eigen::Index column, const Eigen::Matrix3Xd& modal_W, double sign,
+                               UnilateralContactKinematics* k);
 
  private:
   std::string name_;

@@ -24,7 +24,7 @@
 #include "mbs/flexible_body.h"
 #include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
-#include "mbs/surface_plane_contact.h"
+#include "mbs/surface_unilateral.h"
 #include "reduction/modal_basis.h"
 #include "tests/mbs/flexible_test_bodies.h"
 #include "tests/mbs/linear_impact_model.h"

@@ -1,0 +1,49 @@
+#pragma once
+// A sphere against a polygon mesh (docs/contact.md, "Flexible bodies"): the mesh point nearest the
+// sphere's centre, found face by face, and the vertices and weights that move it, so a deforming
+// mesh (a reduced body's contact surface) can give the point's velocity.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "contact/geometry/point_contact.h"
+
+namespace flexmbs::contact {
+
+/// The point of triangle (a, b, c) nearest to p [m], its barycentric weights (point = w0 a +
+/// w1 b + w2 c, w >= 0, sum 1) and whether it lies inside the triangle rather than on an edge or
+/// vertex (Ericson, "Real-Time Collision Detection", 2005, §5.1.5).
+struct TrianglePoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+  bool interior = false;
+};
+TrianglePoint NearestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                     const Eigen::Vector3d& c);
+
+/// A polygon mesh in W: vertex positions (3 x V) [m], faces of 3 or 4 vertices counter-clockwise
+/// seen from outside (a quad is split along its 0-2 diagonal).
+struct PolygonMesh {
+  Eigen::Matrix3Xd vertices_W;
+  std::vector<int> face_sizes;
+  std::vector<int> face_vertices;  ///< concatenated, 0-based into vertices_W
+};
+
+/// The point contact of sphere A on mesh B and where B's contact point lies: p_WB_W = sum_i
+/// weights_i vertices_W(:, vertices_i).
+struct SphereMeshContact : PointContactKinematics {
+  std::array<int, 3> vertices{0, 0, 0};
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+};
+
+/// Sphere A against mesh B: the triangle point c nearest to the centre p_S over all faces (the
+/// first of equals). Inside a triangle the normal is the triangle's outward normal and
+/// g_N = n . (p_S - c) - r; on an edge or vertex n = (p_S - c) / |p_S - c| and g_N = |p_S - c| - r.
+/// p_WA_W = p_S - r n, p_WB_W = c. Meant for a centre outside the body (penetrations well below
+/// r, as compliant and unilateral contact keep them). Throws DegenerateContactError if the
+/// centre lies on an edge or vertex (no normal). Preconditions (InternalError): radius > 0, a
+/// mesh with faces of 3 or 4 valid vertices.
+SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh);
+
+}  // namespace flexmbs::contact
