@@ -6,11 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/sha256.h"
+#include "mbs/contact_mode_advice.h"
 #include "mbs/constraint_projection.h"
 #include "mbs/flexible_body.h"
 #include "mbs/paraview_writer.h"
@@ -105,8 +107,26 @@ std::string_view NewtonUsed(const mbs::OdeStatistics& statistics) {
   return mbs::OdeNewtonName(statistics.sparse_newton ? mbs::OdeNewton::kSparse : mbs::OdeNewton::kDense);
 }
 
+/// The mode advice as JSON (mbs/contact_mode_advice.h).
+nlohmann::json AdviceJson(const std::vector<mbs::ContactModeAdvice>& advice) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const mbs::ContactModeAdvice& a : advice) {
+    list.push_back({{"element", a.element},
+                    {"body", a.body},
+                    {"impact_speed_m_s", a.impact_speed},
+                    {"contact_time_s", a.contact_time},
+                    {"correction_mode", a.correction_mode},
+                    {"cutoff_hz", a.cutoff_hz},
+                    {"loaded_modes", a.loaded_modes},
+                    {"loaded_modes_above_cutoff", a.loaded_modes_above},
+                    {"highest_loaded_hz", a.highest_loaded_hz},
+                    {"reason", a.Describe()}});
+  }
+  return list;
+}
+
 void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::SimulationStatistics& stats,
-            double energy_start, double energy_end) {
+            const std::vector<mbs::ContactModeAdvice>& advice, double energy_start, double energy_end) {
   const double simulated = scene.options.end_time - scene.options.start_time;
   const double real_time_factor = stats.wall_seconds / simulated;
   const bool implicit = scene.options.integrator.method == mbs::OdeMethod::kImplicit;
@@ -140,6 +160,7 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
       j["newton_iterations"] = stats.integrator.newton_iterations;
       j["newton_setups"] = stats.integrator.newton_setups;
     }
+    j["mode_advice"] = AdviceJson(advice);
     j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
     nlohmann::json dropped = nlohmann::json::array();
     const mbs::ConstraintRedundancy& redundancy = stats.initial_conditions.redundancy;
@@ -183,6 +204,7 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
     fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,
                stats.integrator.newton_setups, NewtonUsed(stats.integrator));
   }
+  for (const mbs::ContactModeAdvice& a : advice) fmt::print("modes           {}\n", a.Describe());
   fmt::print("energy          {:.9g} J -> {:.9g} J\n", energy_start, energy_end);
   fmt::print("time            {:.3f} s for {:g} s simulated (real-time factor {:.3g})\n", stats.wall_seconds, simulated,
              real_time_factor);
@@ -200,6 +222,7 @@ void RunSimulate(const SimulateOptions& options) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", options.scene_file, e.what()));
   }
+  const std::vector<mbs::ContactModeAdvice> advice = mbs::AdviseContactModes(*scene.system, y0);
   mbs::ResultsWriter writer(options.output, Layout(scene, initial));
   std::optional<mbs::ParaviewWriter> paraview;
   if (scene.paraview.enabled) {
@@ -230,7 +253,7 @@ void RunSimulate(const SimulateOptions& options) {
   progress.Clear();
   writer.Finish("end time reached");
   stats.initial_conditions = initial;
-  Report(options, scene, stats, energy_start, energy_end);
+  Report(options, scene, stats, advice, energy_start, energy_end);
 }
 
 }  // namespace

@@ -53,6 +53,13 @@ void AddCoupling(const MultibodySystem& system, const std::array<End, 2>& ends, 
 
 }  // namespace
 
+Eigen::Vector3d RelativeVelocity(const ContactPoint& point) {
+  const auto material_velocity = [&](const MarkerKinematics& M) {
+    return Eigen::Vector3d(M.v_WM_W + M.w_WM_W.cross(point.p_Wc_W - M.p_WM_W));
+  };
+  return material_velocity(point.a) + point.modal_velocity_a_W - material_velocity(point.b) - point.modal_velocity_b_W;
+}
+
 CompliantContact::CompliantContact(CompliantContactLaw law, MarkerRef a, MarkerRef b)
     : law_(std::move(law)), a_(std::move(a)), b_(std::move(b)) {}
 
@@ -60,11 +67,7 @@ CompliantContact::Loads CompliantContact::Evaluate(const ContactPoint& point) co
   Loads loads;
   if (!(point.penetration > 0.0)) return loads;
   const Eigen::Vector3d& n = point.n_W;
-  const auto material_velocity = [&](const MarkerKinematics& M) {
-    return Eigen::Vector3d(M.v_WM_W + M.w_WM_W.cross(point.p_Wc_W - M.p_WM_W));
-  };
-  loads.v_rel_W = material_velocity(point.a) + point.modal_velocity_a_W - material_velocity(point.b) -
-                  point.modal_velocity_b_W;
+  loads.v_rel_W = RelativeVelocity(point);
   const double rate = -n.dot(loads.v_rel_W);
   loads.normal = contact::Evaluate(law_.normal, point.penetration, rate);
   if (law_.friction && loads.normal.force > 0.0) {

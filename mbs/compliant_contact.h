@@ -54,6 +54,10 @@ struct ContactPoint {
   Eigen::Vector3d modal_velocity_a_W = Eigen::Vector3d::Zero(), modal_velocity_b_W = Eigen::Vector3d::Zero();
 };
 
+/// The velocity of A's material point at the contact point relative to B's [m/s] in W, a surface
+/// point's modal share included.
+Eigen::Vector3d RelativeVelocity(const ContactPoint& point);
+
 /// The loads of a law at a ContactPoint. With v_rel the velocity of A's material point at c
 /// relative to B's (a surface point's modal share included), delta' = -n . v_rel and v_T = v_rel + delta' n (the slip), A carries
 /// f = F_N(delta, delta') n + F_T(v_T, F_N) at c, and B carries -f at c.

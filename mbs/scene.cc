@@ -110,10 +110,12 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
                                                            : Eigen::Matrix<double, 6, 1>::Zero());
     });
   } else if (IsContactForceType(type)) {
-    element = ReadContactForce(node, name, type, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); });
+    element =
+        ReadContactForce(node, name, type, *system, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); });
   } else {
-    type_node.Fail(fmt::format(
-        "'{}' must be one of: point_load, spring_damper, bushing, sphere_plane_contact, sphere_sphere_contact", type));
+    type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing, sphere_plane_contact, "
+                               "sphere_sphere_contact, sphere_surface_contact",
+                               type));
   }
   Within(node, [&] { return system->AddForceElement(std::move(element)); });
 }

@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/contact_force.h"
+#include "mbs/scene_surface.h"
+#include "mbs/surface_contact_force.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -120,10 +122,11 @@ CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, co
 }  // namespace
 
 bool IsContactForceType(std::string_view type) {
-  return type == "sphere_plane_contact" || type == "sphere_sphere_contact";
+  return type == "sphere_plane_contact" || type == "sphere_sphere_contact" || type == "sphere_surface_contact";
 }
 
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
+                                               const MultibodySystem& system,
                                                const std::function<MarkerRef(const YamlNode&)>& read_marker) {
   if (type == "sphere_plane_contact") {
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
@@ -132,6 +135,18 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
     const double radius = node.Required("radius").AsDouble();
     CompliantContactLaw law = ReadLaw(node, name, {"sphere", "plane", true, radius});
     return At(node, "", [&] { return std::make_unique<SpherePlaneContact>(name, sphere, plane, radius, std::move(law)); });
+  }
+  if (type == "sphere_surface_contact") {
+    node.RejectUnknownKeys({"name", "type", "sphere", "radius", "body", "surface", "law", "stiffness", "damping",
+                            "exponent", "restitution", "impact_speed", "materials", "friction"});
+    const MarkerRef sphere = read_marker(node.Required("sphere"));
+    const double radius = node.Required("radius").AsDouble();
+    const SurfaceRef surface = ReadSurface(node, system, fmt::format("force element '{}'", name));
+    CompliantContactLaw law = ReadLaw(node, name, {"sphere", "surface", false, radius});
+    return At(node, "", [&] {
+      return std::make_unique<SphereSurfaceContact>(name, sphere, radius, surface.origin, *surface.surface,
+                                                    surface.num_modes, std::move(law));
+    });
   }
   FLEXMBS_CHECK(type == "sphere_sphere_contact", "ReadContactForce: not a contact type");
   node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "stiffness", "restitution",

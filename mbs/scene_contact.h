@@ -1,7 +1,7 @@
 #pragma once
 // Reading the compliant contact force elements of a scene file (docs/scene.md, "Contact
-// elements"): `sphere_plane_contact` and `sphere_sphere_contact` with their law, restitution,
-// materials and friction keys.
+// elements"): `sphere_plane_contact`, `sphere_sphere_contact` and `sphere_surface_contact` with
+// their law, restitution, materials and friction keys.
 
 #include <functional>
 #include <memory>
@@ -11,6 +11,7 @@
 #include "core/yaml_node.h"
 #include "mbs/force_element.h"
 #include "mbs/marker_ref.h"
+#include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
 
@@ -18,9 +19,11 @@ namespace flexmbs::mbs {
 bool IsContactForceType(std::string_view type);
 
 /// The contact element `name` of type `type` (IsContactForceType) from its scene entry `node`;
-/// `read_marker` reads one of its marker entries. Every bad key or value is an InputError
+/// `read_marker` reads one of its marker entries, `system` holds the bodies whose contact
+/// surfaces sphere_surface_contact names. Every bad key or value is an InputError
 /// "<file>:<line>:<col>: <item>: <problem>" naming the element and the value.
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
+                                               const MultibodySystem& system,
                                                const std::function<MarkerRef(const YamlNode&)>& read_marker);
 
 }  // namespace flexmbs::mbs

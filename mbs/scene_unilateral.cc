@@ -1,14 +1,13 @@
 #include "mbs/scene_unilateral.h"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/error.h"
-#include "mbs/flexible_body.h"
+#include "mbs/scene_surface.h"
 #include "mbs/surface_unilateral.h"
 
 namespace flexmbs::mbs {
@@ -55,37 +54,6 @@ double ReadRadius(const YamlNode& node, std::string_view key, const std::string&
   const double radius = item.AsDouble();
   if (!(radius > 0.0)) item.Fail(fmt::format("contact '{}': {:g} m must be > 0", name, radius));
   return radius;
-}
-
-/// A flexible body's contact surface named by a contact entry.
-struct SurfaceRef {
-  MarkerRef origin;                          ///< the body frame's marker
-  const sid::ContactSurface* surface = nullptr;
-  Eigen::Index num_modes = 0;
-};
-
-/// The contact surface `surface` of the flexible body `body` of a contact entry; InputError at
-/// the item for an unknown body, a rigid body, or a surface the body's file does not carry.
-SurfaceRef ReadSurface(const YamlNode& node, const MultibodySystem& system, const std::string& name) {
-  const YamlNode body_node = node.Required("body");
-  const std::string body_name = body_node.AsString();
-  const int b = system.FindBody(body_name);
-  if (b < 0) body_node.Fail(fmt::format("contact '{}': no body '{}'", name, body_name));
-  const auto* flexible = dynamic_cast<const FlexibleBody*>(&system.body(b));
-  if (flexible == nullptr) {
-    body_node.Fail(fmt::format("contact '{}': body '{}' is rigid; surfaces are a flexible body's", name, body_name));
-  }
-  const YamlNode surface_node = node.Required("surface");
-  const std::string surface_name = surface_node.AsString();
-  std::vector<std::string> names;
-  for (const sid::ContactSurface& surface : flexible->data().surfaces) {
-    if (surface.name == surface_name) {
-      return {MarkerRef::OnBody(b, flexible->FindMarker(FlexibleBody::kOriginMarker)), &surface, flexible->num_modes()};
-    }
-    names.push_back(surface.name);
-  }
-  surface_node.Fail(fmt::format("contact '{}': body '{}' carries no contact surface '{}' (it has: {})", name,
-                                body_name, surface_name, names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
 }
 
 }  // namespace
@@ -135,7 +103,7 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
   }
   if (kind == "surface_plane") {
     node.RejectUnknownKeys({"name", "type", "body", "surface", "plane", "law", "restitution", "friction"});
-    const SurfaceRef surface = ReadSurface(node, system, name);
+    const SurfaceRef surface = ReadSurface(node, system, fmt::format("contact '{}'", name));
     const MarkerRef plane = read_marker(node.Required("plane"));
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] {
@@ -147,7 +115,7 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
     node.RejectUnknownKeys({"name", "type", "sphere", "radius", "body", "surface", "law", "restitution", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere"));
     const double radius = ReadRadius(node, "radius", name);
-    const SurfaceRef surface = ReadSurface(node, system, name);
+    const SurfaceRef surface = ReadSurface(node, system, fmt::format("contact '{}'", name));
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] {
       return std::make_unique<SphereSurfaceUnilateral>(name, sphere, radius, surface.origin, *surface.surface,

@@ -36,10 +36,16 @@ class SphereSurfaceContact final : public ForceElement {
                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
   /// The normal force F_N [N] at (t, y): 0 apart.
   double NormalForce(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
-
- private:
   /// The contact point at (t, y); SimulationError at t where the centre lies on an edge.
   ContactPoint Geometry(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+
+  const MarkerRef& sphere() const { return sphere_; }
+  /// The surface's body frame marker (its body is the reduced body).
+  const MarkerRef& origin() const { return origin_; }
+  const sid::ContactSurface& surface() const { return surface_; }
+  const CompliantContactLaw& law() const { return contact_.law(); }
+
+ private:
 
   std::string name_;
   MarkerRef sphere_, origin_;

@@ -166,4 +166,78 @@ TEST_F(SimulateContactsTest, SurfaceContactOnARigidBodyOrAMissingSurfaceIsRefuse
                                      "body's");
 }
 
+/// Reduces tests/data/cube.geo with six free-free modes, the contact surface "top" (its face
+/// z = 0.1 m) and `extra` reduction keys to cube.sid.h5 in `dir`.
+void ReduceCubeWithTopSurface(const fs::path& dir, const std::string& extra) {
+  std::ofstream(dir / "cube.yaml") << "name: cube\ngeometry: {file: "
+                                   << (fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data" / "cube.geo").string()
+                                   << ", mesh_size: 0.05, element_order: 1}\n"
+                                      "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}\n"
+                                      "material: steel\nnode_sets: [bottom, top]\n"
+                                      "reduction: {method: free_free, modes: 6"
+                                   << extra << "}\nsid: {contact_surfaces: [top]}\n";
+  const Outcome reduce = flexmbs::testing::RunFlexmbs(
+      {"reduce", (dir / "cube.yaml").string(), "-o", (dir / "cube.sid.h5").string()}, dir);
+  ASSERT_EQ(reduce.exit_code, 0) << reduce.err;
+}
+
+/// A steel ball (r = 5 mm) 1 um above the centre of the cube's top face, falling on it at 1 m/s,
+/// through a Hertz sphere_surface_contact; no gravity.
+const char* kBallOnCube = R"(gravity: [0, 0, 0]
+bodies:
+  cube:
+    flexible: {file: cube.sid.h5}
+  ball:
+    rigid: {mass: 0.0041097, inertia: [[4.1097e-8, 0, 0], [0, 4.1097e-8, 0], [0, 0, 4.1097e-8]]}
+    markers: {centre: {position: [0, 0, 0]}}
+    initial: {position: [0.05, 0.05, 0.105001], velocity: [0, 0, -1]}
+forces:
+  - name: hit
+    type: sphere_surface_contact
+    sphere: {body: ball, marker: centre}
+    radius: 0.005
+    body: cube
+    surface: top
+    law: hertz
+    materials: {sphere: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}, surface: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}}
+simulation: {end_time: 6e-5, output_interval: 1e-6, method: implicit, relative_tolerance: 1e-8, absolute_tolerance: 1e-14}
+)";
+
+TEST_F(SimulateContactsTest, SphereOnAFlexibleSurfaceBouncesAndGetsModeAdvice) {
+  // Hertz (Johnson 1985, §11.4) for the ball on the cube's face: E* = E / (2 (1 - nu^2)),
+  // k = 4/3 E* sqrt(r), m* = m_ball m_cube / (m_ball + m_cube), t_c = 2.94 (5 m* v^2 / (4 k))^(2/5) / v.
+  const double k = 4.0 / 3.0 * 2.1e11 / (2.0 * (1.0 - 0.09)) * std::sqrt(0.005);
+  const double m_ball = 0.0041097, m_cube = 7850.0 * 1e-3, mass = m_ball * m_cube / (m_ball + m_cube);
+  const double t_c = 2.94 * std::pow(5.0 * mass / (4.0 * k), 0.4);
+  for (const bool correction : {false, true}) {
+    SCOPED_TRACE(correction);
+    ReduceCubeWithTopSurface(dir_, correction ? ", correction_modes: [{node_set: top, direction: [0, 0, 1]}]" : "");
+    if (HasFatalFailure()) return;
+    const Outcome run = Simulate(kBallOnCube, true);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    ASSERT_EQ(report["mode_advice"].size(), 1u) << run.out;
+    const nlohmann::json& advice = report["mode_advice"][0];
+    EXPECT_EQ(advice["element"], "hit");
+    EXPECT_EQ(advice["body"], "cube");
+    EXPECT_NEAR(advice["impact_speed_m_s"].get<double>(), 1.0, 1e-12);
+    EXPECT_NEAR(advice["contact_time_s"].get<double>(), t_c, 1e-9 * t_c);
+    EXPECT_EQ(advice["correction_mode"].get<bool>(), correction);
+    EXPECT_NEAR(advice["cutoff_hz"].get<double>(), (correction ? 1.5 : 3.0) / t_c, 1e-6 / t_c);
+    const int loaded = advice["loaded_modes"].get<int>();
+    EXPECT_GE(loaded, 1);
+    EXPECT_LE(loaded, correction ? 7 : 6);
+    EXPECT_LE(advice["loaded_modes_above_cutoff"].get<int>(), loaded);
+    // The ball bounces off: it touches after 1 um / (1 m/s) = 1 us and leaves after about t_c
+    // (35 us), within the run.
+    const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+    const Eigen::MatrixXd velocity =
+        file.root().OpenGroup("bodies").OpenGroup("ball").ReadMatrix("velocity");
+    EXPECT_GT(velocity(velocity.rows() - 1, 2), 0.5);
+  }
+  const Outcome text = Simulate(kBallOnCube);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("modes           contact 'hit' on cube: Hertz contact time"), std::string::npos) << text.out;
+}
+
 }  // namespace
