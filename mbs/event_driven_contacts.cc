@@ -7,7 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
+#include "contact/complementarity/friction_contact_problem.h"
+#include "contact/complementarity/friction_newton.h"
 #include "contact/complementarity/lcp_problem.h"
 #include "contact/complementarity/lemke.h"
 #include "core/error.h"
@@ -57,16 +60,47 @@ MatrixXd NormalRows(const std::vector<UnilateralContactKinematics>& kinematics, 
   return W;
 }
 
-/// Lemke on (M, q); a solve that does not converge is a SimulationError at t naming `what`.
+/// The LCP (M, q) that Lemke did not solve to the tolerance (a singular M from more contact points
+/// than the directions they constrain, as the coplanar vertices of a surface) by the proximal
+/// semi-smooth Newton solver, as Moreau-Jean does: the planar friction problem with mu = 0 (the
+/// cone is the normal half-line) and an identity tangential block (its impulse is 0). The better
+/// of the two.
+contact::LcpSolution SolveSingularLcp(const MatrixXd& M, const VectorXd& q, double tolerance,
+                                      contact::LcpSolution lemke) {
+  const Index n = q.size();
+  contact::FrictionContactProblem problem{2, MatrixXd::Identity(2 * n, 2 * n),
+                                          VectorXd::Zero(2 * n), VectorXd::Zero(n)};
+  for (Index i = 0; i < n; ++i) {
+    problem.q(2 * i) = q(i);
+    for (Index j = 0; j < n; ++j) problem.W(2 * i, 2 * j) = M(i, j);
+  }
+  contact::FrictionNewtonOptions options;
+  options.tolerance = tolerance;
+  const contact::FrictionContactSolution newton = contact::SolveFrictionNewton(problem, options);
+  contact::LcpSolution solution;
+  solution.z.resize(n);
+  for (Index i = 0; i < n; ++i) solution.z(i) = std::max(0.0, newton.r(2 * i));
+  solution.w = M * solution.z + q;
+  solution.error = contact::LcpError({M, q}, solution.z);
+  if (!(solution.error < lemke.error)) return lemke;
+  solution.iterations = lemke.iterations + newton.iterations;
+  solution.converged = solution.error <= tolerance;
+  solution.message = lemke.message + "; then proximal Newton: " + newton.message;
+  return solution;
+}
+
+/// Lemke on (M, q), then SolveSingularLcp if it missed the tolerance; a solve that does not
+/// converge is a SimulationError at t naming `what`.
 contact::LcpSolution SolveLcp(const MatrixXd& M, const VectorXd& q, double tolerance, double t,
                               std::string_view what) {
   contact::LemkeOptions lemke;
   lemke.tolerance = tolerance;
   contact::LcpSolution solution = contact::SolveLcpLemke({M, q}, lemke);
+  if (!solution.converged) solution = SolveSingularLcp(M, q, tolerance, std::move(solution));
   if (!solution.converged) {
     throw SimulationError(
         t, fmt::format("t = {:.9g} s: event-driven {} LCP of {} contact points did not converge: "
-                       "residual {:.3g} > tolerance {:.3g} after {} pivots ({})",
+                       "residual {:.3g} > tolerance {:.3g} after {} iterations ({})",
                        t, what, q.size(), solution.error, tolerance, solution.iterations,
                        solution.message));
   }

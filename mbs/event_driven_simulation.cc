@@ -95,11 +95,12 @@ OdeProblem EventDrivenRun::Problem() {
   problem.events = [this](double t, Eigen::Ref<const VectorXd> z, Eigen::Ref<VectorXd> g) {
     const auto y = z.head(y_size());
     const std::vector<int> closed = Closed();
-    VectorXd y_dot(y_size());
-    const ClosedContactForces forces = contacts_.Derivative(t, y, closed, y_dot);
     const auto kinematics = contacts_.EvaluateAll(t, y);
     for (int i = 0; i < contacts_.num_points(); ++i)
       g(i) = kinematics[static_cast<std::size_t>(i)].g_N;
+    if (closed.empty()) return;
+    VectorXd y_dot(y_size());
+    const ClosedContactForces forces = contacts_.Derivative(t, y, closed, y_dot);
     for (std::size_t i = 0; i < closed.size(); ++i) {
       const Index c = static_cast<Index>(i);
       g(closed[i]) = forces.delassus_diagonal(c) * forces.lambda_N(c) - forces.gap_acceleration(c);

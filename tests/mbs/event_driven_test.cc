@@ -1,11 +1,13 @@
 // Event-driven integration of unilateral contacts (mbs/event_driven_simulation.h) on the bouncing
 // ball: every impact time against the closed form, rest at the analytic accumulation time
 // without a Zeno hang, then resting with the force m g; energy through impacts for e = 0, 0.5, 1;
-// against Moreau-Jean on the same scene; a two-ball stack whose impact the LCP decides.
+// against Moreau-Jean on the same scene; a two-ball stack whose impact the LCP decides; a
+// pendulum on a revolute joint striking a wall at its (elliptic-integral) half period.
 #include "mbs/event_driven.h"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "mbs/joint.h"
 #include "mbs/rigid_body.h"
 #include "mbs/simulation.h"
 #include "mbs/unilateral_contact.h"
@@ -275,6 +278,68 @@ TEST(EventDriven, SimultaneousImpactOnARestingBallIsDecidedByTheLcp) {
   EXPECT_EQ(pair_end.active_points, 1);
   EXPECT_NEAR(floor_end.P_N / interval, (kMassA + kMassB) * kG, 1e-8 * kG);
   EXPECT_NEAR(pair_end.P_N / interval, kMassA * kG, 1e-8 * kG);
+}
+
+/// A pendulum: a ball (1 kg, r = 0.1 m) whose centre hangs `length` [m] below a revolute joint
+/// to the ground about W's y axis, at the bottom moving at v0 [m/s] along -x; a wall (contact
+/// "wall", restitution e) with normal -x that the ball touches at the bottom.
+ContactScene PendulumAtAWall(double length, double v0, double e) {
+  ContactScene scene{std::make_unique<MultibodySystem>(Vector3d(0.0, 0.0, -kG)), VectorXd()};
+  MultibodySystem& system = *scene.system;
+  const Matrix3d z_to_y = Eigen::AngleAxisd(-M_PI / 2.0, Vector3d::UnitX()).toRotationMatrix();
+  const int arm = system.AddBody(std::make_unique<RigidBody>(
+      "arm", kMass, Vector3d::Zero(), Matrix3d::Identity() * (0.4 * kMass * kRadius * kRadius),
+      std::vector<RigidBodyMarker>{{"pivot", Vector3d(0.0, 0.0, length), z_to_y},
+                                   {"centre", Vector3d::Zero(), Matrix3d::Identity()}}));
+  system.AddJoint(Joint("hinge", JointType::kRevolute, MarkerRef::Ground(Vector3d::Zero(), z_to_y),
+                        system.Marker("arm", "pivot")));
+  const Matrix3d z_to_minus_x =
+      Eigen::AngleAxisd(-M_PI / 2.0, Vector3d::UnitY()).toRotationMatrix();
+  system.AddUnilateralContact(std::make_unique<SpherePlaneUnilateral>(
+      "wall", system.Marker("arm", "centre"),
+      MarkerRef::Ground(Vector3d(kRadius, 0.0, -length), z_to_minus_x), kRadius,
+      UnilateralLaw{e, 0.0}));
+  scene.y0 = system.NeutralState();
+  VectorXd x(7), u(6);
+  x << 0.0, 0.0, -length, 1.0, 0.0, 0.0, 0.0;
+  u << -v0, 0.0, 0.0, 0.0, v0 / length, 0.0;  // rotating about +y through the pivot
+  system.SetBodyState(arm, x, u, scene.y0);
+  return scene;
+}
+
+TEST(EventDriven, PendulumStrikesAWallAtItsHalfPeriodAndReboundsWithTheJointHolding) {
+  constexpr double kLength = 1.0, v0 = 2.0, e = 0.7;
+  ContactScene scene = PendulumAtAWall(kLength, v0, e);
+  const MultibodySystem& system = *scene.system;
+  // Half the period of the rigid pendulum of amplitude theta0 (Landau & Lifshitz §11):
+  // T = 4 sqrt(I_p / (m g L)) K(sin(theta0 / 2)), with 1/2 I_p (v0 / L)^2 = m g L (1 - cos theta0).
+  const double I_p = 0.4 * kMass * kRadius * kRadius + kMass * kLength * kLength;
+  const double cos_theta0 =
+      1.0 - 0.5 * I_p * (v0 / kLength) * (v0 / kLength) / (kMass * kG * kLength);
+  const double k = std::sin(0.5 * std::acos(cos_theta0));
+  const double half_period = 2.0 * std::sqrt(I_p / (kMass * kG * kLength)) * std::comp_ellint_1(k);
+  const EventRun run = RunEventDriven(scene, 1.5 * half_period, 0.01, 1e-4);
+  const std::vector<ContactEvent> impacts = Impacts(run);
+  ASSERT_GE(impacts.size(), 1u);
+  const ContactEvent& impact = impacts[0];
+  // At the bottom the tip moves along the wall's normal: U_N- = -v0, and with the joint the
+  // impact LCP gives U_N+ = e v0 and keeps T+ / T- = e^2 (the hinge carries an impulse too).
+  const double energy_ratio = impact.kinetic_energy_after / impact.kinetic_energy_before;
+  std::printf(
+      "impact at %.12f s, error %.3e s; U_N- error %.3e, U_N+ error %.3e m/s; T+/T- - e^2 %.3e\n",
+      impact.time, impact.time - half_period, impact.normal_velocity_before + v0,
+      impact.normal_velocity_after - e * v0, energy_ratio - e * e);
+  // Measured: 3.4e-12 s, 1.5e-11 and 1.1e-11 m/s (rtol 1e-10 on the swing), 1.1e-16.
+  EXPECT_NEAR(impact.time, half_period, 4e-11);
+  EXPECT_NEAR(impact.normal_velocity_before, -v0, 2e-10);
+  EXPECT_NEAR(impact.normal_velocity_after, e * v0, 2e-10);
+  EXPECT_NEAR(energy_ratio, e * e, 1e-14);
+  // The hinge holds through the impact and after: |G u + g_t| and |g| at the outputs.
+  for (std::size_t i = 0; i < run.t.size(); ++i) {
+    const SystemConstraints c = system.Constraints(run.t[i], run.y[i]);
+    EXPECT_LT(c.g.lpNorm<Eigen::Infinity>(), 1e-10) << run.t[i];
+    EXPECT_LT((c.G * run.y[i].tail(6) + c.g_t).lpNorm<Eigen::Infinity>(), 1e-10) << run.t[i];
+  }
 }
 
 }  // namespace
