@@ -29,6 +29,8 @@ const fs::path kData = fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data";
 constexpr int kExitOk = 0;
 constexpr int kExitOtherError = 1;  // docs/cli.md: the simulation failed (a valid scene)
 constexpr double kGravity = 9.81;
+// The puck's end velocities against the closed form at rtol 1e-11: measured 5.6e-13 m/s (v; w exact).
+constexpr double kPuckTolerance = 5e-12;
 
 // A uniform rod (1 kg, 1 m along x of B) hinged at B's origin about W's y axis: the hinge's
 // z axis (free axis) is turned onto y by a rotation about x by -pi/2 on both sides.
@@ -217,6 +219,45 @@ output: {paraview: true}
   }
   EXPECT_NEAR(area, 6.0 * kSide * kSide, kRoundOff);
   for (const nlohmann::json& m : first["magnitude"]) EXPECT_EQ(m.get<double>(), 0.0);
+}
+
+// The point load's keys through a scene (docs/scene.md): a torque tau about W z on a free puck
+// (CoM at its origin, no gravity) spins it up as w = tau t / I_zz, turning it by theta = t^2
+// (tau / I_zz = 2); a force F along the puck's own x (frame: marker, a follower load) then points
+// along (cos t^2, sin t^2) in W, so v(T) = F / m int_0^T (cos t^2, sin t^2) dt (Fresnel
+// integrals, by Simpson's rule here). With frame: world it would stay along W x.
+TEST_F(SimulateTest, PointLoadTorqueAndFollowerForceMoveAFreePuck) {
+  const Outcome run = Simulate(R"(
+gravity: [0, 0, 0]
+bodies:
+  puck:
+    rigid: {mass: 2.0, inertia: [[0.3, 0, 0], [0, 0.3, 0], [0, 0, 0.5]]}
+    markers: {centre: {position: [0, 0, 0]}}
+forces:
+  - {name: spin, type: point_load, at: {body: puck, marker: centre}, torque: [0, 0, 1]}
+  - {name: thrust, type: point_load, at: {body: puck, marker: centre}, force: [1, 0, 0], frame: marker}
+simulation: {end_time: 1.0, output_interval: 0.5, relative_tolerance: 1e-11, absolute_tolerance: 1e-13}
+)");
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+  const flexmbs::h5::Group puck = file.root().OpenGroup("bodies").OpenGroup("puck");
+  const Eigen::MatrixXd w = puck.ReadMatrix("angular_velocity"), v = puck.ReadMatrix("velocity");
+  constexpr double kEnd = 1.0, kMass = 2.0, kSpinRate = 2.0;  // tau / I_zz [rad/s^2]
+  constexpr int kIntervals = 2000;                            // Simpson's rule: error ~1e-13
+  double c = 0.0, s = 0.0;
+  for (int k = 0; k <= kIntervals; ++k) {
+    const double t = kEnd * k / kIntervals, weight = k == 0 || k == kIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+    c += weight * std::cos(0.5 * kSpinRate * t * t);
+    s += weight * std::sin(0.5 * kSpinRate * t * t);
+  }
+  const double h = kEnd / kIntervals;
+  const Eigen::Vector3d v_expected(c * h / 3.0 / kMass, s * h / 3.0 / kMass, 0.0);
+  const Eigen::Vector3d w_expected(0.0, 0.0, kSpinRate * kEnd);
+  const Eigen::Vector3d v_end = v.row(v.rows() - 1).transpose(), w_end = w.row(w.rows() - 1).transpose();
+  std::printf("[ numbers  ] puck at t = 1 s: |w - w_exact| %.1e rad/s, |v - v_exact| %.1e m/s\n",
+              (w_end - w_expected).norm(), (v_end - v_expected).norm());
+  EXPECT_LT((w_end - w_expected).norm(), kPuckTolerance);
+  EXPECT_LT((v_end - v_expected).norm(), kPuckTolerance);
 }
 
 TEST_F(SimulateTest, FailedIntegrationStopsWithTheTimeAndKeepsItsResults) {
