@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/skew.h"
 #include "reduction/craig_bampton.h"
+#include "reduction/sid_body_builder.h"
 #include "tests/input_error.h"
 
 namespace flexmbs::reduction {
@@ -153,6 +154,33 @@ TEST(MarkerNodes, CraigBamptonConstraintModesMoveTheirOwnInterfaceMarkerByOne) {
     expected.middleCols<6>(6 * static_cast<Eigen::Index>(i)).setIdentity();
     EXPECT_LT((motion - expected).cwiseAbs().maxCoeff(), kConstraintRoundOff) << nodes[i].name;
     ExpectNodeRelations(nodes[i], cb.num_modes());
+  }
+}
+
+// docs/sid.md, "Geometric stiffening": with sid.geometric_stiffening off, no stiffening matrices,
+// Ct and the nodes' phi, psi of order 0, Cr and Oe still of order 1 (their kinematic parts);
+// with it on, all of them of order 1.
+TEST(MarkerNodes, WithoutGeometricStiffeningCtAndNodeBlocksAreOrderZero) {
+  const testing::Body b = testing::MakeBox(ElementType::kHex8, {4, 1, 1}, {0.4, 0.05, 0.05}, testing::Steel());
+  BoundaryConditions conditions;
+  conditions.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
+  conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.4), Coupling::kRigid, std::nullopt, {}});
+  eigensolvers::EigenOptions eigen;
+  eigen.num_modes = 3;
+  const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
+  for (const bool stiffening : {false, true}) {
+    SCOPED_TRACE(stiffening ? "stiffening on" : "stiffening off");
+    SidSpec sid;
+    sid.geometric_stiffening = stiffening;
+    const sid::ReducedBody body = BuildReducedBody(b.mesh, b.model(), fem::MassMatrixKind::kConsistent, sid, cb);
+    const int order = stiffening ? 1 : 0;
+    EXPECT_EQ(body.stiffening.empty(), !stiffening);
+    EXPECT_EQ(body.Ct.order(), order);
+    EXPECT_EQ(body.Cr.order(), 1);
+    EXPECT_EQ(body.Oe.order(), 1);
+    ASSERT_EQ(body.nodes.size(), 1u);
+    EXPECT_EQ(body.nodes[0].phi.order(), order);
+    EXPECT_EQ(body.nodes[0].psi.order(), order);
   }
 }
 
