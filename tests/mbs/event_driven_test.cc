@@ -280,6 +280,37 @@ TEST(EventDriven, SimultaneousImpactOnARestingBallIsDecidedByTheLcp) {
   EXPECT_NEAR(pair_end.P_N / interval, kMassA * kG, 1e-8 * kG);
 }
 
+TEST(EventDriven, BallOnRestingBallAgreesWithMoreauJeanToItsOrderH) {
+  constexpr double kDrop = 0.2, e = 0.8, h = 1e-4;
+  ContactScene ed_scene = BallOnRestingBall(kDrop, e);
+  const EventRun ed = RunEventDriven(ed_scene, 0.5, 0.01, 1e-4);
+  ContactScene mj_scene = BallOnRestingBall(kDrop, e);
+  const testing::StepHistory mj = testing::RunMoreauJean(mj_scene, h, 0.5);
+  // Moreau-Jean's impact: the first step with an impulse on the pair; both contacts are in its
+  // LCP (the floor's index set holds B from the start).
+  std::size_t k = 1;
+  while (k < mj.steps.size() && !(mj.steps[k].contacts[1].P_N > 0.0)) ++k;
+  ASSERT_LT(k, mj.steps.size());
+  const ContactEvent& pair = ed.events[1];
+  const double v_a_mj = mj.y[k](16),
+               v_b_mj = mj.y[k](22);  // v_z of A and B after the step (y = [x_A; x_B; u_A; u_B])
+  const double t_mj = mj.t[k] - 0.5 * h;
+  std::printf(
+      "Moreau-Jean h = %g: impact %.6f s (event-driven %.6f), A rebounds at %.6f m/s (%.6f), B at "
+      "%.3e m/s; "
+      "floor impulse %.6f N s (event-driven %.6f)\n",
+      h, t_mj, pair.time, v_a_mj, pair.normal_velocity_after, v_b_mj, mj.steps[k].contacts[0].P_N,
+      ed.events[0].normal_impulse);
+  // Measured: impact times 2.2e-5 s apart (< h), rebounds 2.2e-4 m/s apart (0.28 e g h:
+  // Moreau-Jean's v_k is up to a step's gravity off), B at rest in both (|v_B| 4.4e-17 m/s), floor
+  // impulses 5.0e-4 N s apart beyond the step's weight of B, m_B g h.
+  EXPECT_LT(std::abs(t_mj - pair.time), h);
+  EXPECT_NEAR(v_a_mj, pair.normal_velocity_after, 3.0 * e * kG * h);
+  EXPECT_LT(std::abs(v_b_mj), 1e-15);
+  EXPECT_NEAR(mj.steps[k].contacts[0].P_N, ed.events[0].normal_impulse + 2.0 * kG * h,
+              3.0 * (1.0 + e) * kG * h);
+}
+
 /// A pendulum: a ball (1 kg, r = 0.1 m) whose centre hangs `length` [m] below a revolute joint
 /// to the ground about W's y axis, at the bottom moving at v0 [m/s] along -x; a wall (contact
 /// "wall", restitution e) with normal -x that the ball touches at the bottom.
