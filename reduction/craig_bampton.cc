@@ -120,7 +120,7 @@ ReducedBasis OrthonormalizeBasis(const FeModel& model, const ReducedBasis& input
   const ModeCounts from = input.Counts();
   basis.description = fmt::format(
       "orthonormalised {}: {} normal modes of the reduced system ({} at zero frequency), each a mix of the original "
-      "{} (see original_kinds, original_transform)", input.method, n, rigid, FormatModeCounts(from));
+      "{}", input.method, n, rigid, FormatModeCounts(from));
   return basis;
 }
 
