@@ -2,12 +2,14 @@
 // ball: every impact time against the closed form, rest at the analytic accumulation time
 // without a Zeno hang, then resting with the force m g; energy through impacts for e = 0, 0.5, 1;
 // against Moreau-Jean on the same scene; a two-ball stack whose impact the LCP decides; a
-// pendulum on a revolute joint striking a wall at its (elliptic-integral) half period.
+// pendulum on a revolute joint striking a wall at its (elliptic-integral) half period; a resting
+// ball lifted by a ramping force, separating when the force reaches its weight.
 #include "mbs/event_driven.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,9 +17,11 @@
 #include <memory>
 #include <vector>
 
+#include "mbs/force_element.h"
 #include "mbs/joint.h"
 #include "mbs/rigid_body.h"
 #include "mbs/simulation.h"
+#include "mbs/time_function.h"
 #include "mbs/unilateral_contact.h"
 #include "tests/mbs/moreau_jean_support.h"
 
@@ -309,6 +313,41 @@ TEST(EventDriven, BallOnRestingBallAgreesWithMoreauJeanToItsOrderH) {
   EXPECT_LT(std::abs(v_b_mj), 1e-15);
   EXPECT_NEAR(mj.steps[k].contacts[0].P_N, ed.events[0].normal_impulse + 2.0 * kG * h,
               3.0 * (1.0 + e) * kG * h);
+}
+
+TEST(EventDriven, ARestingBallLiftedByARampingForceSeparatesWhenTheForceReachesItsWeight) {
+  // F_z(t) = k t at the centre of a ball resting on the floor: the contact force m g - k t reaches
+  // 0 at t_s = m g / k, where the root on (W_NN)_ii lambda_N - g_N'' opens the contact; then
+  // m z'' = k (t - t_s), so the gap is k (t - t_s)^3 / (6 m).
+  constexpr double k = 20.0;  // [N/s]
+  ContactScene scene = BallOnFloor(kMass, kRadius, 0.0, kG, 0.5, 0.0);
+  scene.system->AddForceElement(std::make_unique<PointLoad>(
+      "lift", scene.system->Marker("ball", "centre"),
+      std::array<TimeFunctionPtr, 3>{MakeConstant(0.0), MakeConstant(0.0), MakeRamp(0.0, k)},
+      std::array<TimeFunctionPtr, 3>{MakeConstant(0.0), MakeConstant(0.0), MakeConstant(0.0)},
+      LoadFrame::kWorld));
+  const double t_s = kMass * kG / k, end = t_s + 0.3;
+  const EventRun run = RunEventDriven(scene, end, 0.01, 1e-4);
+  ASSERT_EQ(run.events.size(), 1u);
+  const ContactEvent& separation = run.events[0];
+  EXPECT_EQ(separation.kind, ContactEventKind::kSeparation);
+  EXPECT_FALSE(separation.closed_after);
+  const double gap_end = run.contacts.back().contacts[0].g_N;
+  const double exact_gap = k * std::pow(end - t_s, 3) / (6.0 * kMass);
+  double worst_force = 0.0;
+  for (std::size_t i = 1; i < run.t.size() && run.t[i] < t_s - 0.01; ++i) {
+    const double mid = 0.5 * (run.t[i] + run.t[i - 1]);
+    worst_force =
+        std::max(worst_force, std::abs(run.contacts[i].contacts[0].P_N / (run.t[i] - run.t[i - 1]) -
+                                       (kMass * kG - k * mid)));
+  }
+  std::printf("separation error %.3e s, gap error at the end %.3e m, contact force error %.3e N\n",
+              separation.time - t_s, gap_end - exact_gap, worst_force);
+  // Measured: 5.6e-17 s (the root function is linear in t: ARKODE's root is exact to round-off),
+  // 1.7e-14 m, 9.8e-14 N (the integrated impulse of a force linear in t).
+  EXPECT_NEAR(separation.time, t_s, 1e-15);
+  EXPECT_NEAR(gap_end, exact_gap, 2e-13);
+  EXPECT_LT(worst_force, 1e-12);
 }
 
 /// A pendulum: a ball (1 kg, r = 0.1 m) whose centre hangs `length` [m] below a revolute joint
