@@ -198,7 +198,7 @@ double VelocityColumnsDifference(const MultibodySystem& system, const VectorXd& 
 // stiffening the columns agree to the differences' accuracy, with it the gap falls with the
 // deformation.
 TEST(KktNewtonSolver, VelocityColumnsAreTheAccelerationsDerivative) {
-  // The brief's 1e-6 for differenced entries (system_jacobian_test). The modelled columns' own
+  // 1e-6 of the largest entry for differenced entries. The modelled columns' own
   // forward differences (sqrt(eps) increments) round off eps |h| / increment, |h| carrying the
   // stiff elastic forces Ke q: measured 1e-5 of the largest entry at q ~ 1e-3, 1e-6 at 1e-4,
   // 1e-7 at 1e-5 (proportional to q, down to 2e-8): compared at q ~ 1e-5.

@@ -30,7 +30,7 @@ constexpr double kInteriorForce = 5e-14;
 // (measured: below the full model's by 3e-12 at most, above the previous k's by 2.4e-15; was 1e-10).
 constexpr double kRitzRoundOff = 3e-11;
 // With all fixed-interface modes the CB space is the full space: equal eigenvalues (measured
-// 3.5e-12; was the brief's 1e-8).
+// 3.5e-12; was 1e-8).
 constexpr double kCompleteAgreement = 3e-11;
 // The orthonormalisation keeps the CB eigenvalues: measured 9.5e-10 relative (was 1e-8).
 constexpr double kOrthonormalizedAgreement = 5e-9;
@@ -38,7 +38,7 @@ constexpr double kOrthonormalizedAgreement = 5e-9;
 // deterministic) and the same Lanczos runs, so the same numbers (measured: 0, bit for bit; was
 // 1e-13): a few ulps.
 constexpr double kSameComputation = 1e-15;
-// Orthonormalised CB: M_reduced = I to this (measured 4.4e-15; was the brief's 1e-10).
+// Orthonormalised CB: M_reduced = I to this (measured 4.4e-15; was 1e-10).
 constexpr double kOrthonormalityBound = 5e-14;
 // Off-diagonal of K_reduced relative to its largest diagonal: round-off (measured 4.2e-16; was 1e-10).
 constexpr double kDiagonalBound = 5e-15;
