@@ -21,20 +21,12 @@
 
 #include "bench/command_line.h"
 #include "sid/sid_file.h"
+#include "tests/sid/sample_body.h"
 
 namespace flexmbs::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// A Taylor block of random entries: rows x cols, `order` 0, 1 or 2, n modes.
-sid::TaylorMatrix RandomTaylor(Eigen::Index rows, Eigen::Index cols, Eigen::Index n, int order) {
-  sid::TaylorMatrix block;
-  block.m0 = Eigen::MatrixXd::Random(rows, cols);
-  for (Eigen::Index j = 0; order >= 1 && j < n; ++j) block.m1.push_back(Eigen::MatrixXd::Random(rows, cols));
-  for (Eigen::Index j = 0; order >= 2 && j < n * n; ++j) block.m2.push_back(Eigen::MatrixXd::Random(rows, cols));
-  return block;
-}
 
 /// A body of `dofs` / 3 FE nodes and n modes with every block in its documented shape.
 sid::ReducedBody GeneratedBody(Eigen::Index dofs, Eigen::Index n) {
@@ -50,30 +42,10 @@ sid::ReducedBody GeneratedBody(Eigen::Index dofs, Eigen::Index n) {
   body.frequency_hz = Eigen::VectorXd::LinSpaced(n, 1.0, 1000.0);
   body.relative_residuals = Eigen::VectorXd::Constant(n, 1e-12);
   body.damping = "none";
-  body.mdCM = RandomTaylor(3, 1, n, 1);
-  body.J = RandomTaylor(3, 3, n, 2);
-  body.Ct = RandomTaylor(n, 3, n, 1);
-  body.Cr = RandomTaylor(n, 3, n, 1);
-  body.Me = RandomTaylor(n, n, n, 0);
-  body.Gr = RandomTaylor(3, 3 * n, n, 1);
-  body.Ge = RandomTaylor(n, 3 * n, n, 0);
-  body.Oe = RandomTaylor(n, 6, n, 1);
-  body.Ke = RandomTaylor(n, n, n, 0);
-  body.De = RandomTaylor(n, n, n, 0);
-  body.ksigma = RandomTaylor(n, 1, n, 0);
+  testing::SetRandomInvariants(n, &body);
   body.node_positions = Eigen::Matrix3Xd::Random(3, nodes);
   body.phi = Eigen::MatrixXd::Random(3 * nodes, n);
-  for (int m = 0; m < 4; ++m) {
-    sid::Node node;
-    node.name = fmt::format("marker_{}", m);
-    node.fe_nodes = {m};
-    node.coupling = "node";
-    node.origin = RandomTaylor(3, 1, n, 1);
-    node.phi = RandomTaylor(3, n, n, 1);
-    node.psi = RandomTaylor(3, n, n, 1);
-    node.AP = RandomTaylor(3, 3, n, 1);
-    body.nodes.push_back(node);
-  }
+  for (int m = 0; m < 4; ++m) body.nodes.push_back(testing::RandomNode(fmt::format("marker_{}", m), {m}, "node", n));
   return body;
 }
 

@@ -18,13 +18,17 @@ class BodyHasher {
     sha_.Update(text.data(), text.size());
   }
   void Integer(std::int64_t value) { sha_.Update(&value, sizeof value); }
+  /// The number of `items`, then `each` of them in turn.
+  template <typename Items, typename Each>
+  void Sequence(const Items& items, Each each) {
+    Integer(static_cast<std::int64_t>(items.size()));
+    for (const auto& item : items) each(item);
+  }
   void Texts(const std::vector<std::string>& texts) {
-    Integer(static_cast<std::int64_t>(texts.size()));
-    for (const std::string& t : texts) Text(t);
+    Sequence(texts, [this](const std::string& t) { Text(t); });
   }
   void Indices(const std::vector<int>& indices) {
-    Integer(static_cast<std::int64_t>(indices.size()));
-    for (const int i : indices) Integer(i);
+    Sequence(indices, [this](int i) { Integer(i); });
   }
   void Matrix(const Eigen::Ref<const Eigen::MatrixXd>& m) {
     Integer(m.rows());
@@ -36,10 +40,8 @@ class BodyHasher {
   void Taylor(std::string_view name, const TaylorMatrix& block) {
     Text(name);
     Matrix(block.m0);
-    Integer(static_cast<std::int64_t>(block.m1.size()));
-    for (const Eigen::MatrixXd& m : block.m1) Matrix(m);
-    Integer(static_cast<std::int64_t>(block.m2.size()));
-    for (const Eigen::MatrixXd& m : block.m2) Matrix(m);
+    Sequence(block.m1, [this](const Eigen::MatrixXd& m) { Matrix(m); });
+    Sequence(block.m2, [this](const Eigen::MatrixXd& m) { Matrix(m); });
   }
   std::string HexDigest() { return sha_.HexDigest(); }
 
@@ -68,21 +70,18 @@ std::string ContentDigest(const ReducedBody& body) {
     for (const Eigen::MatrixXd& K : body.stiffening.K0omega) h.Matrix(K);
   }
   h.Matrix(body.node_positions);
-  h.Integer(static_cast<std::int64_t>(body.node_sets.size()));
-  for (const auto& [name, indices] : body.node_sets) {
-    h.Text(name);
-    h.Indices(indices);
-  }
+  h.Sequence(body.node_sets, [&h](const auto& set) {
+    h.Text(set.first);
+    h.Indices(set.second);
+  });
   h.Matrix(body.phi);
-  h.Integer(static_cast<std::int64_t>(body.nodes.size()));
-  for (const Node& node : body.nodes) {
+  h.Sequence(body.nodes, [&h](const Node& node) {
     h.Text(node.name);
     h.Indices(node.fe_nodes);
     h.Text(node.coupling);
     for (const layout::NodeField& field : layout::kNodeFields) h.Taylor(field.name, node.*field.member);
-  }
-  h.Integer(static_cast<std::int64_t>(body.surfaces.size()));
-  for (const ContactSurface& surface : body.surfaces) {
+  });
+  h.Sequence(body.surfaces, [&h](const ContactSurface& surface) {
     h.Text(surface.name);
     h.Indices(surface.fe_nodes);
     h.Matrix(surface.vertices);
@@ -90,7 +89,7 @@ std::string ContentDigest(const ReducedBody& body) {
     h.Indices(surface.face_vertices);
     h.Matrix(surface.face_normals);
     h.Matrix(surface.phi);
-  }
+  });
   h.Indices(body.visual_surface.face_sizes);
   h.Indices(body.visual_surface.face_nodes);
   return h.HexDigest();

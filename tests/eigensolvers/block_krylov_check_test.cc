@@ -15,6 +15,7 @@
 #include "eigensolvers/eigensolver.h"
 #include "eigensolvers/mass_operator.h"
 #include "eigensolvers/shifted_factorization.h"
+#include "tests/support/eigen_contract.h"
 #include "tests/support/test_problems.h"
 #include "tests/input_error.h"
 
@@ -22,6 +23,8 @@ namespace flexmbs::eigensolvers {
 namespace {
 
 using testing::HexBox;
+using testing::kOrthonormalityBound;
+using testing::kResidualBound;
 using testing::LargestPrincipalAngleSine;
 using testing::NodesOnPlane;
 using testing::SolveDense;
@@ -48,12 +51,6 @@ constexpr double kSamePairs = 1e-12;
 // The 5-fold test's eigenvalues (1, 2, 3) are exact in double precision; the solver's tolerance
 // gives them to residual^2.
 constexpr double kExactEigenvalue = 1e-12;
-// The eigensolver's contract.
-constexpr double kResidualBound = 1e-8;
-constexpr double kOrthonormalityBound = 1e-10;
-// Eigenvalues of the exactly symmetric cube closer than this (relative) are one cluster: they
-// split by round-off only, ~1e-12 (as in eigensolver_test.cc).
-constexpr double kClusterTolerance = 1e-7;
 
 struct Problem {
   SparseMatrix K;
@@ -216,9 +213,7 @@ TEST(CheckForMissedModes, FindsAModeLeftOutOfTheFoundSet) {
 TEST(CheckForMissedModes, FindsBothMissingCopiesOfATripleEigenvalueInOnePass) {
   const Problem p = Cube();
   // The first triple cluster among the elastic modes.
-  const auto same = [&](Index a, Index b) {
-    return std::abs(p.dense.values(a) - p.dense.values(b)) <= kClusterTolerance * p.dense.values(b);
-  };
+  const auto same = [&](Index a, Index b) { return testing::SameCluster(p.dense, a, b); };
   Index first = -1;
   for (Index j = 6; j + 2 < 40 && first < 0; ++j) {
     if (same(j, j + 1) && same(j, j + 2) && !same(j - 1, j)) first = j;

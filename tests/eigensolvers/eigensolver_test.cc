@@ -16,22 +16,22 @@
 #include "fem/mass_properties.h"
 #include "reduction/dof_constraints.h"
 #include "eigensolvers/shifted_factorization.h"
+#include "tests/support/eigen_contract.h"
 #include "tests/support/test_problems.h"
 
 namespace flexmbs::eigensolvers {
 namespace {
 
 using testing::HexBox;
+using testing::kClusterTolerance;
+using testing::kOrthonormalityBound;
+using testing::kResidualBound;
 using testing::LargestPrincipalAngleSine;
 using testing::NodesOnPlane;
 using testing::SolveDense;
 using testing::Steel;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// The eigensolver's contract (EigenOptions defaults): every pair's relative residual.
-constexpr double kResidualBound = 1e-8;
-// The contract: max |Phi^T M Phi - I|.
-constexpr double kOrthonormalityBound = 1e-10;
 // The solver's round-off floors against the test's (other summation orders), relative: measured
 // 6.5e-12.
 constexpr double kFloorRoundOff = 5e-11;
@@ -44,10 +44,6 @@ constexpr double kDenseAgreement = 1e-8;
 // the dense one. Davis-Kahan: sin theta <= residual / relative gap to the rest of the
 // spectrum; residuals <= 1e-8 and the gaps here are >= 1e-2.
 constexpr double kSubspaceAgreement = 1e-6;
-// Eigenvalues closer than this (relative) are one cluster (a repeated eigenvalue): the
-// structured meshes here are exactly symmetric, so repeated eigenvalues split only by
-// round-off, ~1e-12 relative.
-constexpr double kClusterTolerance = 1e-7;
 
 const std::unique_ptr<Eigensolver>& Spectra() {
   static const std::unique_ptr<Eigensolver> solver = MakeEigensolver("spectra");
@@ -282,9 +278,7 @@ TEST_P(SpectraEigensolverWith, CubeRepeatedFrequenciesSpanTheDenseSubspaces) {
   const double first_elastic = dense.values(6);
   // Cubic symmetry: the elastic eigenvalues come in clusters of 1, 2 and 3. Ask for modes up
   // to the end of a cluster near mode 30.
-  const auto same = [&](Eigen::Index a, Eigen::Index b) {
-    return std::abs(dense.values(a) - dense.values(b)) <= kClusterTolerance * dense.values(b);
-  };
+  const auto same = [&](Eigen::Index a, Eigen::Index b) { return testing::SameCluster(dense, a, b); };
   int repeated = 0;
   for (Eigen::Index j = 7; j < 30; ++j) repeated += same(j - 1, j) ? 1 : 0;
   ASSERT_GE(repeated, 8) << "the cube's spectrum should have repeated eigenvalues";
@@ -306,9 +300,7 @@ TEST_P(SpectraEigensolverWith, CubeModesCuttingAClusterReturnTheRightEigenvalues
   // Find a cluster of 3 among the lowest elastic modes and stop after two of its three.
   Eigen::Index cut = -1;
   for (Eigen::Index j = 8; j < 40 && cut < 0; ++j) {
-    const double v = dense.values(j);
-    if (std::abs(dense.values(j - 2) - v) <= kClusterTolerance * v &&
-        std::abs(dense.values(j - 1) - v) <= kClusterTolerance * v) {
+    if (testing::SameCluster(dense, j - 2, j) && testing::SameCluster(dense, j - 1, j)) {
       cut = j;  // modes 0 .. j-1 hold two of the three
     }
   }

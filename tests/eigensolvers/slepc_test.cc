@@ -19,18 +19,17 @@
 #include "eigensolvers/eigensolver.h"
 #include "eigensolvers/distributed/slepc_solver.h"
 #include "tests/eigensolvers/petsc_log_count.h"
+#include "tests/support/eigen_contract.h"
 #include "tests/support/test_problems.h"
 
 namespace flexmbs::eigensolvers {
 namespace {
 
+using testing::kClusterTolerance;
 using testing::LoggedEventCount;
 
 // The agreement bound between the two backends; both reach about 1e-11 alone.
 constexpr double kBackendAgreement = 1e-8;
-// Eigenvalues within this (relative) are one repeated eigenvalue: the structured cube is exactly
-// symmetric, so its repeated eigenvalues split by round-off only (~1e-12).
-constexpr double kClusterTolerance = 1e-7;
 
 struct Problem {
   fem::Mesh mesh;
@@ -258,9 +257,7 @@ TEST(SlepcBackend, SturmCountOfACubeWithRepeatedFrequenciesEqualsTheDenseCount) 
   const Eigen::SparseMatrix<double>& K = system.stiffness;
   const Eigen::SparseMatrix<double>& M = system.mass;
   const testing::DenseEigen dense = testing::SolveDense(K, M, FreeBodyShift(K, M));
-  const auto same = [&](Eigen::Index a, Eigen::Index b) {
-    return std::abs(dense.values(a) - dense.values(b)) <= kClusterTolerance * dense.values(b);
-  };
+  const auto same = [&](Eigen::Index a, Eigen::Index b) { return testing::SameCluster(dense, a, b); };
   Eigen::Index end_of_cluster = -1, inside_triple = -1;
   for (Eigen::Index j = 8; j < 40; ++j) {
     if (end_of_cluster < 0 && j > 20 && same(j - 2, j - 1) && !same(j - 1, j)) end_of_cluster = j;
