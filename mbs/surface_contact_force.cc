@@ -54,7 +54,8 @@ double SphereSurfaceContact::PotentialEnergy(double t, const MultibodySystem& sy
 }
 
 void SphereSurfaceContact::AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
-                                            Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+                                            Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                                            Eigen::Ref<Eigen::MatrixXd> dh_du) const {
   contact_.AddForceJacobian(system, Geometry(t, system, y), dh_dx, dh_du);
 }
 

@@ -18,9 +18,10 @@ SurfaceState::SurfaceState(const MultibodySystem& system, const MarkerRef& origi
   mesh_.face_vertices = surface.face_vertices;
 }
 
-Eigen::Matrix3Xd SurfaceState::ModalJacobian(const std::array<int, 3>& vertices, const Eigen::Vector3d& weights) const {
+Eigen::Matrix3Xd SurfaceState::ModalJacobian(const std::array<int, 4>& vertices,
+                                            const Eigen::Vector4d& weights) const {
   Eigen::Matrix3Xd phi_c = Eigen::Matrix3Xd::Zero(3, surface_.phi.cols());
-  for (std::size_t i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < 4; ++i) {
     if (weights(static_cast<Eigen::Index>(i)) != 0.0) {
       phi_c += weights(static_cast<Eigen::Index>(i)) * surface_.phi.middleRows(3 * vertices[i], 3);
     }

@@ -34,7 +34,7 @@ class SurfaceState {
   const MarkerKinematics& frame() const { return frame_; }
   /// R sum_i w_i phi_Vi (3 x num_modes) [m/q]: the velocity of the material point sum_i w_i V_i per
   /// modal velocity, in W.
-  Eigen::Matrix3Xd ModalJacobian(const std::array<int, 3>& vertices, const Eigen::Vector3d& weights) const;
+  Eigen::Matrix3Xd ModalJacobian(const std::array<int, 4>& vertices, const Eigen::Vector4d& weights) const;
   /// The same for vertex V alone.
   Eigen::Matrix3Xd ModalJacobian(int vertex) const;
   /// The body's modal velocities qdot [q/s].

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,11 +12,39 @@
 namespace flexmbs::contact {
 namespace {
 
-/// The nearest point of one triangle of the mesh, with its vertices.
+/// The nearest point of one face of the mesh: its vertices, weights and normal where inside.
 struct Candidate {
-  TrianglePoint nearest;
-  std::array<int, 3> vertices{0, 0, 0};
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  std::array<int, 4> vertices{0, 0, 0, 0};
+  Eigen::Vector4d weights = Eigen::Vector4d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  bool interior = false;
 };
+
+/// The bilinear shape functions at (xi, eta).
+Eigen::Vector4d Bilinear(double xi, double eta) {
+  return {(1.0 - xi) * (1.0 - eta), xi * (1.0 - eta), xi * eta, (1.0 - xi) * eta};
+}
+
+/// The nearest point of the quad's four edges to p.
+QuadPoint NearestOnQuadEdges(const Eigen::Vector3d& p, const std::array<Eigen::Vector3d, 4>& P) {
+  QuadPoint best;
+  double best_distance = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    const Eigen::Vector3d edge = P[static_cast<std::size_t>(j)] - P[static_cast<std::size_t>(i)];
+    const double s = std::clamp(edge.dot(p - P[static_cast<std::size_t>(i)]) / edge.squaredNorm(), 0.0, 1.0);
+    const Eigen::Vector3d point = P[static_cast<std::size_t>(i)] + s * edge;
+    if ((point - p).norm() < best_distance) {
+      best_distance = (point - p).norm();
+      best.point = point;
+      best.weights.setZero();
+      best.weights(i) = 1.0 - s;
+      best.weights(j) = s;
+    }
+  }
+  return best;
+}
 
 TrianglePoint OnVertex(const Eigen::Vector3d& point, int vertex) {
   TrianglePoint out;
@@ -59,6 +88,36 @@ TrianglePoint NearestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vect
   return out;
 }
 
+QuadPoint NearestPointOnQuad(const Eigen::Vector3d& p, const std::array<Eigen::Vector3d, 4>& P) {
+  double xi = 0.5, eta = 0.5;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const Eigen::Vector4d N = Bilinear(xi, eta);
+    const Eigen::Vector3d X = N(0) * P[0] + N(1) * P[1] + N(2) * P[2] + N(3) * P[3];
+    const Eigen::Vector3d X_xi = (1.0 - eta) * (P[1] - P[0]) + eta * (P[2] - P[3]);
+    const Eigen::Vector3d X_eta = (1.0 - xi) * (P[3] - P[0]) + xi * (P[2] - P[1]);
+    Eigen::Matrix<double, 3, 2> J;
+    J << X_xi, X_eta;
+    const Eigen::Vector2d step = (J.transpose() * J).ldlt().solve(-J.transpose() * (X - p));
+    xi += step(0);
+    eta += step(1);
+    if (step.norm() <= 1e-14 || !(std::abs(xi) < 10.0 && std::abs(eta) < 10.0)) break;
+  }
+  constexpr double kInside = 1e-12;
+  if (!(xi >= -kInside && xi <= 1.0 + kInside && eta >= -kInside && eta <= 1.0 + kInside)) {
+    return NearestOnQuadEdges(p, P);
+  }
+  xi = std::clamp(xi, 0.0, 1.0);
+  eta = std::clamp(eta, 0.0, 1.0);
+  QuadPoint out;
+  out.weights = Bilinear(xi, eta);
+  out.point = out.weights(0) * P[0] + out.weights(1) * P[1] + out.weights(2) * P[2] + out.weights(3) * P[3];
+  const Eigen::Vector3d X_xi = (1.0 - eta) * (P[1] - P[0]) + eta * (P[2] - P[3]);
+  const Eigen::Vector3d X_eta = (1.0 - xi) * (P[3] - P[0]) + xi * (P[2] - P[1]);
+  out.normal = X_xi.cross(X_eta).normalized();
+  out.interior = true;
+  return out;
+}
+
 SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh) {
   FLEXMBS_CHECK(sphere.radius > 0.0, "SphereMesh: the radius must be > 0");
   Candidate best;
@@ -67,30 +126,41 @@ SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh) {
   for (const int size : mesh.face_sizes) {
     FLEXMBS_CHECK((size == 3 || size == 4) && first + static_cast<std::size_t>(size) <= mesh.face_vertices.size(),
                   "SphereMesh: faces have 3 or 4 vertices");
-    for (int split = 0; split + 2 < size; ++split) {
-      const std::array<int, 3> v{mesh.face_vertices[first], mesh.face_vertices[first + 1 + split],
-                                 mesh.face_vertices[first + 2 + split]};
-      for (const int vertex : v) {
-        FLEXMBS_CHECK(vertex >= 0 && vertex < mesh.vertices_W.cols(), "SphereMesh: a face vertex out of range");
-      }
-      const TrianglePoint nearest = NearestPointOnTriangle(sphere.p_WS_W, mesh.vertices_W.col(v[0]),
-                                                           mesh.vertices_W.col(v[1]), mesh.vertices_W.col(v[2]));
-      const double distance = (sphere.p_WS_W - nearest.point).norm();
-      if (distance < best_distance) {
-        best_distance = distance;
-        best = {nearest, v};
-      }
+    Candidate face;
+    std::array<Eigen::Vector3d, 4> P;
+    for (int i = 0; i < size; ++i) {
+      const int vertex = mesh.face_vertices[first + static_cast<std::size_t>(i)];
+      FLEXMBS_CHECK(vertex >= 0 && vertex < mesh.vertices_W.cols(), "SphereMesh: a face vertex out of range");
+      face.vertices[static_cast<std::size_t>(i)] = vertex;
+      P[static_cast<std::size_t>(i)] = mesh.vertices_W.col(vertex);
+    }
+    if (size == 3) {
+      const TrianglePoint nearest = NearestPointOnTriangle(sphere.p_WS_W, P[0], P[1], P[2]);
+      face.point = nearest.point;
+      face.weights.head<3>() = nearest.weights;
+      face.normal = (P[1] - P[0]).cross(P[2] - P[0]).normalized();
+      face.interior = nearest.interior;
+    } else {
+      const QuadPoint nearest = NearestPointOnQuad(sphere.p_WS_W, P);
+      face.point = nearest.point;
+      face.weights = nearest.weights;
+      face.normal = nearest.normal;
+      face.interior = nearest.interior;
+    }
+    const double distance = (sphere.p_WS_W - face.point).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = face;
     }
     first += static_cast<std::size_t>(size);
   }
   FLEXMBS_CHECK(std::isfinite(best_distance), "SphereMesh: a mesh without faces");
   SphereMeshContact contact;
   contact.vertices = best.vertices;
-  contact.weights = best.nearest.weights;
-  contact.p_WB_W = best.nearest.point;
-  if (best.nearest.interior) {
-    const Eigen::Vector3d a = mesh.vertices_W.col(best.vertices[0]);
-    contact.n_W = (mesh.vertices_W.col(best.vertices[1]) - a).cross(mesh.vertices_W.col(best.vertices[2]) - a).normalized();
+  contact.weights = best.weights;
+  contact.p_WB_W = best.point;
+  if (best.interior) {
+    contact.n_W = best.normal;
     contact.g_N = contact.n_W.dot(sphere.p_WS_W - contact.p_WB_W) - sphere.radius;
   } else {
     if (!(best_distance > 1e-12 * sphere.radius)) {

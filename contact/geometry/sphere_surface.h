@@ -22,8 +22,21 @@ struct TrianglePoint {
 TrianglePoint NearestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                      const Eigen::Vector3d& c);
 
-/// A polygon mesh in W: vertex positions (3 x V) [m], faces of 3 or 4 vertices counter-clockwise
-/// seen from outside (a quad is split along its 0-2 diagonal).
+/// The point of the bilinear quad X(xi, eta) = (1 - xi)(1 - eta) P0 + xi (1 - eta) P1 + xi eta P2 +
+/// (1 - xi) eta P3 nearest to p [m], its four weights (the bilinear shape functions at (xi, eta),
+/// or two on an edge, one at a vertex) and whether it lies inside the quad. Inside: Gauss-Newton
+/// on |X - p|^2 from the centre; where the minimum is outside [0, 1]^2, the nearest point of the
+/// four edges.
+struct QuadPoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector4d weights = Eigen::Vector4d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< inside: dX/dxi x dX/deta, normalised
+  bool interior = false;
+};
+QuadPoint NearestPointOnQuad(const Eigen::Vector3d& p, const std::array<Eigen::Vector3d, 4>& P);
+
+/// A polygon mesh in W: vertex positions (3 x V) [m], faces of 3 (flat triangles) or 4 (bilinear
+/// quads) vertices counter-clockwise seen from outside.
 struct PolygonMesh {
   Eigen::Matrix3Xd vertices_W;
   std::vector<int> face_sizes;
@@ -31,14 +44,14 @@ struct PolygonMesh {
 };
 
 /// The point contact of sphere A on mesh B and where B's contact point lies: p_WB_W = sum_i
-/// weights_i vertices_W(:, vertices_i).
+/// weights_i vertices_W(:, vertices_i) (a triangle's fourth weight is 0).
 struct SphereMeshContact : PointContactKinematics {
-  std::array<int, 3> vertices{0, 0, 0};
-  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+  std::array<int, 4> vertices{0, 0, 0, 0};
+  Eigen::Vector4d weights = Eigen::Vector4d::Zero();
 };
 
-/// Sphere A against mesh B: the triangle point c nearest to the centre p_S over all faces (the
-/// first of equals). Inside a triangle the normal is the triangle's outward normal and
+/// Sphere A against mesh B: the face point c nearest to the centre p_S over all faces (the first
+/// of equals). Inside a face the normal is the face's outward normal there and
 /// g_N = n . (p_S - c) - r; on an edge or vertex n = (p_S - c) / |p_S - c| and g_N = |p_S - c| - r.
 /// p_WA_W = p_S - r n, p_WB_W = c. Meant for a centre outside the body (penetrations well below
 /// r, as compliant and unilateral contact keep them). Throws DegenerateContactError if the

@@ -199,8 +199,11 @@ forces:
     body: cube
     surface: top
     law: hertz
-    materials: {sphere: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}, surface: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}}
-simulation: {end_time: 6e-5, output_interval: 1e-6, method: implicit, relative_tolerance: 1e-8, absolute_tolerance: 1e-14}
+    materials:
+      sphere: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}
+      surface: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}
+simulation:
+  {end_time: 6e-5, output_interval: 1e-6, method: implicit, relative_tolerance: 1e-8, absolute_tolerance: 1e-14}
 )";
 
 TEST_F(SimulateContactsTest, SphereOnAFlexibleSurfaceBouncesAndGetsModeAdvice) {

@@ -1,9 +1,11 @@
-// contact/geometry/sphere_surface.h: the nearest point of a triangle against a brute-force search
-// over its barycentric coordinates, and a sphere against a polygon mesh above a face, beside an
-// edge and with its centre on an edge.
+// contact/geometry/sphere_surface.h: the nearest point of a triangle and of a warped bilinear quad
+// against brute-force searches over their parameters, and a sphere against a polygon mesh above
+// a face, beside an edge and with its centre on an edge.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
+#include <cmath>
 #include <random>
 
 #include "contact/geometry/sphere_surface.h"
@@ -65,7 +67,11 @@ TEST(SphereSurface, SphereAboveAFaceBesideAnEdgeAndOnAnEdge) {
   EXPECT_LT((above.p_WB_W - Eigen::Vector3d(0.25, 0.6, 0.0)).norm(), 1e-15);
   EXPECT_LT((above.p_WA_W - Eigen::Vector3d(0.25, 0.6, 0.2)).norm(), 1e-15);
   Eigen::Vector3d rebuilt = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 3; ++i) rebuilt += above.weights(i) * square.vertices_W.col(above.vertices[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < 4; ++i) {
+    rebuilt += above.weights(i) * square.vertices_W.col(above.vertices[static_cast<std::size_t>(i)]);
+  }
+  // A flat square's bilinear weights at (0.25, 0.6).
+  EXPECT_LT((above.weights - Eigen::Vector4d(0.75 * 0.4, 0.25 * 0.4, 0.25 * 0.6, 0.75 * 0.6)).norm(), 1e-15);
   EXPECT_LT((rebuilt - above.p_WB_W).norm(), 1e-15);
   EXPECT_NEAR(above.n_W.cross(above.t1_W).dot(above.t2_W), 1.0, 1e-15);
 
@@ -75,7 +81,42 @@ TEST(SphereSurface, SphereAboveAFaceBesideAnEdgeAndOnAnEdge) {
   EXPECT_LT((beside.n_W - Eigen::Vector3d(0.6, 0.0, 0.8)).norm(), 1e-15);
   EXPECT_NEAR(beside.g_N, 0.4, 1e-15);
 
-  EXPECT_THROW(SphereMesh({Eigen::Vector3d(1.0, 0.5, 0.0), 0.1}, square), DegenerateContactError);
+  // A centre on a quad's edge lies in the closed bilinear face: the face's normal, g_N = -r.
+  const SphereMeshContact on_edge = SphereMesh({Eigen::Vector3d(1.0, 0.5, 0.0), 0.1}, square);
+  EXPECT_LT((on_edge.n_W - Eigen::Vector3d::UnitZ()).norm(), 1e-15);
+  EXPECT_NEAR(on_edge.g_N, -0.1, 1e-15);
+  // On a triangle's edge it has no normal.
+  PolygonMesh triangles = square;
+  triangles.face_sizes = {3, 3};
+  triangles.face_vertices = {0, 1, 2, 0, 2, 3};
+  EXPECT_THROW(SphereMesh({Eigen::Vector3d(1.0, 0.5, 0.0), 0.1}, triangles), DegenerateContactError);
+}
+
+TEST(SphereSurface, NearestPointOnAWarpedQuadIsTheSampledMinimum) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> jitter(-0.1, 0.1);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::array<Eigen::Vector3d, 4> P{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+                                     Eigen::Vector3d(0, 1, 0)};
+    for (Eigen::Vector3d& corner : P) corner += Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
+    const Eigen::Vector3d p(0.2 + 0.6 * (jitter(rng) + 0.1) / 0.2, 0.5 + 3.0 * jitter(rng), 0.3 + jitter(rng));
+    const QuadPoint nearest = NearestPointOnQuad(p, P);
+    double sampled = HUGE_VAL;  // the bilinear patch sampled on a 400 x 400 grid
+    for (int i = 0; i <= 400; ++i) {
+      for (int j = 0; j <= 400; ++j) {
+        const double xi = i / 400.0, eta = j / 400.0;
+        const Eigen::Vector3d X =
+            (1 - xi) * (1 - eta) * P[0] + xi * (1 - eta) * P[1] + xi * eta * P[2] + (1 - xi) * eta * P[3];
+        sampled = std::min(sampled, (X - p).norm());
+      }
+    }
+    EXPECT_LE((nearest.point - p).norm(), sampled + 1e-12) << trial;
+    EXPECT_NEAR((nearest.point - p).norm(), sampled, 1e-4) << trial;
+    EXPECT_NEAR(nearest.weights.sum(), 1.0, 1e-12);
+    Eigen::Vector3d rebuilt = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) rebuilt += nearest.weights(i) * P[static_cast<std::size_t>(i)];
+    EXPECT_LT((rebuilt - nearest.point).norm(), 1e-12);
+  }
 }
 
 }  // namespace
