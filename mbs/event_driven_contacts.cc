@@ -210,7 +210,9 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y,
         system_.unilateral_contact(points_[static_cast<std::size_t>(points[i])].contact)
             .law()
             .restitution;
-    q(static_cast<Index>(i)) *= 1.0 + e;
+    // Newton's law acts on approaching points; a touching point already separating (U_N- > 0)
+    // only must not be pushed into the surface: U_N+ >= 0.
+    q(static_cast<Index>(i)) += e * std::min(0.0, q(static_cast<Index>(i)));
   }
   const contact::LcpSolution lcp =
       SolveLcp(W * response.dv, q, options_.lcp_tolerance, t, "impact");

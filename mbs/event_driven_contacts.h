@@ -69,9 +69,10 @@ class EventDrivenContacts {
   ClosedContactForces Derivative(double t, const ConstVectorRef& y, const std::vector<int>& closed,
                                  Eigen::Ref<Eigen::VectorXd> y_dot) const;
 
-  /// The impact LCP over `points` at (t, y): U_N+ = U_N- + W_NN P_N, U_N+ + e U_N- >= 0 _|_
-  /// P_N >= 0 (Newton's law, e per contact; the joints hold: G u+ = G u-); y's velocities become
-  /// u+. Throws SimulationError at t when the LCP does not converge.
+  /// The impact LCP over `points` at (t, y): U_N+ = U_N- + W_NN P_N, U_N+ + e min(U_N-, 0) >= 0
+  /// _|_ P_N >= 0 (Newton's law on the approaching points, e per contact; a touching point that
+  /// already separates only keeps U_N+ >= 0; the joints hold: G u+ = G u-); y's velocities
+  /// become u+. Throws SimulationError at t when the LCP does not converge.
   ImpactResult Impact(double t, Eigen::Ref<Eigen::VectorXd> y,
                       const std::vector<int>& points) const;
 

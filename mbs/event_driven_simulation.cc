@@ -48,7 +48,7 @@ class EventDrivenRun {
     return z;
   }
   OdeProblem Problem();
-  /// Handles the roots the integrator stopped at; true if the state changed (then Reset).
+  /// Handles the roots the integrator stopped at; true if the state changed (an event).
   bool HandleRoots(double t, VectorXd& z, const std::vector<int>& directions);
   /// The contact report and the joint multipliers of the output interval that ends at (t, z).
   MoreauJeanStepReport Report(double t, const VectorXd& z, VectorXd* joint_lambda);
@@ -316,8 +316,11 @@ SimulationStatistics SimulateEventDriven(MultibodySystem& system, const Simulati
     while (integrator.time() < t_out) {
       if (integrator.Advance(t_out) == OdeStop::kReachedTime) break;
       z = integrator.state();
-      if (run.HandleRoots(integrator.time(), z, integrator.event_directions()))
-        integrator.Reset(integrator.time(), z);
+      // Reset after every root, even one that is no event: continuing from a root where a root
+      // function is exactly 0 at and near it is refused by ARKODE ("root found at and very near
+      // t"), while a reset deactivates such a function until it moves off 0.
+      run.HandleRoots(integrator.time(), z, integrator.event_directions());
+      integrator.Reset(integrator.time(), z);
     }
     emit(integrator.time(), integrator.state());
   }
