@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Reference midpoint deflection of the flexible slider-crank (Simo & Vu-Quoc, "On the dynamics
 of flexible beams under large overall motions - the plane case, Part II", J. Appl. Mech. 53,
-1986), planar and independent of flexmbs, for tests/validation/slider_crank_test.cc.
+1986), planar and independent of flexmbs: the floating-frame counterpart of slider_crank_exact.py,
+which takes the benchmark data and the crank law from here.
 
 A rigid crank of length r turns about the origin with the prescribed angle
 
@@ -43,9 +44,10 @@ rod's midpoint from the chord through its ends, positive along the frame's y' (z
 Usage: slider_crank_reference.py [--partner=none|gyroscopic|full] MODES STIFFENING(0|1) t1 t2 ...
 Prints JSON: {"times": [...], "mid": [w in m ...], "frequencies_hz": the clamped rod's,
 "elements": n}.
-       slider_crank_reference.py table > slider_crank_reference.json
-Prints the table the test reads (a run takes several seconds, too long for the test): 4 modes,
-every 0.5 ms to 0.4 s, stiffening on and off.
+       slider_crank_reference.py table > table.json
+Prints a table: 4 modes, every 0.5 ms to 0.4 s, stiffening on and off. (No test reads one: the
+tests compare with slider_crank_exact.py's table; this floating-frame model is the planar
+counterpart docs/mbs.md cites, and supplies slider_crank_exact.py's benchmark data and crank law.)
 """
 import json
 import math
