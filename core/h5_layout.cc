@@ -20,17 +20,40 @@ namespace {
 /// Chunks of datasets written whole hold whole rows, about this many bytes (HDF5 suggests
 /// 10 KiB to 1 MiB; its default chunk cache holds 1 MiB).
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+/// A chunk of a file being read may be at most this large: HDF5's own limit (chunks under 4 GiB).
+constexpr hsize_t kMaxChunkBytes = hsize_t{1} << 32;
+/// The Fletcher32 checksum stored after each chunk's values.
+constexpr hsize_t kFletcher32Bytes = 4;
 
 /// Throws InputError naming `object` unless every chunk of the chunked dataset `view` is found
 /// in its chunk index with its filters applied. The 1.8 format's chunk index (version-1 B-trees)
 /// has no checksum: a damaged key would make HDF5 read its chunk as fill values, or skip the
 /// chunk's checksum. Two queries, as they walk the index differently: H5Dget_chunk_storage_size
 /// looks the chunk up as H5Dread does (through the keys that bound each child), and
-/// H5Dget_chunk_info_by_coord visits every entry and gives its filter mask.
-void CheckChunks(const FileState& file, const DatasetView& view, const std::string& object, hid_t create_list) {
-  std::vector<hsize_t> chunk(view.dims.size(), 0);
-  Check(H5Pget_chunk(create_list, static_cast<int>(chunk.size()), chunk.data()), file, object, "read the chunk shape");
+/// H5Dget_chunk_info_by_coord visits every entry and gives its filter mask. The chunk shape is
+/// checked first: every dimension at least 1 and at most a fixed maximum dimension, and every
+/// chunk stored as its values and the 4-byte Fletcher32 checksum, the one filter the writer
+/// sets (ChecksummedChunks). HDF5 1.10.8 trusts a damaged shape: a chunk wider than the
+/// dataset's fixed second dimension made H5Dread copy past its buffers (fuzz_results_reader).
+void CheckChunks(const FileState& file, const DatasetView& view, const std::string& object, hid_t create_list,
+                 std::size_t element_bytes) {
+  std::vector<hsize_t> chunk(view.dims.size(), 0), max_dims(view.dims.size(), 0);
+  if (H5Pget_chunk(create_list, static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(chunk.size())) {
+    H5Eclear2(H5E_DEFAULT);
+    Fail(file, object, fmt::format("the chunk shape does not have the dataset's rank {}", chunk.size()));
+  }
   const Handle space(Check(H5Dget_space(view.dataset.get()), file, object, "read the dataset extent"), H5Sclose);
+  Check(H5Sget_simple_extent_dims(space.get(), nullptr, max_dims.data()), file, object, "read the dataset extent");
+  hsize_t chunk_bytes = element_bytes;
+  for (std::size_t d = 0; d < chunk.size(); ++d) {
+    const bool fits = chunk[d] >= 1 && (max_dims[d] == H5S_UNLIMITED || chunk[d] <= max_dims[d]) &&
+                      chunk[d] <= kMaxChunkBytes / chunk_bytes;
+    if (!fits) {
+      Fail(file, object, fmt::format("chunks of [{}] do not fit dims [{}] of {}-byte values", fmt::join(chunk, ", "),
+                                     fmt::join(view.dims, ", "), element_bytes));
+    }
+    chunk_bytes *= chunk[d];
+  }
   std::vector<hsize_t> offset(view.dims.size(), 0);
   for (;;) {
     unsigned mask = 0;
@@ -42,6 +65,10 @@ void CheckChunks(const FileState& file, const DatasetView& view, const std::stri
       H5Eclear2(H5E_DEFAULT);
       Fail(file, object, fmt::format("the chunk at [{}] is missing from the chunk index or skips its checksum",
                                      fmt::join(offset, ", ")));
+    }
+    if (stored != chunk_bytes + kFletcher32Bytes || size != stored) {
+      Fail(file, object, fmt::format("the chunk at [{}] holds {} bytes, not its {} bytes of values and checksum",
+                                     fmt::join(offset, ", "), stored, chunk_bytes + kFletcher32Bytes));
     }
     std::size_t d = offset.size();
     while (d > 0) {
@@ -96,7 +123,7 @@ void CheckStorage(const FileState& file, const DatasetView& view, const std::str
   }
   const Handle list(Check(H5Dget_create_plist(view.dataset.get()), file, object, "read the storage layout"),
                     H5Pclose);
-  if (H5Pget_layout(list.get()) == H5D_CHUNKED) CheckChunks(file, view, object, list.get());
+  if (H5Pget_layout(list.get()) == H5D_CHUNKED) CheckChunks(file, view, object, list.get(), element_bytes);
 }
 
 void RequireChecksum(const FileState& file, const DatasetView& view, const std::string& object) {

@@ -4,38 +4,31 @@
 #
 #   scripts/fuzz.sh [seconds per target, default 60] [target ...]
 #
-# Targets: body_spec scene sid_reader mesh_arrays (default: all). The growing corpus is kept in
-# build-fuzz/corpus/<target>, crashing inputs in build-fuzz/artifacts/<target>/, each run's log in
-# build-fuzz/logs/<target>.log. FLEXMBS_JOBS sets build parallelism (default: nproc).
+# Targets: body_spec scene sid_reader results_reader mesh_arrays (default: all). The growing
+# corpus is kept in build-fuzz/corpus/<target>, crashing inputs in build-fuzz/artifacts/<target>/,
+# each run's log in build-fuzz/logs/<target>.log. -malloc_limit_mb: HDF5 asks malloc for what a
+# damaged size field claims (scripts/clang-env.sh); libFuzzer would call any malloc above
+# -rss_limit_mb an out-of-memory crash. FLEXMBS_JOBS sets build parallelism (default: nproc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(body_spec scene sid_reader mesh_arrays)
+[[ ${#targets[@]} -gt 0 ]] || targets=(body_spec scene sid_reader results_reader mesh_arrays)
 jobs=${FLEXMBS_JOBS:-$(nproc)}
 
 # The libraries get coverage instrumentation (fuzzer-no-link); the targets link libFuzzer.
-flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-cmake -S . -B build-fuzz -G Ninja \
-  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined -fuse-ld=lld" \
-  -DFLEXMBS_WERROR=OFF -DFLEXMBS_BUILD_TESTS=OFF -DFLEXMBS_BUILD_BENCH=OFF -DFLEXMBS_BUILD_FUZZ=ON
+source scripts/clang-env.sh
+configure_clang_tree build-fuzz "-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
+  -DFLEXMBS_BUILD_TESTS=OFF -DFLEXMBS_BUILD_FUZZ=ON
 cmake --build build-fuzz -j"$jobs" --target "${targets[@]/#/fuzz_}"
-
-export ASAN_OPTIONS="halt_on_error=1:print_stacktrace=1:detect_leaks=1"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
+export_sanitizer_options "$root"
 
 # HDF5 leaks on most damaged files (scripts/lsan.supp): a leak check after each of them would
-# take 90 % of the sid reader's time. Its run goes without, and its corpus is then replayed with
-# leak checks on.
-declare -A no_leak_check=([sid_reader]=1)
+# take 90 % of the HDF5 readers' time. Their runs go without, and their corpora are then replayed
+# with leak checks on.
+declare -A no_leak_check=([sid_reader]=1 [results_reader]=1)
 
 status=0
 summary=()
@@ -45,12 +38,12 @@ for t in "${targets[@]}"; do
   echo "== fuzz_$t for ${seconds} s"
   leaks=1
   [[ -z ${no_leak_check[$t]:-} ]] || leaks=0
-  if ! "build-fuzz/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  if ! "build-fuzz/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1048576 -print_final_stats=1 \
       -detect_leaks=$leaks -artifact_prefix="build-fuzz/artifacts/$t/" "build-fuzz/corpus/$t" "fuzz/corpus/$t" > "$log" 2>&1; then
     status=1
     tail -n 40 "$log"
   fi
-  if [[ $leaks == 0 ]] && ! "build-fuzz/bin/fuzz_$t" -runs=0 -artifact_prefix="build-fuzz/artifacts/$t/" \
+  if [[ $leaks == 0 ]] && ! "build-fuzz/bin/fuzz_$t" -runs=0 -malloc_limit_mb=1048576 -artifact_prefix="build-fuzz/artifacts/$t/" \
       "build-fuzz/corpus/$t" > "build-fuzz/logs/$t.leaks.log" 2>&1; then
     status=1
     tail -n 40 "build-fuzz/logs/$t.leaks.log"
