@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <limits>
 #include <new>
@@ -78,6 +79,15 @@ constexpr StepperApi kArkStep{&ARKStepSetUserData,
                               &ARKStepGetNumErrTestFails,
                               &ARKStepGetReturnFlagName,
                               &ARKStepFree};
+
+/// ARKODE's name of the return `flag` (its GetReturnFlagName mallocs the string: the caller
+/// frees it).
+std::string FlagName(const StepperApi& api, long flag) {
+  char* name = api.flag_name(flag);
+  std::string out = name != nullptr ? name : "unknown flag";
+  std::free(name);
+  return out;
+}
 
 /// Relative change of ARKODE's gamma = h a_ii beyond which the Newton matrix is refactored:
 /// any change but round-off (ARKODE refuses 0).
@@ -254,7 +264,7 @@ struct OdeIntegrator::Impl {
 
   /// Setup calls cannot fail on valid input: a failure is a bug here.
   void Check(int flag, std::string_view call) const {
-    FLEXMBS_CHECK(flag == ARK_SUCCESS, fmt::format("{} returned {}", call, api->flag_name(flag)));
+    FLEXMBS_CHECK(flag == ARK_SUCCESS, fmt::format("{} returned {}", call, FlagName(*api, flag)));
   }
 
   /// Runs a user callback for ARKODE: an exception must not unwind through C, so it is kept
@@ -495,7 +505,7 @@ OdeStop OdeIntegrator::Advance(double t_out) {
     if (flag < 0) {
       throw SimulationError(t_reached,
                             fmt::format("integration failed at t = {} s: {} ({})", t_reached,
-                                        m.api->flag_name(flag), m.arkode_error));
+                                        FlagName(*m.api, flag), m.arkode_error));
     }
     if (m.problem.project) m.problem.project(t_reached, m.state);
     m.t = t_reached;
