@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -48,8 +49,8 @@ class EventDrivenRun {
     return z;
   }
   OdeProblem Problem();
-  /// Handles the roots the integrator stopped at; true if the state changed (an event).
-  bool HandleRoots(double t, VectorXd& z, const std::vector<int>& directions);
+  /// Handles the roots the integrator stopped at: impacts, separations, or no event (counted).
+  void HandleRoots(double t, VectorXd& z, const std::vector<int>& directions);
   /// The contact report and the joint multipliers of the output interval that ends at (t, z).
   MoreauJeanStepReport Report(double t, const VectorXd& z, VectorXd* joint_lambda);
 
@@ -213,7 +214,7 @@ void EventDrivenRun::Emit(std::vector<ContactEvent>& events, double t, const Vec
   }
 }
 
-bool EventDrivenRun::HandleRoots(double t, VectorXd& z, const std::vector<int>& directions) {
+void EventDrivenRun::HandleRoots(double t, VectorXd& z, const std::vector<int>& directions) {
   auto y = z.head(y_size());
   const auto kinematics = contacts_.EvaluateAll(t, y);
   const auto u = y.tail(system_.num_velocities());
@@ -235,13 +236,12 @@ bool EventDrivenRun::HandleRoots(double t, VectorXd& z, const std::vector<int>& 
   }
   if (!impact && !separation) {
     ++statistics_.event_driven.ignored_roots;
-    return false;
+    return;
   }
   if (impact) ImpactAt(t, z, kinematics, &events);
   OpenUnloaded(t, z, &events);
   contacts_.ProjectClosed(t, y, Closed(), options_.projection);
   Emit(events, t, z);
-  return true;
 }
 
 MoreauJeanStepReport EventDrivenRun::Report(double t, const VectorXd& z, VectorXd* joint_lambda) {
