@@ -114,7 +114,7 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
         ReadContactForce(node, name, type, *system, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); });
   } else {
     type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing, sphere_plane_contact, "
-                               "sphere_sphere_contact, sphere_surface_contact",
+                               "sphere_sphere_contact, sphere_surface_contact, surface_plane_contact",
                                type));
   }
   Within(node, [&] { return system->AddForceElement(std::move(element)); });

@@ -122,7 +122,8 @@ CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, co
 }  // namespace
 
 bool IsContactForceType(std::string_view type) {
-  return type == "sphere_plane_contact" || type == "sphere_sphere_contact" || type == "sphere_surface_contact";
+  return type == "sphere_plane_contact" || type == "sphere_sphere_contact" || type == "sphere_surface_contact" ||
+         type == "surface_plane_contact";
 }
 
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
@@ -146,6 +147,17 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
     return At(node, "", [&] {
       return std::make_unique<SphereSurfaceContact>(name, sphere, radius, surface.origin, *surface.surface,
                                                     surface.num_modes, std::move(law));
+    });
+  }
+  if (type == "surface_plane_contact") {
+    node.RejectUnknownKeys({"name", "type", "body", "surface", "plane", "law", "stiffness", "damping", "exponent",
+                            "restitution", "impact_speed", "friction"});
+    const SurfaceRef surface = ReadSurface(node, system, fmt::format("force element '{}'", name));
+    const MarkerRef plane = read_marker(node.Required("plane"));
+    CompliantContactLaw law = ReadLaw(node, name, {"surface", "plane", true, 0.0});
+    return At(node, "", [&] {
+      return std::make_unique<SurfacePlaneContact>(name, surface.origin, *surface.surface, surface.num_modes, plane,
+                                                   std::move(law));
     });
   }
   FLEXMBS_CHECK(type == "sphere_sphere_contact", "ReadContactForce: not a contact type");

@@ -1,7 +1,7 @@
 #pragma once
 // Reading the compliant contact force elements of a scene file (docs/scene.md, "Contact
-// elements"): `sphere_plane_contact`, `sphere_sphere_contact` and `sphere_surface_contact` with
-// their law, restitution, materials and friction keys.
+// elements"): `sphere_plane_contact`, `sphere_sphere_contact`, `sphere_surface_contact` and
+// `surface_plane_contact` with their law, restitution, materials and friction keys.
 
 #include <functional>
 #include <memory>

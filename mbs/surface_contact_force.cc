@@ -63,4 +63,52 @@ double SphereSurfaceContact::NormalForce(double t, const MultibodySystem& system
   return contact_.NormalForce(Geometry(t, system, y));
 }
 
+SurfacePlaneContact::SurfacePlaneContact(std::string name, MarkerRef origin, sid::ContactSurface surface,
+                                         Eigen::Index num_modes, MarkerRef plane, CompliantContactLaw law)
+    : name_(std::move(name)), origin_(std::move(origin)), plane_(std::move(plane)), surface_(std::move(surface)),
+      num_modes_(num_modes), contact_(std::move(law), origin_, plane_) {
+  ForElement(name_, [&] { CheckSurface(name_, surface_, num_modes_); });
+}
+
+std::vector<ContactPoint> SurfacePlaneContact::Points(const MultibodySystem& system, const ConstVectorRef& y) const {
+  const SurfaceState surface(system, origin_, surface_, num_modes_, y);
+  const MarkerKinematics plane = system.MarkerState(plane_, y);
+  std::vector<ContactPoint> points(static_cast<std::size_t>(surface_.vertices.rows()));
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    ContactPoint& point = points[v];
+    point.a = surface.frame();
+    point.b = plane;
+    point.n_W = plane.R_WM.col(2);
+    point.p_Wc_W = surface.mesh().vertices_W.col(static_cast<Eigen::Index>(v));
+    point.penetration = -point.n_W.dot(point.p_Wc_W - plane.p_WM_W);
+    if (point.penetration > 0.0) {
+      point.modal_a = surface.ModalJacobian(static_cast<int>(v));
+      point.modal_velocity_a_W = point.modal_a * surface.modal_velocities();
+    }
+  }
+  return points;
+}
+
+void SurfacePlaneContact::AddForces(double, const MultibodySystem& system, const ConstVectorRef& y,
+                                    Eigen::Ref<Eigen::VectorXd> h) const {
+  for (const ContactPoint& point : Points(system, y)) contact_.AddForces(system, point, h);
+}
+
+double SurfacePlaneContact::PotentialEnergy(double, const MultibodySystem& system, const ConstVectorRef& y) const {
+  double energy = 0.0;
+  for (const ContactPoint& point : Points(system, y)) energy += contact_.PotentialEnergy(point);
+  return energy;
+}
+
+void SurfacePlaneContact::AddForceJacobian(double, const MultibodySystem& system, const ConstVectorRef& y,
+                                           Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  for (const ContactPoint& point : Points(system, y)) contact_.AddForceJacobian(system, point, dh_dx, dh_du);
+}
+
+double SurfacePlaneContact::NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const {
+  double force = 0.0;
+  for (const ContactPoint& point : Points(system, y)) force += contact_.NormalForce(point);
+  return force;
+}
+
 }  // namespace flexmbs::mbs

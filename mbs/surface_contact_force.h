@@ -1,11 +1,13 @@
 #pragma once
 // Compliant contact on a reduced body's contact surface (docs/contact.md, "Flexible bodies"): a
-// sphere against the surface's deformed faces, with any normal law of contact/laws (Hertz for a
-// sphere on a flat) and optional regularised friction, evaluated by mbs/compliant_contact.h with
-// the surface point's modal velocity.
+// sphere against the surface's deformed faces, and every vertex against a plane, with any normal
+// law of contact/laws (Hertz for a sphere on a flat, a penalty per vertex) and optional
+// regularised friction, evaluated by mbs/compliant_contact.h with the surface point's modal
+// velocity.
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "mbs/compliant_contact.h"
 #include "mbs/force_element.h"
@@ -50,6 +52,39 @@ class SphereSurfaceContact final : public ForceElement {
   std::string name_;
   MarkerRef sphere_, origin_;
   double radius_;
+  sid::ContactSurface surface_;
+  Eigen::Index num_modes_;
+  CompliantContact contact_;
+};
+
+/// Every vertex V of surface S of flexible body A against the plane through the origin of marker
+/// P (body B) with outward normal n = P's z axis, each a compliant contact point: penetration
+/// delta_V = -n . (p_WV_W - p_WP_W), the law's force F_N(delta_V, delta_V') n + F_T at the vertex
+/// on A (its frame and modes: mbs/surface_state.h), the opposite on B. The penalty counterpart of
+/// SurfacePlaneUnilateral.
+class SurfacePlaneContact final : public ForceElement {
+ public:
+  /// `origin` is A's body-frame marker, `surface` its contact surface with phi over A's kept
+  /// modes (3 V x num_modes). InputError naming the element otherwise.
+  SurfacePlaneContact(std::string name, MarkerRef origin, sid::ContactSurface surface, Eigen::Index num_modes,
+                      MarkerRef plane, CompliantContactLaw law);
+
+  const std::string& name() const override { return name_; }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const override;
+  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  /// CompliantContact::AddForceJacobian of every vertex in contact.
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
+  /// The normal forces summed over the vertices [N] at y.
+  double NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const;
+
+ private:
+  /// Every vertex's contact point at y.
+  std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const;
+
+  std::string name_;
+  MarkerRef origin_, plane_;
   sid::ContactSurface surface_;
   Eigen::Index num_modes_;
   CompliantContact contact_;

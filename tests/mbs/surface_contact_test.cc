@@ -2,9 +2,12 @@
 // mbs/surface_contact_force.h) on a moving, rotating, deforming free-free beam: W_N u is the rate
 // of every point's gap (central differences along the motion, modal coordinates included); the
 // compliant sphere-surface element's generalised force does the work f . v_rel (its modal rows
-// included) and its Jacobian in u matches difference quotients of its forces.
+// included) and its Jacobian in u matches difference quotients of its forces; the compliant
+// surface-on-plane element loads each penetrating vertex by W_N^T F_N.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -132,6 +135,44 @@ TEST(SurfaceContacts, CompliantSphereOnSurfaceDoesTheWorkOfItsForceAndHasItsVelo
     // round-off of forces of ~100 N over 2e-6 (measured: 1.0e-8 at most).
     EXPECT_LT(((h_plus - h_minus) / (2.0 * du) - dh_du.col(j)).norm(), 1e-7) << j;
   }
+}
+
+TEST(SurfaceContacts, CompliantSurfaceOnPlaneLoadsEachPenetratingVertexThroughItsJacobian) {
+  std::mt19937 rng(21);
+  std::unique_ptr<BeamAndBall> scene = MakeBeamAndBall(rng);
+  MultibodySystem& system = scene->system;
+  // The plane through the tip face's first vertex, normal against the face's: about half the
+  // (slightly deformed, tilted) face's vertices penetrate.
+  const SurfacePlaneUnilateral probe("probe", scene->origin, scene->tip, scene->modes,
+                                     MarkerRef::Ground(Eigen::Vector3d::Zero()), UnilateralLaw{});
+  const std::vector<UnilateralContactKinematics> at_origin = probe.Evaluate(0.0, system, scene->y);
+  const Eigen::Vector3d p0 = at_origin[0].p_WA_W;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const UnilateralContactKinematics& k : at_origin) mean += k.p_WA_W / static_cast<double>(at_origin.size());
+  const Eigen::Vector3d n = (p0 - mean).normalized();
+  const Eigen::Matrix3d R_WP = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), -n).toRotationMatrix();
+  const MarkerRef plane = MarkerRef::Ground(mean, R_WP);
+  const double k = 1e6, c = 20.0;
+  const SurfacePlaneContact element("tip", scene->origin, scene->tip, scene->modes, plane,
+                                    CompliantContactLaw{contact::LinearLaw(k, c, 1.0), {}});
+  const SurfacePlaneUnilateral kinematics("tip", scene->origin, scene->tip, scene->modes, plane, UnilateralLaw{});
+  const VectorXd u = scene->y.tail(system.num_velocities());
+  VectorXd expected = VectorXd::Zero(u.size());
+  double total = 0.0;
+  int penetrating = 0;
+  for (const UnilateralContactKinematics& point : kinematics.Evaluate(0.0, system, scene->y)) {
+    if (!(point.g_N < 0.0)) continue;
+    const double F = std::max(0.0, k * -point.g_N + c * -point.W_N.dot(u));
+    expected += F * point.W_N.transpose();
+    total += F;
+    ++penetrating;
+  }
+  ASSERT_GT(penetrating, 0);
+  ASSERT_LT(penetrating, static_cast<int>(scene->tip.vertices.rows()));
+  VectorXd h = VectorXd::Zero(u.size());
+  element.AddForces(0.0, system, scene->y, h);
+  EXPECT_LT((h - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_NEAR(element.NormalForce(system, scene->y), total, 1e-12 * total);
 }
 
 }  // namespace
