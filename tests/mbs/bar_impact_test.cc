@@ -247,13 +247,7 @@ ImpactRun StrikeFullModel(double h) {
 /// The largest difference of the impulse transferred up to each step between two runs of the
 /// same steps [N s].
 double ImpulseHistoryDifference(const ImpactRun& a, const ImpactRun& b) {
-  double sum_a = 0.0, sum_b = 0.0, largest = 0.0;
-  for (std::size_t k = 0; k < std::min(a.impulse.size(), b.impulse.size()); ++k) {
-    sum_a += a.impulse[k];
-    sum_b += b.impulse[k];
-    largest = std::max(largest, std::abs(sum_a - sum_b));
-  }
-  return largest;
+  return testing::LargestCumulativeDifference(a.impulse, b.impulse);
 }
 
 TEST(BarImpact, ContactDurationAndForceMatchWaveTheoryOnceEnoughAxialModesAreKept) {

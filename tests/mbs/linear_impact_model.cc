@@ -1,7 +1,9 @@
 #include "tests/mbs/linear_impact_model.h"
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "contact/complementarity/lcp_pgs.h"
@@ -46,6 +48,16 @@ LinearImpactHistory IntegrateLinearImpact(const LinearContactModel& model, const
   history.v = v;
   history.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return history;
+}
+
+double LargestCumulativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double sum_a = 0.0, sum_b = 0.0, largest = 0.0;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    sum_a += a[k];
+    sum_b += b[k];
+    largest = std::max(largest, std::abs(sum_a - sum_b));
+  }
+  return largest;
 }
 
 }  // namespace flexmbs::mbs::testing

@@ -39,4 +39,8 @@ struct LinearImpactHistory {
 LinearImpactHistory IntegrateLinearImpact(const LinearContactModel& model, const Eigen::VectorXd& v0, double h,
                                           double end_time);
 
+/// max_k |sum_{i<=k} a_i - sum_{i<=k} b_i| over the common entries: the largest difference of the
+/// impulse two runs of the same steps have transferred up to a step [N s].
+double LargestCumulativeDifference(const std::vector<double>& a, const std::vector<double>& b);
+
 }  // namespace flexmbs::mbs::testing
