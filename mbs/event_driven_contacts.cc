@@ -9,10 +9,8 @@
 #include <string>
 #include <utility>
 
-#include "contact/complementarity/friction_contact_problem.h"
-#include "contact/complementarity/friction_newton.h"
 #include "contact/complementarity/lcp_problem.h"
-#include "contact/complementarity/lemke.h"
+#include "contact/complementarity/lcp_solver.h"
 #include "core/error.h"
 #include "mbs/constraint_solver.h"
 #include "mbs/simulation_error.h"
@@ -60,43 +58,11 @@ MatrixXd NormalRows(const std::vector<UnilateralContactKinematics>& kinematics, 
   return W;
 }
 
-/// The LCP (M, q) that Lemke did not solve to the tolerance (a singular M from more contact points
-/// than the directions they constrain, as the coplanar vertices of a surface) by the proximal
-/// semi-smooth Newton solver, as Moreau-Jean does: the planar friction problem with mu = 0 (the
-/// cone is the normal half-line) and an identity tangential block (its impulse is 0). The better
-/// of the two.
-contact::LcpSolution SolveSingularLcp(const MatrixXd& M, const VectorXd& q, double tolerance,
-                                      contact::LcpSolution lemke) {
-  const Index n = q.size();
-  contact::FrictionContactProblem problem{2, MatrixXd::Identity(2 * n, 2 * n),
-                                          VectorXd::Zero(2 * n), VectorXd::Zero(n)};
-  for (Index i = 0; i < n; ++i) {
-    problem.q(2 * i) = q(i);
-    for (Index j = 0; j < n; ++j) problem.W(2 * i, 2 * j) = M(i, j);
-  }
-  contact::FrictionNewtonOptions options;
-  options.tolerance = tolerance;
-  const contact::FrictionContactSolution newton = contact::SolveFrictionNewton(problem, options);
-  contact::LcpSolution solution;
-  solution.z.resize(n);
-  for (Index i = 0; i < n; ++i) solution.z(i) = std::max(0.0, newton.r(2 * i));
-  solution.w = M * solution.z + q;
-  solution.error = contact::LcpError({M, q}, solution.z);
-  if (!(solution.error < lemke.error)) return lemke;
-  solution.iterations = lemke.iterations + newton.iterations;
-  solution.converged = solution.error <= tolerance;
-  solution.message = lemke.message + "; then proximal Newton: " + newton.message;
-  return solution;
-}
-
-/// Lemke on (M, q), then SolveSingularLcp if it missed the tolerance; a solve that does not
-/// converge is a SimulationError at t naming `what`.
-contact::LcpSolution SolveLcp(const MatrixXd& M, const VectorXd& q, double tolerance, double t,
-                              std::string_view what) {
-  contact::LemkeOptions lemke;
-  lemke.tolerance = tolerance;
-  contact::LcpSolution solution = contact::SolveLcpLemke({M, q}, lemke);
-  if (!solution.converged) solution = SolveSingularLcp(M, q, tolerance, std::move(solution));
+/// (M, q) by contact::SolveLcp (Lemke, then proximal Newton on a singular M); a solve that does
+/// not converge is a SimulationError at t naming `what`.
+contact::LcpSolution SolveLcpOrStop(const MatrixXd& M, const VectorXd& q, double tolerance, double t,
+                                    std::string_view what) {
+  const contact::LcpSolution solution = contact::SolveLcp({M, q}, {tolerance});
   if (!solution.converged) {
     throw SimulationError(
         t, fmt::format("t = {:.9g} s: event-driven {} LCP of {} contact points did not converge: "
@@ -186,7 +152,7 @@ ClosedContactForces EventDrivenContacts::Derivative(double t, const ConstVectorR
   const MatrixXd delassus = W * response.dv;
   const VectorXd w = W * u_dot + GapAccelerationBias(t, y, closed);
   const contact::LcpSolution lcp =
-      SolveLcp(delassus, w, options_.lcp_tolerance, t, "acceleration-level");
+      SolveLcpOrStop(delassus, w, options_.lcp_tolerance, t, "acceleration-level");
   u_dot += response.dv * lcp.z;
   forces.joint_lambda += response.dlambda * lcp.z;
   forces.lambda_N = lcp.z;
@@ -215,7 +181,7 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y,
     q(static_cast<Index>(i)) += e * std::min(0.0, q(static_cast<Index>(i)));
   }
   const contact::LcpSolution lcp =
-      SolveLcp(W * response.dv, q, options_.lcp_tolerance, t, "impact");
+      SolveLcpOrStop(W * response.dv, q, options_.lcp_tolerance, t, "impact");
   result.P_N = lcp.z;
   result.lcp_error = lcp.error;
   y.tail(nu) += response.dv * lcp.z;

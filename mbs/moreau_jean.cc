@@ -12,8 +12,7 @@
 
 #include "contact/complementarity/friction_contact_problem.h"
 #include "contact/complementarity/lcp_problem.h"
-#include "contact/complementarity/lemke.h"
-#include "contact/complementarity/friction_newton.h"
+#include "contact/complementarity/lcp_solver.h"
 #include "contact/complementarity/friction_solver.h"
 #include "core/error.h"
 #include "mbs/simulation_error.h"
@@ -171,30 +170,10 @@ std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, 
   return results;
 }
 
-/// The frictionless problem (every mu = 0) that Lemke did not solve to the tolerance — a singular
-/// W_NN from more contact points than the directions they constrain, as the coplanar vertices of
-/// a surface, where Lemke's pivots lose accuracy — by the proximal semi-smooth Newton solver,
-/// whose proximal term keeps its Jacobian regular there (with mu = 0 Coulomb's cone is the normal
-/// half-line: the same LCP); the better of the two.
-contact::SolveStatus SolveRedundantFrictionless(const MatrixXd& W, const VectorXd& q, const VectorXd& mu,
-                                                const MoreauJeanOptions& options, contact::LcpSolution lemke,
-                                                VectorXd* P) {
-  contact::FrictionNewtonOptions newton;
-  newton.tolerance = options.solver_tolerance;
-  contact::FrictionContactSolution solution = contact::SolveFrictionNewton({3, W, q, mu}, newton);
-  if (!(solution.error < lemke.error)) {
-    for (Index i = 0; i < mu.size(); ++i) (*P)(3 * i) = lemke.z(i);
-    return lemke;
-  }
-  *P = solution.r;
-  solution.iterations += lemke.iterations;
-  solution.message = lemke.message + "; then proximal Newton: " + solution.message;
-  return solution;
-}
-
 /// The impulses P (3 per contact: normal, t1, t2) of U = W P + q: frictionless (every mu = 0) the
-/// LCP (W_NN, q_N) by Lemke, otherwise the friction-contact problem (d = 3) by SolveFrictionContact
-/// (NSGS, then proximal Newton on rank-deficient W).
+/// LCP (W_NN, q_N) by contact::SolveLcp (Lemke, then proximal Newton on a singular W_NN),
+/// otherwise the friction-contact problem (d = 3) by SolveFrictionContact (NSGS, then proximal
+/// Newton on rank-deficient W).
 contact::SolveStatus SolveImpulses(const MatrixXd& W, const VectorXd& q, const VectorXd& mu,
                                    const MoreauJeanOptions& options, VectorXd* P) {
   const Index n_a = mu.size();
@@ -205,12 +184,9 @@ contact::SolveStatus SolveImpulses(const MatrixXd& W, const VectorXd& q, const V
       lcp.q(i) = q(3 * i);
       for (Index j = 0; j < n_a; ++j) lcp.M(i, j) = W(3 * i, 3 * j);
     }
-    contact::LemkeOptions lemke;
-    lemke.tolerance = options.solver_tolerance;
-    contact::LcpSolution solution = contact::SolveLcpLemke(lcp, lemke);
-    solution.message = "LCP by Lemke: " + solution.message;
-    if (!solution.converged) return SolveRedundantFrictionless(W, q, mu, options, std::move(solution), P);
+    contact::LcpSolution solution = contact::SolveLcp(lcp, {options.solver_tolerance});
     for (Index i = 0; i < n_a; ++i) (*P)(3 * i) = solution.z(i);
+    solution.message = "LCP by " + solution.message;
     return solution;
   }
   contact::FrictionContactOptions friction;

@@ -1,9 +1,12 @@
+#include <algorithm>
 #include <cstdio>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "contact/complementarity/lcp_pgs.h"
+#include "contact/complementarity/lcp_solver.h"
 #include "contact/complementarity/lemke.h"
 #include "contact/complementarity/siconos_solvers.h"
 #include "tests/contact/complementarity_problems.h"
@@ -181,6 +184,62 @@ TEST(ProjectedGaussSeidel, ReportsNonConvergence) {
   // A non-positive diagonal is refused, not iterated.
   const LcpProblem negative{Eigen::MatrixXd::Constant(1, 1, -1.0), Eigen::VectorXd::Constant(1, -1.0)};
   EXPECT_FALSE(SolveLcpPgs(negative).converged);
+}
+
+}  // namespace
+}  // namespace flexmbs::contact
+
+namespace flexmbs::contact {
+namespace {
+
+// A singular LCP as redundant contact points give it: M = B B^T (n x n of rank r < n, B random),
+// with a known solution z* >= 0, w* >= 0, z*_i w*_i = 0 and q = w* - M z*. For a symmetric
+// positive semi-definite M every solution has the same w = M z + q (the minimisers of the convex
+// quadratic 1/2 z^T M z + q^T z over z >= 0 share M z).
+LcpProblem SingularLcp(std::mt19937& rng, Eigen::Index n, Eigen::Index rank, Eigen::VectorXd* w_known) {
+  std::normal_distribution<double> normal;
+  std::bernoulli_distribution active(0.5);
+  Eigen::MatrixXd B(n, rank);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < rank; ++j) B(i, j) = normal(rng);
+  }
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n), w = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i) (active(rng) ? z(i) : w(i)) = std::abs(normal(rng));
+  const Eigen::MatrixXd M = B * B.transpose();
+  *w_known = w;
+  return {M, w - M * z};
+}
+
+TEST(SolveLcp, SolvesSingularLcpsThatLemkeMissesByProximalNewton) {
+  std::mt19937 rng(17);
+  int lemke_missed = 0;
+  double worst_error = 0.0, worst_w = 0.0;
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd w_known;
+    const LcpProblem problem = SingularLcp(rng, 40, 8, &w_known);
+    const LcpSolution lemke = SolveLcpLemke(problem, LemkeOptions{0, 1e-12, true, 1e-10});
+    lemke_missed += !lemke.converged;
+    const LcpSolution solution = SolveLcp(problem, {1e-10});
+    EXPECT_TRUE(solution.converged) << trial << ": " << solution.message;
+    EXPECT_GE(solution.z.minCoeff(), 0.0);
+    worst_error = std::max(worst_error, solution.error);
+    worst_w = std::max(worst_w, Difference(problem.M * solution.z + problem.q, w_known));
+  }
+  Report("singular LCPs (40 points, rank 8): Lemke missed 1e-10 in trials", lemke_missed);
+  Report("singular LCPs: SolveLcp's largest LcpError", worst_error);
+  Report("singular LCPs: SolveLcp's w against the known w", worst_w);
+  EXPECT_GT(lemke_missed, 0);  // the fallback is exercised (measured: 3 of 20)
+  EXPECT_LE(worst_error, 1e-10);
+  EXPECT_LT(worst_w, 5e-8);  // measured 5.1e-9: the error measure's tolerance on w of order 1
+}
+
+TEST(SolveLcp, IsLemkeOnPMatrices) {
+  for (int seed = 0; seed < 5; ++seed) {
+    const LcpProblem problem = RandomPositiveDefiniteLcp(30, static_cast<unsigned>(seed));
+    const LcpSolution lemke = SolveLcpLemke(problem), solution = SolveLcp(problem);
+    EXPECT_EQ(solution.z, lemke.z);
+    EXPECT_EQ(solution.iterations, lemke.iterations);
+  }
 }
 
 }  // namespace
