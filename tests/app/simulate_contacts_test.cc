@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "core/h5_file.h"
+#include "tests/app/contact_scenes.h"
 #include "tests/app/flexmbs_process.h"
 
 namespace {
@@ -21,19 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using flexmbs::testing::Outcome;
 
-/// The first ```yaml block after `heading` in docs/scene.md.
-std::string SceneOfSection(const std::string& heading) {
-  std::ifstream in(fs::path(FLEXMBS_SOURCE_DIR) / "docs" / "scene.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string page = text.str();
-  const std::size_t section = page.find(heading);
-  if (section == std::string::npos) return "";
-  const std::size_t start = page.find("```yaml\n", section);
-  const std::size_t end = page.find("```\n", start + 8);
-  if (start == std::string::npos || end == std::string::npos) return "";
-  return page.substr(start + 8, end - start - 8);
-}
+using flexmbs::testing::SceneOfSection;
 
 class SimulateContactsTest : public ::testing::Test {
  protected:
@@ -95,17 +83,9 @@ TEST_F(SimulateContactsTest, UnilateralContactUnderAnOdeMethodIsRefused) {
   EXPECT_FALSE(fs::exists(results_));
 }
 
-/// Reduces tests/data/cube.geo (a 0.1 m steel cube, tet4, two free-free modes) with the contact
-/// surface "bottom" (its face z = 0) to cube.sid.h5 in `dir`.
+/// Reduces the cube with two free-free modes and the contact surface "bottom" (z = 0) in `dir`.
 void ReduceCubeWithBottomSurface(const fs::path& dir) {
-  std::ofstream(dir / "cube.yaml") << "name: cube\ngeometry: {file: "
-                                   << (fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data" / "cube.geo").string()
-                                   << ", mesh_size: 0.05, element_order: 1}\n"
-                                      "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}\n"
-                                      "material: steel\nnode_sets: [bottom, top]\n"
-                                      "reduction: {method: free_free, modes: 2}\nsid: {contact_surfaces: [bottom]}\n";
-  const Outcome reduce = flexmbs::testing::RunFlexmbs(
-      {"reduce", (dir / "cube.yaml").string(), "-o", (dir / "cube.sid.h5").string()}, dir);
+  const Outcome reduce = flexmbs::testing::ReduceCube(dir, "method: free_free, modes: 2", "bottom");
   ASSERT_EQ(reduce.exit_code, 0) << reduce.err;
 }
 
@@ -166,18 +146,10 @@ TEST_F(SimulateContactsTest, SurfaceContactOnARigidBodyOrAMissingSurfaceIsRefuse
                                      "body's");
 }
 
-/// Reduces tests/data/cube.geo with six free-free modes, the contact surface "top" (its face
-/// z = 0.1 m) and `extra` reduction keys to cube.sid.h5 in `dir`.
+/// Reduces the cube with six free-free modes, the contact surface "top" (z = 0.1 m) and `extra`
+/// reduction keys in `dir`.
 void ReduceCubeWithTopSurface(const fs::path& dir, const std::string& extra) {
-  std::ofstream(dir / "cube.yaml") << "name: cube\ngeometry: {file: "
-                                   << (fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data" / "cube.geo").string()
-                                   << ", mesh_size: 0.05, element_order: 1}\n"
-                                      "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}\n"
-                                      "material: steel\nnode_sets: [bottom, top]\n"
-                                      "reduction: {method: free_free, modes: 6"
-                                   << extra << "}\nsid: {contact_surfaces: [top]}\n";
-  const Outcome reduce = flexmbs::testing::RunFlexmbs(
-      {"reduce", (dir / "cube.yaml").string(), "-o", (dir / "cube.sid.h5").string()}, dir);
+  const Outcome reduce = flexmbs::testing::ReduceCube(dir, "method: free_free, modes: 6" + extra, "top");
   ASSERT_EQ(reduce.exit_code, 0) << reduce.err;
 }
 

@@ -15,15 +15,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "eigensolvers/eigensolver.h"
-#include "fem/assembly.h"
-#include "mbs/flexible_body.h"
 #include "contact/laws/normal_law.h"
+#include "mbs/flexible_body.h"
 #include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
 #include "mbs/simulation.h"
@@ -58,23 +57,12 @@ double WaveSpeed() {
 /// The bar's FE model and its free-free modes up to the 32nd axial one, with the contact
 /// surface "end" (the face x = 0).
 const FeReducedBody& Bar() {
-  static const FeReducedBody bar = [] {
-    FeReducedBody fe;
-    fe.mesh = flexmbs::testing::HexBox(Eigen::Vector3i(kCellsAlong, 1, 1), Eigen::Vector3d(kLength, kSide, kSide),
-                                       SteelWithoutPoisson());
-    fe.mesh.node_sets["end"] = flexmbs::testing::NodesOnPlane(fe.mesh, 0, 0.0);
-    fem::SystemMatrices system = fem::AssembleSystem(fe.mesh, fem::MassMatrixKind::kConsistent);
-    fe.K = std::move(system.stiffness);
-    fe.M = std::move(system.mass);
-    fe.sid_spec.contact_surfaces = {"end"};
-    fe.sid_spec.geometric_stiffening = false;
-    reduction::FreeFreeOptions options;
-    options.eigen.max_frequency_hz = 32.2 * WaveSpeed() / (2.0 * kLength);
-    options.eigen.num_modes = 600;
-    const std::unique_ptr<eigensolvers::Eigensolver> solver = eigensolvers::MakeEigensolver("spectra");
-    fe.basis = reduction::FreeFreeModalBasis({fe.K, fe.M, fe.mesh.nodes}, options, *solver);
-    return fe;
-  }();
+  static const FeReducedBody bar = testing::FreeFreeBox(
+      Eigen::Vector3i(kCellsAlong, 1, 1), Eigen::Vector3d(kLength, kSide, kSide), SteelWithoutPoisson(),
+      [](const fem::Mesh& mesh) {
+        return std::map<std::string, std::vector<int>>{{"end", flexmbs::testing::NodesOnPlane(mesh, 0, 0.0)}};
+      },
+      {"end"}, 32.2 * WaveSpeed() / (2.0 * kLength));
   return bar;
 }
 

@@ -16,13 +16,13 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <string>
 #include <cstdio>
 #include <memory>
 #include <span>
 #include <vector>
 
-#include "eigensolvers/eigensolver.h"
-#include "fem/assembly.h"
 #include "mbs/flexible_body.h"
 #include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
@@ -46,25 +46,16 @@ constexpr double kEndTime = 1e-3, kStep = 1e-6;  // [s]
 /// The beam (30 x 2 x 2 hex8, steel) with the node set "pad": the nodes of its face y = 0 in the
 /// last cell before the tip; its free-free modes below 40 kHz.
 const FeReducedBody& Beam() {
-  static const FeReducedBody beam = [] {
-    FeReducedBody fe;
-    fe.mesh = flexmbs::testing::HexBox(Eigen::Vector3i(30, 2, 2), Eigen::Vector3d(kLength, kSide, kSide),
-                                       flexmbs::testing::Steel());
-    for (int node : flexmbs::testing::NodesOnPlane(fe.mesh, 1, 0.0)) {
-      if (fe.mesh.nodes(0, node) >= kLength - kLength / 30.0 - 1e-12) fe.mesh.node_sets["pad"].push_back(node);
-    }
-    fem::SystemMatrices system = fem::AssembleSystem(fe.mesh, fem::MassMatrixKind::kConsistent);
-    fe.K = std::move(system.stiffness);
-    fe.M = std::move(system.mass);
-    fe.sid_spec.contact_surfaces = {"pad"};
-    fe.sid_spec.geometric_stiffening = false;
-    reduction::FreeFreeOptions options;
-    options.eigen.max_frequency_hz = 40e3;
-    options.eigen.num_modes = 600;
-    const std::unique_ptr<eigensolvers::Eigensolver> solver = eigensolvers::MakeEigensolver("spectra");
-    fe.basis = reduction::FreeFreeModalBasis({fe.K, fe.M, fe.mesh.nodes}, options, *solver);
-    return fe;
-  }();
+  static const FeReducedBody beam = testing::FreeFreeBox(
+      Eigen::Vector3i(30, 2, 2), Eigen::Vector3d(kLength, kSide, kSide), flexmbs::testing::Steel(),
+      [](const fem::Mesh& mesh) {
+        std::vector<int> pad;
+        for (int node : flexmbs::testing::NodesOnPlane(mesh, 1, 0.0)) {
+          if (mesh.nodes(0, node) >= kLength - kLength / 30.0 - 1e-12) pad.push_back(node);
+        }
+        return std::map<std::string, std::vector<int>>{{"pad", pad}};
+      },
+      {"pad"}, 40e3);
   return beam;
 }
 

@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "core/h5_file.h"
 #include "mbs/scene.h"
+#include "tests/app/contact_scenes.h"
 #include "tests/app/flexmbs_process.h"
 #include "tests/input_error.h"
 
@@ -25,19 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using flexmbs::testing::Outcome;
 
-/// The first ```yaml block after `heading` in docs/scene.md.
-std::string SceneOfSection(const std::string& heading) {
-  std::ifstream in(fs::path(FLEXMBS_SOURCE_DIR) / "docs" / "scene.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string page = text.str();
-  const std::size_t section = page.find(heading);
-  if (section == std::string::npos) return "";
-  const std::size_t start = page.find("```yaml\n", section);
-  const std::size_t end = page.find("```\n", start + 8);
-  if (start == std::string::npos || end == std::string::npos) return "";
-  return page.substr(start + 8, end - start - 8);
-}
+using flexmbs::testing::SceneOfSection;
 
 class EventDrivenSceneTest : public ::testing::Test {
  protected:
@@ -153,15 +141,7 @@ TEST_F(EventDrivenSceneTest, AFlexibleCubeLandsOnItsBottomSurfaceWithEveryVertex
   // tests/data/cube.geo: a 0.1 m steel cube, tet4, two free-free modes, contact surface "bottom"
   // (its 58 vertices at z = 0), dropped 1 mm (as tests/app/simulate_contacts_test.cc under
   // Moreau-Jean).
-  std::ofstream(dir_ / "cube.yaml")
-      << "name: cube\ngeometry: {file: "
-      << (fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "data" / "cube.geo").string()
-      << ", mesh_size: 0.05, element_order: 1}\n"
-         "materials: {steel: {youngs_modulus: 2.1e11, poisson_ratio: 0.3, density: 7850}}\n"
-         "material: steel\nnode_sets: [bottom, top]\n"
-         "reduction: {method: free_free, modes: 2}\nsid: {contact_surfaces: [bottom]}\n";
-  const Outcome reduce = flexmbs::testing::RunFlexmbs(
-      {"reduce", (dir_ / "cube.yaml").string(), "-o", (dir_ / "cube.sid.h5").string()}, dir_);
+  const Outcome reduce = flexmbs::testing::ReduceCube(dir_, "method: free_free, modes: 2", "bottom");
   ASSERT_EQ(reduce.exit_code, 0) << reduce.err;
   const Outcome run = Simulate(R"(gravity: [0, 0, -9.81]
 bodies:

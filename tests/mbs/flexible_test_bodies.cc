@@ -96,6 +96,25 @@ const FeReducedBody& FreeFreeBeam() {
   return fe;
 }
 
+FeReducedBody FreeFreeBox(const Eigen::Vector3i& cells, const Eigen::Vector3d& size,
+                          const fem::IsotropicMaterial& material,
+                          const std::function<std::map<std::string, std::vector<int>>(const fem::Mesh&)>& node_sets,
+                          const std::vector<std::string>& surfaces, double max_frequency_hz) {
+  FeReducedBody fe;
+  fe.mesh = flexmbs::testing::HexBox(cells, size, material);
+  for (auto& [name, nodes] : node_sets(fe.mesh)) fe.mesh.node_sets[name] = std::move(nodes);
+  fem::SystemMatrices system = fem::AssembleSystem(fe.mesh, fem::MassMatrixKind::kConsistent);
+  fe.K = std::move(system.stiffness);
+  fe.M = std::move(system.mass);
+  fe.sid_spec.contact_surfaces = surfaces;
+  fe.sid_spec.geometric_stiffening = false;
+  reduction::FreeFreeOptions options;
+  options.eigen.max_frequency_hz = max_frequency_hz;
+  options.eigen.num_modes = static_cast<int>(fe.K.rows() - 6);
+  fe.basis = reduction::FreeFreeModalBasis({fe.K, fe.M, fe.mesh.nodes}, options, Solver());
+  return fe;
+}
+
 std::vector<Index> ElasticColumns(const reduction::ReducedBasis& basis) {
   std::vector<Index> keep;
   for (Index j = 0; j < basis.num_modes(); ++j) {

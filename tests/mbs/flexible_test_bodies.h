@@ -5,8 +5,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
+#include <map>
+#include <string>
 #include <vector>
 
+#include "fem/material.h"
 #include "fem/mesh.h"
 #include "reduction/modal_basis.h"
 #include "reduction/sid_spec.h"
@@ -42,6 +46,15 @@ const FeReducedBody& FreeFreeBeam();
 /// The beam unsupported with the rigid interface "tip": Craig-Bampton, 6 constraint modes (a
 /// rigid motion of the whole beam) then 3 normal modes; no stiffening.
 const FeReducedBody& UnsupportedCraigBamptonBeam();
+
+/// A free hex8 box [0, size] of `cells` cells and `material` with its consistent K and M, the
+/// node sets `node_sets` (name -> FE nodes, found on the meshed box), the contact surfaces on
+/// those of `surfaces`, no damping or stiffening, and its free-free modes below max_frequency_hz
+/// (at most DOF - 6 of them); `body` left empty (Reduce makes it from a chosen basis).
+FeReducedBody FreeFreeBox(const Eigen::Vector3i& cells, const Eigen::Vector3d& size,
+                          const fem::IsotropicMaterial& material,
+                          const std::function<std::map<std::string, std::vector<int>>(const fem::Mesh&)>& node_sets,
+                          const std::vector<std::string>& surfaces, double max_frequency_hz);
 
 /// The columns of a basis whose kind is not rigid.
 std::vector<Eigen::Index> ElasticColumns(const reduction::ReducedBasis& basis);

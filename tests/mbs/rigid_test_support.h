@@ -98,4 +98,12 @@ inline Eigen::VectorXd MoveAlong(const MultibodySystem& system, const Eigen::Vec
   return moved;
 }
 
+/// y with its positions moved by dt along its velocities, x + dt x' by DisplacePositions (Euler
+/// parameters renormalised); velocities unchanged.
+inline Eigen::VectorXd Advance(const MultibodySystem& system, const Eigen::VectorXd& y, double dt) {
+  Eigen::VectorXd moved = y;
+  system.DisplacePositions(dt * y.tail(system.num_velocities()), moved);
+  return moved;
+}
+
 }  // namespace flexmbs::mbs::testing

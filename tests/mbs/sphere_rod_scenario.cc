@@ -3,14 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <string>
+#include <vector>
 #include <memory>
 #include <span>
 #include <utility>
 
 #include "contact/laws/hertz.h"
 #include "contact/laws/normal_law.h"
-#include "eigensolvers/eigensolver.h"
-#include "fem/assembly.h"
 #include "mbs/flexible_body.h"
 #include "mbs/multibody_system.h"
 #include "mbs/rigid_body.h"
@@ -73,20 +74,12 @@ SphereRod MakeSphereRod(const SphereRodSetup& setup) {
   SphereRod scenario;
   scenario.setup = setup;
   const fem::IsotropicMaterial steel = flexmbs::testing::Steel();
-  FeReducedBody& fe = scenario.rod;
-  fe.mesh = flexmbs::testing::HexBox(setup.cells, Eigen::Vector3d(setup.length, setup.side, setup.side), steel);
-  fe.mesh.node_sets["end"] = flexmbs::testing::NodesOnPlane(fe.mesh, 0, 0.0);
-  fem::SystemMatrices system = fem::AssembleSystem(fe.mesh, fem::MassMatrixKind::kConsistent);
-  fe.K = std::move(system.stiffness);
-  fe.M = std::move(system.mass);
-  fe.sid_spec.contact_surfaces = {"end"};
-  fe.sid_spec.geometric_stiffening = false;
-  reduction::FreeFreeOptions options;
-  options.eigen.max_frequency_hz =
-      setup.axial_band * std::sqrt(steel.youngs_modulus_pa / steel.density_kg_m3) / (2.0 * setup.length);
-  options.eigen.num_modes = static_cast<int>(std::min<Index>(2000, fe.K.rows() - 6));
-  const std::unique_ptr<eigensolvers::Eigensolver> solver = eigensolvers::MakeEigensolver("spectra");
-  fe.basis = reduction::FreeFreeModalBasis({fe.K, fe.M, fe.mesh.nodes}, options, *solver);
+  scenario.rod = FreeFreeBox(
+      setup.cells, Eigen::Vector3d(setup.length, setup.side, setup.side), steel,
+      [](const fem::Mesh& mesh) {
+        return std::map<std::string, std::vector<int>>{{"end", flexmbs::testing::NodesOnPlane(mesh, 0, 0.0)}};
+      },
+      {"end"}, setup.axial_band * std::sqrt(steel.youngs_modulus_pa / steel.density_kg_m3) / (2.0 * setup.length));
   FindContactNodes(&scenario);
   scenario.sphere_mass = steel.density_kg_m3 * 4.0 / 3.0 * M_PI * std::pow(setup.radius, 3);
   const contact::ElasticMaterial material{steel.youngs_modulus_pa, steel.poisson_ratio};

@@ -27,12 +27,7 @@ namespace {
 
 using Eigen::VectorXd;
 
-/// y moved along its motion by dt: x + dt x' (Euler parameters renormalised), u unchanged.
-VectorXd Advance(const MultibodySystem& system, const VectorXd& y, double dt) {
-  VectorXd moved = y;
-  system.DisplacePositions(dt * y.tail(system.num_velocities()), moved);
-  return moved;
-}
+using testing::Advance;
 
 /// The free-free test beam (its elastic modes; contact surface "tip", the face x = 0.6 m) as body
 /// 0, a rigid ball as body 1, in a random state with the beam deformed and vibrating.

@@ -23,12 +23,7 @@ namespace {
 
 using Eigen::VectorXd;
 
-/// y moved along its motion by dt: x + dt x' (Euler parameters renormalised), u unchanged.
-VectorXd Advance(const MultibodySystem& system, const VectorXd& y, double dt) {
-  VectorXd moved = y;
-  system.DisplacePositions(dt * y.tail(system.num_velocities()), moved);
-  return moved;
-}
+using testing::Advance;
 
 TEST(UnilateralContact, JacobiansGiveTheGapRateAndTheMaterialPointsRelativeVelocity) {
   std::mt19937 rng(7);
