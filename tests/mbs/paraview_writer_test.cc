@@ -86,7 +86,7 @@ std::unique_ptr<TwoBodies> MakeTwoBodies() {
   for (int b = 0; b < 2; ++b) {
     const Eigen::Quaterniond e(s->R_WB[b]);
     Eigen::VectorXd x(7 + (b == 1 ? 4 : 0));
-    x << s->p_WBo_W[b], e.w(), e.x(), e.y(), e.z();
+    x.head<7>() << s->p_WBo_W[b], e.w(), e.x(), e.y(), e.z();
     if (b == 1) x.tail(4) = s->q;
     s->system.SetBodyState(b, x, Eigen::VectorXd::Zero(x.size() - 1), s->y);
   }
