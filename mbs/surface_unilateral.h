@@ -38,7 +38,7 @@ class SurfacePlaneUnilateral final : public UnilateralContact {
 
 /// A sphere of radius r [m] centred on marker S (body A) against surface S of flexible body B:
 /// one point, the surface point nearest the centre (contact::SphereMesh on the deformed faces),
-/// which moves with the weighted velocities of its triangle's vertices (SurfaceState).
+/// which moves with its face's vertices by their weights (SurfaceState).
 class SphereSurfaceUnilateral final : public UnilateralContact {
  public:
   /// radius > 0 [m]; `origin` is B's body-frame marker, `surface` as SurfacePlaneUnilateral's.
