@@ -1,12 +1,15 @@
+// The Spectra eigensolver's contract (eigensolvers/eigensolver.h) on small FE problems: pairs
+// against dense solves and K, M (clamped, free-free, repeated and clustered eigenvalues, bands,
+// stiffness ratios, lumped mass), each missed-mode check, factorisations reused. Bad input:
+// eigensolver_input_errors_test.cc.
 #include "eigensolvers/eigensolver.h"
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -16,6 +19,7 @@
 #include "fem/mass_properties.h"
 #include "reduction/dof_constraints.h"
 #include "eigensolvers/shifted_factorization.h"
+#include "tests/eigensolvers/spectra_test_support.h"
 #include "tests/support/eigen_contract.h"
 #include "tests/support/test_problems.h"
 
@@ -31,148 +35,16 @@ using testing::NodesOnPlane;
 using testing::SolveDense;
 using testing::Steel;
 using SparseMatrix = Eigen::SparseMatrix<double>;
-
-// The solver's round-off floors against the test's (other summation orders), relative: measured
-// 6.5e-12.
-constexpr double kFloorRoundOff = 5e-11;
-// Eigenvalue agreement with the dense solver, relative to max(|lambda|, first elastic
-// lambda). The dense reference is in shift-invert form, accurate relative to each low
-// eigenvalue (test_problems.h); measured deviations are 1e-12 .. 3e-11, this is the
-// contract's 1e-8.
-constexpr double kDenseAgreement = 1e-8;
-// Subspace agreement (sine of the largest principal angle) of a cluster of eigenvalues with
-// the dense one. Davis-Kahan: sin theta <= residual / relative gap to the rest of the
-// spectrum; residuals <= 1e-8 and the gaps here are >= 1e-2.
-constexpr double kSubspaceAgreement = 1e-6;
-
-const std::unique_ptr<Eigensolver>& Spectra() {
-  static const std::unique_ptr<Eigensolver> solver = MakeEigensolver("spectra");
-  return solver;
-}
-
-struct Problem {
-  fem::Mesh mesh;
-  SparseMatrix K;
-  SparseMatrix M;
-};
-
-// A shift for the dense reference of a free-free body: -1e-6 of the mesh's stiffness-to-mass
-// scale, far below the first elastic eigenvalue and far above round-off.
-double FreeFreeShift(const Problem& p) { return FreeBodyShift(p.K, p.M); }
-
-Problem Assemble(fem::Mesh mesh) {
-  fem::SystemMatrices system = fem::AssembleSystem(mesh, fem::MassMatrixKind::kConsistent);
-  return {std::move(mesh), std::move(system.stiffness), std::move(system.mass)};
-}
-
-// The residuals and round-off floors of EigenSolution's definition (eigensolver.h), computed
-// here from K and M with Eigen's own sparse products, not with the solver's functions
-// (ComputeResiduals, MOrthonormalityError), so that a wrong definition there cannot hide a bad pair.
-struct TestResiduals {
-  Eigen::VectorXd relative, floor;
-};
-TestResiduals ResidualsFromKAndM(const SparseMatrix& K, const SparseMatrix& M, const EigenSolution& s) {
-  const SparseMatrix K_abs = K.cwiseAbs(), M_abs = M.cwiseAbs();
-  const double zero_eigenvalue = kZeroEigenvalue * K.diagonal().sum() / M.diagonal().sum();
-  TestResiduals r{Eigen::VectorXd(s.eigenvalues.size()), Eigen::VectorXd(s.eigenvalues.size())};
-  for (Eigen::Index j = 0; j < s.eigenvalues.size(); ++j) {
-    const double lambda = s.eigenvalues(j);
-    const Eigen::VectorXd phi = s.modes.col(j), K_phi = K * phi, M_phi = M * phi;
-    const Eigen::VectorXd abs_phi = phi.cwiseAbs();
-    const double rigid_scale = std::abs(lambda) <= zero_eigenvalue ? std::abs(s.shift) * M_phi.norm() : 0.0;
-    const double d = std::max({K_phi.norm(), std::abs(lambda) * M_phi.norm(), rigid_scale,
-                               std::numeric_limits<double>::min()});
-    r.relative(j) = (K_phi - lambda * M_phi).norm() / d;
-    r.floor(j) = std::numeric_limits<double>::epsilon() *
-                 (K_abs * abs_phi + std::abs(lambda) * (M_abs * abs_phi)).norm() / d;
-  }
-  return r;
-}
-
-// Every returned pair meets the contract, computed here from K and M (ResidualsFromKAndM).
-// `strict`: the residual bound itself, not relaxed to the round-off floor (the floors of these
-// compact meshes are far below it, which is checked too).
-void ExpectContract(const SparseMatrix& K, const SparseMatrix& M, const EigenSolution& s, bool strict = true) {
-  ASSERT_EQ(s.modes.cols(), s.eigenvalues.size());
-  ASSERT_EQ(s.relative_residuals.size(), s.eigenvalues.size());
-  ASSERT_EQ(s.residual_floors.size(), s.eigenvalues.size());
-  for (Eigen::Index j = 1; j < s.eigenvalues.size(); ++j) EXPECT_LE(s.eigenvalues(j - 1), s.eigenvalues(j));
-  const TestResiduals residuals = ResidualsFromKAndM(K, M, s);
-  for (Eigen::Index j = 0; j < residuals.relative.size(); ++j) {
-    if (strict) {
-      EXPECT_LE(residuals.relative(j), kResidualBound) << "mode " << j;
-      EXPECT_LE(residuals.floor(j), kResidualBound) << "mode " << j;  // the bound is attainable
-    } else {
-      EXPECT_LE(residuals.relative(j), std::max(kResidualBound, kResidualFloorFactor * residuals.floor(j)))
-          << "mode " << j;
-    }
-    // The backend multiplies M through M_s (eigensolvers/mass_operator.h), a summation order of its
-    // own: the two residuals of one pair may differ by the round-off of computing them.
-    EXPECT_NEAR(residuals.relative(j), s.relative_residuals(j), residuals.floor(j)) << "mode " << j;
-    EXPECT_NEAR(residuals.floor(j), s.residual_floors(j), kFloorRoundOff * residuals.floor(j)) << "mode " << j;
-  }
-  const Eigen::MatrixXd gram = s.modes.transpose() * (M * s.modes);
-  const double orthonormality = (gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols())).cwiseAbs().maxCoeff();
-  EXPECT_LE(orthonormality, kOrthonormalityBound);
-  // The same Gram matrix summed in another order (M_s): equal to round-off.
-  EXPECT_NEAR(s.orthonormality_error, orthonormality, 1e-14);
-}
-
-// The returned eigenvalues match the dense ones, and each complete cluster of (numerically)
-// repeated eigenvalues spans the dense cluster's subspace.
-void ExpectMatchesDense(const SparseMatrix& M, const EigenSolution& s, const testing::DenseEigen& dense,
-                        double lambda_ref) {
-  const Eigen::Index n = s.eigenvalues.size();
-  ASSERT_LE(n, dense.values.size());
-  double max_deviation = 0.0;
-  double max_sine = 0.0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const double deviation =
-        std::abs(s.eigenvalues(j) - dense.values(j)) / std::max(std::abs(dense.values(j)), lambda_ref);
-    max_deviation = std::max(max_deviation, deviation);
-    EXPECT_LE(deviation, kDenseAgreement)
-        << "mode " << j << ": " << s.eigenvalues(j) << " vs dense " << dense.values(j);
-  }
-  const auto same = [&](double a, double b) {
-    return std::abs(a - b) <= kClusterTolerance * std::max({std::abs(a), std::abs(b), lambda_ref});
-  };
-  for (Eigen::Index begin = 0; begin < n;) {
-    Eigen::Index end = begin + 1;
-    while (end < dense.values.size() && same(dense.values(end - 1), dense.values(end))) ++end;
-    if (end > n) break;  // a cluster cut by the last returned mode: its subspace is not unique
-    const double sine = LargestPrincipalAngleSine(M, s.modes.middleCols(begin, end - begin),
-                                                  dense.vectors.middleCols(begin, end - begin));
-    EXPECT_LE(sine, kSubspaceAgreement) << "cluster of modes " << begin << ".." << end - 1;
-    max_sine = std::max(max_sine, sine);
-    begin = end;
-  }
-  std::printf("[ numbers  ] vs dense: max eigenvalue deviation %.1e, max principal-angle sine %.1e\n", max_deviation,
-              max_sine);
-}
-
-void Report(const char* what, const EigenSolution& s) {
-  std::printf("[ numbers  ] %s: %td modes, max residual %.2e, orthonormality %.2e, %d factorisations, %d solves, "
-              "%d Lanczos runs, %d restarts, %d refinements, %.3f s\n",
-              what, s.eigenvalues.size(), s.relative_residuals.size() ? s.relative_residuals.maxCoeff() : 0.0,
-              s.orthonormality_error, s.factorizations, s.operator_applications, s.krylov_runs, s.restarts,
-              s.refinement_steps, s.seconds);
-}
-
-// A steel cantilever 0.6 m x 0.05 m x 0.04 m, 12 x 3 x 3 hex8, clamped at x = 0. The
-// section is not square, so bending in y and z do not give repeated eigenvalues.
-struct Cantilever {
-  Problem full;
-  reduction::FreeDofMap map;
-  SparseMatrix K;
-  SparseMatrix M;
-};
-Cantilever MakeCantilever(const fem::IsotropicMaterial& left, const fem::IsotropicMaterial& right) {
-  Problem p = Assemble(HexBox({12, 3, 3}, {0.6, 0.05, 0.04}, left, right, 0.3));
-  reduction::FreeDofMap map = reduction::FreeDofMap::ClampNodes(p.mesh.num_nodes(), NodesOnPlane(p.mesh, 0, 0.0));
-  SparseMatrix K = map.Restrict(p.K);
-  SparseMatrix M = map.Restrict(p.M);
-  return {std::move(p), std::move(map), std::move(K), std::move(M)};
-}
+using spectra_test::Assemble;
+using spectra_test::Cantilever;
+using spectra_test::ExpectContract;
+using spectra_test::ExpectMatchesDense;
+using spectra_test::FreeFreeShift;
+using spectra_test::kSubspaceAgreement;
+using spectra_test::MakeCantilever;
+using spectra_test::Problem;
+using spectra_test::Report;
+using spectra_test::Spectra;
 
 TEST(MakeEigensolver, UnknownBackendThrowsInputErrorListingTheAvailableOnes) {
   try {
@@ -503,116 +375,6 @@ TEST(SpectraEigensolver, AllModesOfATinyProblemAreSolvedDensely) {
   ASSERT_EQ(s.eigenvalues.size(), 24);
   EXPECT_EQ(s.krylov_runs, 0);
   ExpectContract(p.K, p.M, s);
-}
-
-// ---- Bad input -----------------------------------------------------------------------------
-
-std::string SolveError(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& options) {
-  try {
-    Spectra()->Solve(K, M, options);
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line";
-    return message;
-  }
-  return "no InputError";
-}
-
-TEST(SpectraEigensolver, MoreModesThanDofIsAnInputError) {
-  const Problem p = Assemble(HexBox({1, 1, 1}, {0.1, 0.1, 0.1}, Steel()));
-  EigenOptions options;
-  options.num_modes = 25;
-  EXPECT_EQ(SolveError(p.K, p.M, options), "eigenproblem: 25 modes requested but the model has only 24 DOF");
-}
-
-TEST(SpectraEigensolver, MismatchedOrNonSquareMatricesAreInputErrors) {
-  const Problem p = Assemble(HexBox({1, 1, 1}, {0.1, 0.1, 0.1}, Steel()));
-  EigenOptions options;
-  options.num_modes = 3;
-  const SparseMatrix M23 = p.M.topRows(21);
-  EXPECT_NE(SolveError(p.K, M23, options).find("mass matrix M is 21 x 24, must be square"), std::string::npos);
-  const SparseMatrix K21 = p.K.topLeftCorner(21, 21);
-  EXPECT_NE(SolveError(K21, p.M, options).find("K is 21 x 21 but M is 24 x 24"), std::string::npos);
-  EXPECT_NE(SolveError(SparseMatrix(0, 0), SparseMatrix(0, 0), options).find("empty"), std::string::npos);
-}
-
-TEST(SpectraEigensolver, NoModeCountOrBandIsAnInputError) {
-  const Problem p = Assemble(HexBox({1, 1, 1}, {0.1, 0.1, 0.1}, Steel()));
-  EXPECT_NE(SolveError(p.K, p.M, EigenOptions{}).find("neither num_modes nor max_frequency_hz"), std::string::npos);
-}
-
-TEST(SpectraEigensolver, BandWithoutModesIsAnInputErrorNamingTheLowestMode) {
-  const Cantilever c = MakeCantilever(Steel(), Steel());
-  const double lowest_hz = FrequenciesHz(SolveDense(c.K, c.M, 0.0).values)(0);
-  for (const MissedModeCheck check : {MissedModeCheck::kSturmCount, MissedModeCheck::kDeflatedLanczos}) {
-    EigenOptions options;
-    options.max_frequency_hz = 1.0;
-    options.check_missed_modes = check;
-    const std::string message = SolveError(c.K, c.M, options);
-    EXPECT_EQ(message, fmt::format("eigenproblem: no mode below max_frequency_hz = 1 Hz: the lowest mode is at {:g} Hz",
-                                   lowest_hz));
-  }
-}
-
-TEST(SpectraEigensolver, UnconstrainedBodyWithZeroOrPositiveShiftIsAnInputError) {
-  const Problem p = Assemble(HexBox({4, 2, 2}, {0.4, 0.2, 0.2}, Steel()));
-  EigenOptions options;
-  options.num_modes = 8;
-  for (const double shift_hz : {0.0, 5.0}) {
-    options.shift_hz = shift_hz;
-    const std::string message = SolveError(p.K, p.M, options);
-    EXPECT_NE(message.find("the body is likely unconstrained"), std::string::npos) << message;
-  }
-  // A negative shift works, even a small one: the rigid-body residuals, measured against
-  // |sigma| ||M phi||, then sit at their (higher) round-off floor.
-  options.shift_hz = -1.0;
-  const EigenSolution s = Spectra()->Solve(p.K, p.M, options);
-  ExpectContract(p.K, p.M, s, /*strict=*/false);
-  for (int j = 0; j < 6; ++j) EXPECT_GT(s.residual_floors(j), 1e-9) << j;
-}
-
-TEST(SpectraEigensolver, IndefiniteStiffnessOrATooSmallNegativeShiftAreInputErrors) {
-  const Problem p = Assemble(HexBox({4, 2, 2}, {0.4, 0.2, 0.2}, Steel()));
-  EigenOptions options;
-  options.num_modes = 8;
-  // A negative shift of round-off size does not make K - sigma M positive definite.
-  options.shift_hz = -1e-4;
-  EXPECT_NE(SolveError(p.K, p.M, options).find("the negative shift is too close to zero for the rigid-body modes"),
-            std::string::npos);
-  // K with a negative eigenvalue (a negative diagonal entry).
-  SparseMatrix K = p.K;
-  K.coeffRef(0, 0) *= -1.0;
-  options.shift_hz.reset();
-  EXPECT_NE(SolveError(K, p.M, options).find("so it is not positive semi-definite"), std::string::npos);
-}
-
-TEST(SpectraEigensolver, ShiftAboveTheLowestModeIsAnInputError) {
-  const Cantilever c = MakeCantilever(Steel(), Steel());
-  const testing::DenseEigen dense = SolveDense(c.K, c.M, 0.0);
-  EigenOptions options;
-  options.num_modes = 3;
-  options.shift_hz = 2.0 * FrequenciesHz(dense.values)(0);
-  EXPECT_NE(SolveError(c.K, c.M, options).find("not positive definite"), std::string::npos);
-  // Just below the lowest mode is fine and converges.
-  options.shift_hz = 0.9 * FrequenciesHz(dense.values)(0);
-  const EigenSolution s = Spectra()->Solve(c.K, c.M, options);
-  ExpectMatchesDense(c.M, s, dense, dense.values(0));
-}
-
-TEST(SpectraEigensolver, BadOptionsAreInputErrors) {
-  const Problem p = Assemble(HexBox({1, 1, 1}, {0.1, 0.1, 0.1}, Steel()));
-  EigenOptions options;
-  options.num_modes = -1;
-  EXPECT_NE(SolveError(p.K, p.M, options).find("num_modes -1 must be >= 0"), std::string::npos);
-  options.num_modes = 2;
-  options.max_frequency_hz = -5.0;
-  EXPECT_NE(SolveError(p.K, p.M, options).find("max_frequency_hz -5"), std::string::npos);
-  options.max_frequency_hz = 0.0;
-  options.tolerance = 0.0;
-  EXPECT_NE(SolveError(p.K, p.M, options).find("tolerance 0 must be in (0, 1)"), std::string::npos);
-  options.tolerance = 1e-10;
-  options.lanczos_block_size = -2;
-  EXPECT_NE(SolveError(p.K, p.M, options).find("lanczos_block_size -2 must be >= 0"), std::string::npos);
 }
 
 }  // namespace
