@@ -53,7 +53,7 @@ std::optional<ContactModeAdvice> Advise(const MultibodySystem& system, const Sph
     const double f = flexible.data().frequency_hz(j);
     if (!(std::abs(load(j)) > 1e-6 * largest) || std::isnan(f)) continue;
     ++advice.loaded_modes;
-    (f > advice.cutoff_hz ? advice.loaded_modes_above : advice.loaded_modes_below) += 1;
+    if (f > advice.cutoff_hz) ++advice.loaded_modes_above;
     advice.highest_loaded_hz = std::max(advice.highest_loaded_hz, f);
   }
   return advice;

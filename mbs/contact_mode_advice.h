@@ -27,7 +27,6 @@ struct ContactModeAdvice {
   double cutoff_hz = 0.0;        ///< f_max [Hz]: the rule's
   int loaded_modes = 0;          ///< the body's kept modes the contact loads (n . R phi_c != 0)
   int loaded_modes_above = 0;    ///< of those, above f_max (could go)
-  int loaded_modes_below = 0;    ///< of those, up to f_max
   double highest_loaded_hz = 0.0;  ///< the highest frequency among them [Hz]
   /// One line: the contact time, the cut-off and why, and what the body keeps against it.
   std::string Describe() const;

@@ -119,6 +119,15 @@ CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, co
   return law;
 }
 
+/// The radius under `key` of element `element`, > 0 and finite; InputError at the item otherwise
+/// (before a law's stiffness is made from it).
+double ReadRadius(const YamlNode& node, std::string_view key, const std::string& element) {
+  const YamlNode item = node.Required(key);
+  const double radius = item.AsDouble();
+  if (!(radius > 0.0)) item.Fail(fmt::format("force element '{}': {:g} m must be > 0", element, radius));
+  return radius;
+}
+
 }  // namespace
 
 bool IsContactForceType(std::string_view type) {
@@ -133,7 +142,7 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
                             "restitution", "impact_speed", "materials", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere")), plane = read_marker(node.Required("plane"));
-    const double radius = node.Required("radius").AsDouble();
+    const double radius = ReadRadius(node, "radius", name);
     CompliantContactLaw law = ReadLaw(node, name, {"sphere", "plane", true, radius});
     return At(node, "", [&] { return std::make_unique<SpherePlaneContact>(name, sphere, plane, radius, std::move(law)); });
   }
@@ -141,7 +150,7 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
     node.RejectUnknownKeys({"name", "type", "sphere", "radius", "body", "surface", "law", "stiffness", "damping",
                             "exponent", "restitution", "impact_speed", "materials", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere"));
-    const double radius = node.Required("radius").AsDouble();
+    const double radius = ReadRadius(node, "radius", name);
     const SurfaceRef surface = ReadSurface(node, system, fmt::format("force element '{}'", name));
     CompliantContactLaw law = ReadLaw(node, name, {"sphere", "surface", false, radius});
     return At(node, "", [&] {
@@ -164,7 +173,7 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
   node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "stiffness", "restitution",
                           "impact_speed", "materials", "friction", "damping", "exponent"});
   const MarkerRef sphere1 = read_marker(node.Required("sphere1")), sphere2 = read_marker(node.Required("sphere2"));
-  const double radius1 = node.Required("radius1").AsDouble(), radius2 = node.Required("radius2").AsDouble();
+  const double radius1 = ReadRadius(node, "radius1", name), radius2 = ReadRadius(node, "radius2", name);
   CompliantContactLaw law = ReadLaw(node, name, {"sphere1", "sphere2", false, contact::EffectiveRadius(radius1, radius2)});
   return At(node, "", [&] {
     return std::make_unique<SphereSphereContact>(name, sphere1, sphere2, radius1, radius2, std::move(law));

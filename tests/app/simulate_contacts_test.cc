@@ -215,4 +215,34 @@ TEST_F(SimulateContactsTest, SphereOnAFlexibleSurfaceBouncesAndGetsModeAdvice) {
   EXPECT_NE(text.out.find("modes           contact 'hit' on cube: Hertz contact time"), std::string::npos) << text.out;
 }
 
+TEST_F(SimulateContactsTest, BadCompliantSurfaceContactsAreOneLocatedLine) {
+  ReduceCubeWithTopSurface(dir_, "");
+  if (HasFatalFailure()) return;
+  const std::string scene = kBallOnCube;
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = scene;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  flexmbs::testing::ExpectInputError(Simulate(with("    radius: 0.005", "    radius: -0.005")),
+                                     "forces[0].radius: force element 'hit': -0.005 m must be > 0");
+  EXPECT_FALSE(fs::exists(results_));
+  flexmbs::testing::ExpectInputError(
+      Simulate(with("    body: cube\n", "    body: ball\n")),
+      "forces[0].body: force element 'hit': body 'ball' is rigid; surfaces are a flexible body's");
+  flexmbs::testing::ExpectInputError(Simulate(with("    surface: top", "    surface: side")),
+                                     "forces[0].surface: force element 'hit': body 'cube' carries no contact "
+                                     "surface 'side' (it has: top)");
+  // A penalty per vertex takes a stiffness; the Hertz materials need a sphere's radius.
+  const std::string per_vertex = R"(gravity: [0, 0, 0]
+bodies:
+  cube: {flexible: {file: cube.sid.h5}}
+forces:
+  - {name: floor, type: surface_plane_contact, body: cube, surface: top, plane: {body: ground},
+     law: hertz, materials: {surface: {youngs_modulus: 2.1e11, poissons_ratio: 0.3}}}
+simulation: {end_time: 1e-5, output_interval: 1e-6}
+)";
+  flexmbs::testing::ExpectInputError(Simulate(per_vertex), "forces[0].materials: unknown key 'materials'");
+}
+
 }  // namespace
