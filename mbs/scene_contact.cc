@@ -10,6 +10,7 @@
 #include "mbs/compliant_contact.h"
 #include "mbs/contact_force.h"
 #include "mbs/scene_surface.h"
+#include "mbs/scene_values.h"
 #include "mbs/surface_contact_force.h"
 
 namespace flexmbs::mbs {
@@ -119,15 +120,6 @@ CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, co
   return law;
 }
 
-/// The radius under `key` of element `element`, > 0 and finite; InputError at the item otherwise
-/// (before a law's stiffness is made from it).
-double ReadRadius(const YamlNode& node, std::string_view key, const std::string& element) {
-  const YamlNode item = node.Required(key);
-  const double radius = item.AsDouble();
-  if (!(radius > 0.0)) item.Fail(fmt::format("force element '{}': {:g} m must be > 0", element, radius));
-  return radius;
-}
-
 }  // namespace
 
 bool IsContactForceType(std::string_view type) {
@@ -142,7 +134,7 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
                             "restitution", "impact_speed", "materials", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere")), plane = read_marker(node.Required("plane"));
-    const double radius = ReadRadius(node, "radius", name);
+    const double radius = ReadPositiveLength(node, "radius", fmt::format("force element '{}'", name));
     CompliantContactLaw law = ReadLaw(node, name, {"sphere", "plane", true, radius});
     return At(node, "", [&] { return std::make_unique<SpherePlaneContact>(name, sphere, plane, radius, std::move(law)); });
   }
@@ -150,7 +142,7 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
     node.RejectUnknownKeys({"name", "type", "sphere", "radius", "body", "surface", "law", "stiffness", "damping",
                             "exponent", "restitution", "impact_speed", "materials", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere"));
-    const double radius = ReadRadius(node, "radius", name);
+    const double radius = ReadPositiveLength(node, "radius", fmt::format("force element '{}'", name));
     const SurfaceRef surface = ReadSurface(node, system, fmt::format("force element '{}'", name));
     CompliantContactLaw law = ReadLaw(node, name, {"sphere", "surface", false, radius});
     return At(node, "", [&] {
@@ -173,7 +165,9 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
   node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "stiffness", "restitution",
                           "impact_speed", "materials", "friction", "damping", "exponent"});
   const MarkerRef sphere1 = read_marker(node.Required("sphere1")), sphere2 = read_marker(node.Required("sphere2"));
-  const double radius1 = ReadRadius(node, "radius1", name), radius2 = ReadRadius(node, "radius2", name);
+  const std::string owner = fmt::format("force element '{}'", name);
+  const double radius1 = ReadPositiveLength(node, "radius1", owner);
+  const double radius2 = ReadPositiveLength(node, "radius2", owner);
   CompliantContactLaw law = ReadLaw(node, name, {"sphere1", "sphere2", false, contact::EffectiveRadius(radius1, radius2)});
   return At(node, "", [&] {
     return std::make_unique<SphereSphereContact>(name, sphere1, sphere2, radius1, radius2, std::move(law));

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "mbs/scene_surface.h"
+#include "mbs/scene_values.h"
 #include "mbs/surface_unilateral.h"
 
 namespace flexmbs::mbs {
@@ -48,14 +49,6 @@ UnilateralLaw ReadLaw(const YamlNode& node, const std::string& name) {
   return law;
 }
 
-/// The radius under `key`, > 0.
-double ReadRadius(const YamlNode& node, std::string_view key, const std::string& name) {
-  const YamlNode item = node.Required(key);
-  const double radius = item.AsDouble();
-  if (!(radius > 0.0)) item.Fail(fmt::format("contact '{}': {:g} m must be > 0", name, radius));
-  return radius;
-}
-
 }  // namespace
 
 std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulation, bool selected) {
@@ -88,14 +81,16 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
   if (kind == "sphere_plane") {
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "restitution", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere")), plane = read_marker(node.Required("plane"));
-    const double radius = ReadRadius(node, "radius", name);
+    const double radius = ReadPositiveLength(node, "radius", fmt::format("contact '{}'", name));
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] { return std::make_unique<SpherePlaneUnilateral>(name, sphere, plane, radius, law); });
   }
   if (kind == "sphere_sphere") {
     node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "restitution", "friction"});
     const MarkerRef sphere1 = read_marker(node.Required("sphere1")), sphere2 = read_marker(node.Required("sphere2"));
-    const double radius1 = ReadRadius(node, "radius1", name), radius2 = ReadRadius(node, "radius2", name);
+    const std::string owner = fmt::format("contact '{}'", name);
+    const double radius1 = ReadPositiveLength(node, "radius1", owner);
+    const double radius2 = ReadPositiveLength(node, "radius2", owner);
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] {
       return std::make_unique<SphereSphereUnilateral>(name, sphere1, sphere2, radius1, radius2, law);
@@ -114,7 +109,7 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
   if (kind == "sphere_surface") {
     node.RejectUnknownKeys({"name", "type", "sphere", "radius", "body", "surface", "law", "restitution", "friction"});
     const MarkerRef sphere = read_marker(node.Required("sphere"));
-    const double radius = ReadRadius(node, "radius", name);
+    const double radius = ReadPositiveLength(node, "radius", fmt::format("contact '{}'", name));
     const SurfaceRef surface = ReadSurface(node, system, fmt::format("contact '{}'", name));
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] {

@@ -30,6 +30,13 @@ TimeFunctionPtr Make(const YamlNode& node, Factory factory) {
 
 }  // namespace
 
+double ReadPositiveLength(const YamlNode& node, std::string_view key, std::string_view owner) {
+  const YamlNode item = node.Required(key);
+  const double length = item.AsDouble();
+  if (!(length > 0.0)) item.Fail(fmt::format("{}: {:g} m must be > 0", owner, length));
+  return length;
+}
+
 Eigen::Vector3d ReadVector3(const YamlNode& node) {
   const std::vector<YamlNode> xyz = node.AsList();
   if (xyz.size() != 3) node.Fail(fmt::format("expected 3 numbers, got {}", xyz.size()));

@@ -4,10 +4,16 @@
 
 #include <Eigen/Core>
 
+#include <string_view>
+
 #include "core/yaml_node.h"
 #include "mbs/time_function.h"
 
 namespace flexmbs::mbs {
+
+/// The length [m] under `key` of `node`, > 0; else InputError "<item>: <owner>: <value> m must be > 0"
+/// (owner says whose length it is, e.g. "contact 'floor'").
+double ReadPositiveLength(const YamlNode& node, std::string_view key, std::string_view owner);
 
 /// A list of three finite numbers.
 Eigen::Vector3d ReadVector3(const YamlNode& node);

@@ -192,7 +192,7 @@ TEST(SpherePlaneContact, SceneEntryAndBadInput) {
   ASSERT_EQ(loaded.system->num_force_elements(), 1);
   EXPECT_EQ(loaded.system->force_element(0).name(), "floor");
   const std::string message = flexmbs::testing::InputErrorMessage([&] { LoadScene(scene("0")); });
-  EXPECT_NE(message.find("force element 'floor': radius [m] 0 must be finite and > 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("forces[0].radius: force element 'floor': 0 m must be > 0"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos);
   std::filesystem::remove_all(dir);
 }
