@@ -106,27 +106,31 @@ ContactPoints EvaluateContactPoints(const MultibodySystem& system, double t, con
   return points;
 }
 
-/// The active points' local problem: H (3 per point: W_N, W_T) and their restitution terms.
+/// The active points' local problem: H (3 per point: W_N, W_T) and the normal law's offsets.
 struct ActiveContacts {
   std::vector<int> index;  ///< point indices into ContactPoints
   MatrixXd H;              ///< 3 n_a x num_velocities()
-  VectorXd restitution_term;  ///< e U_N,k per active point
+  VectorXd normal_offset;  ///< per active point: e U_N,k (velocity level) or g_N(x_k) / h (position level)
   VectorXd mu;
 };
 
-/// The index set: points whose gap predicted half a step ahead is closed,
-/// g_N(x_k) + h/2 U_N,k <= 0 (Siconos' MoreauJeanOSI::addInteractionInIndexSet, gamma = 1/2), with
-/// their rows of H, e U_N,k and mu of their contact's law.
+/// The index set: points whose gap predicted ahead is closed, g_N(x_k) + h/2 U_N,k <= 0 on
+/// velocity level (Siconos' MoreauJeanOSI::addInteractionInIndexSet, gamma = 1/2) and
+/// g_N(x_k) + h W_N v_free <= 0 on position level (the end of a step without contact impulses: a
+/// point that landed on its surface stays in while a load presses it), with their rows of H, their
+/// normal offsets and mu of their contact's law.
 ActiveContacts FindActiveContacts(const MultibodySystem& system, const ContactPoints& points, double h,
-                                  const VectorXd& v_k) {
+                                  const VectorXd& v_k, const VectorXd& v_free, ImpactLevel level) {
+  const bool position_level = level == ImpactLevel::kPosition;
   ActiveContacts active;
   for (std::size_t k = 0; k < points.kinematics.size(); ++k) {
     const UnilateralContactKinematics& c = points.kinematics[k];
-    if (c.g_N + 0.5 * h * c.W_N.dot(v_k) <= 0.0) active.index.push_back(static_cast<int>(k));
+    const double predicted = position_level ? c.g_N + h * c.W_N.dot(v_free) : c.g_N + 0.5 * h * c.W_N.dot(v_k);
+    if (predicted <= 0.0) active.index.push_back(static_cast<int>(k));
   }
   const Index n_a = static_cast<Index>(active.index.size());
   active.H.resize(3 * n_a, v_k.size());
-  active.restitution_term.resize(n_a);
+  active.normal_offset.resize(n_a);
   active.mu.resize(n_a);
   for (Index i = 0; i < n_a; ++i) {
     const std::size_t k = static_cast<std::size_t>(active.index[static_cast<std::size_t>(i)]);
@@ -134,7 +138,7 @@ ActiveContacts FindActiveContacts(const MultibodySystem& system, const ContactPo
     const UnilateralLaw& law = system.unilateral_contact(points.contact[k]).law();
     active.H.row(3 * i) = c.W_N;
     active.H.middleRows(3 * i + 1, 2) = c.W_T;
-    active.restitution_term(i) = law.restitution * c.W_N.dot(v_k);
+    active.normal_offset(i) = position_level ? c.g_N / h : law.restitution * c.W_N.dot(v_k);
     active.mu(i) = law.friction;
   }
   return active;
@@ -217,15 +221,35 @@ void CheckMoreauJeanOptions(const MoreauJeanOptions& options) {
   if (!(options.theta >= 0.5 && options.theta <= 1.0)) {
     throw InputError(fmt::format("simulation: theta {:g} must be in [0.5, 1]", options.theta));
   }
+  if (options.impact_level == ImpactLevel::kPosition && options.theta != 1.0) {
+    throw InputError(fmt::format("simulation: impact_level position needs theta 1 (the gap the positions reach, "
+                                 "x_k+1 = x_k + h v_k+1), not {:g}",
+                                 options.theta));
+  }
   if (!(options.solver_tolerance > 0.0) || options.solver_max_iterations < 1) {
     throw InputError(fmt::format("simulation: contact solver tolerance {:g} must be > 0 and its iterations {} >= 1",
                                  options.solver_tolerance, options.solver_max_iterations));
   }
 }
 
+int FirstContactOutsideImpactLevel(const MultibodySystem& system, ImpactLevel level) {
+  if (level == ImpactLevel::kVelocity) return -1;
+  for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
+    if (system.unilateral_contact(k).law().restitution > 0.0) return k;
+  }
+  return -1;
+}
+
 MoreauJeanStepper::MoreauJeanStepper(const MultibodySystem& system, const MoreauJeanOptions& options)
     : system_(system), options_(options), u_dot_(VectorXd::Zero(system.num_velocities())) {
   CheckMoreauJeanOptions(options_);
+  const int outside = FirstContactOutsideImpactLevel(system_, options_.impact_level);
+  if (outside >= 0) {
+    const UnilateralContact& contact = system_.unilateral_contact(outside);
+    throw InputError(fmt::format("contact '{}': restitution {:g} needs impact level velocity (on position level the "
+                                 "points' impacts are inelastic, e = 0)",
+                                 contact.name(), contact.law().restitution));
+  }
 }
 
 MoreauJeanStepReport MoreauJeanStepper::Initial(double t, const ConstVectorRef& y) const {
@@ -247,11 +271,11 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
   const SmoothStep smooth = SolveSmoothStep(system_, t, h, theta, y, u_dot_);
   u_dot_ = smooth.dv_free / h;
 
+  VectorXd v_next = v_k + smooth.dv_free;
   const ContactPoints points = EvaluateContactPoints(system_, t, y);
-  const ActiveContacts active = FindActiveContacts(system_, points, h, v_k);
+  const ActiveContacts active = FindActiveContacts(system_, points, h, v_k, v_next, options_.impact_level);
   const Index n_a = static_cast<Index>(active.index.size());
 
-  VectorXd v_next = v_k + smooth.dv_free;
   VectorXd impulse = smooth.impulse_free;
   VectorXd P = VectorXd::Zero(3 * n_a);
   report_.solver_iterations = 0;
@@ -263,7 +287,7 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
     SolveKkt(smooth, nu, rhs, &dv_per_P, &impulse_per_P);
     const MatrixXd W = active.H * dv_per_P;
     VectorXd q = active.H * v_next;
-    for (Index i = 0; i < n_a; ++i) q(3 * i) += active.restitution_term(i);
+    for (Index i = 0; i < n_a; ++i) q(3 * i) += active.normal_offset(i);
     const contact::SolveStatus status = SolveImpulses(W, q, active.mu, options_, &P);
     if (!status.converged) NotConverged(step_number, t, h, static_cast<int>(n_a), status, options_.solver_tolerance);
     report_.solver_iterations = status.iterations;

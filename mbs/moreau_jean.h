@@ -16,17 +16,31 @@
 
 namespace flexmbs::mbs {
 
+/// Where a step's contact law holds (docs/contact.md, "Impact on position level").
+enum class ImpactLevel {
+  /// Newton's law on the end velocity: 0 <= P_N _|_ U_N,k+1 + e U_N,k >= 0 (Moreau-Jean, Siconos).
+  kVelocity,
+  /// The gap the step's positions reach (theta = 1), 0 <= P_N _|_ g_N(x_k) + h U_N,k+1 >= 0
+  /// (Stewart & Trinkle 1996): inelastic at the points, no penetration left behind.
+  kPosition,
+};
+
 /// Settings of Moreau-Jean time stepping.
 struct MoreauJeanOptions {
   double step = 0.0;    ///< h [s] > 0, fixed (a last step before an output time may be shorter)
   double theta = 0.5;   ///< in [0.5, 1]: 0.5 (Siconos' examples) conserves the smooth energy best
   double solver_tolerance = 1e-10;  ///< the contact solver's error (LcpError, FrictionContactError)
   int solver_max_iterations = 1000;  ///< NSGS sweeps before the Newton handover (Lemke: own limit)
+  ImpactLevel impact_level = ImpactLevel::kVelocity;
 };
 
-/// Throws InputError "simulation: ..." unless step > 0 and finite, theta in [0.5, 1],
-/// solver_tolerance > 0 and solver_max_iterations >= 1.
+/// Throws InputError "simulation: ..." unless step > 0 and finite, theta in [0.5, 1] (1 on
+/// position level), solver_tolerance > 0 and solver_max_iterations >= 1.
 void CheckMoreauJeanOptions(const MoreauJeanOptions& options);
+
+/// The first of the system's unilateral contacts whose law `level` cannot integrate (position
+/// level: a restitution e > 0), or -1.
+int FirstContactOutsideImpactLevel(const MultibodySystem& system, ImpactLevel level);
 
 /// One contact's outcome of a step [t_k, t_k+1], over its points (UnilateralContact::num_points).
 struct ContactStepResult {
@@ -72,12 +86,14 @@ struct MoreauJeanStatistics {
 ///   A = M(x_k) - h theta H_u - h^2 theta^2 H_x,
 ///   A (v_k+1 - v_k) = h (h(t_k + theta h, x_k, v_k) + h theta H_x v_k) + G^T Lambda + H^T P,
 ///   G v_k+1 = -g_t(t_k+1, x_k),
-///   active contacts: U_k+1 = H v_k+1, with Newton's law U_N,k+1 + e U_N,k >= 0 _|_ P_N >= 0 and
+///   active contacts: U_k+1 = H v_k+1, with Newton's law U_N,k+1 + e U_N,k >= 0 _|_ P_N >= 0
+///   (velocity level; on position level g_N(x_k) + h U_N,k+1 >= 0, theta = 1) and
 ///   Coulomb's law on (U_T,k+1, P_T) (De Saxce's form; FrictionContactProblem),
 ///   x_k+1 = x_k + h (theta v_k+1 + (1 - theta) v_k)   (MultibodySystem::DisplacePositions),
 /// the Euler parameters normalised. The KKT system [A G^T; G 0] is solved densely (full-pivot
 /// LU); the contacts see the Delassus operator W = H A_c^-1 H^T (A_c^-1 the velocity block of the
-/// KKT inverse) and the free local velocity q = H v_free + (e U_N,k, 0, 0). Frictionless steps
+/// KKT inverse) and the free local velocity q = H v_free + (e U_N,k, 0, 0) (position level:
+/// (g_N(x_k) / h, 0, 0), and the index set g_N(x_k) + h W_N v_free <= 0). Frictionless steps
 /// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), and where Lemke misses the tolerance (a
 /// singular W_NN from redundant contact points: its pivots lose accuracy) by the proximal Newton
 /// solver with mu = 0; others SolveFrictionContact (d = 3). The bodies' acceleration-dependent
@@ -86,7 +102,8 @@ struct MoreauJeanStatistics {
 /// impulses' own stiffening is left out.
 class MoreauJeanStepper {
  public:
-  /// Checks the options (CheckMoreauJeanOptions). The system must outlive the stepper.
+  /// Checks the options (CheckMoreauJeanOptions) and that every contact's law holds on the impact
+  /// level (InputError naming the contact otherwise). The system must outlive the stepper.
   MoreauJeanStepper(const MultibodySystem& system, const MoreauJeanOptions& options);
 
   /// Advances y = [x; v] from t by h (0 < h <= (1 + 1e-9) options.step; the joints' drift is the caller's:

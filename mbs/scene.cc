@@ -131,7 +131,7 @@ constexpr double kMinStepEpsilons = 64.0;
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
                           "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot",
-                          "step", "theta", "rest_velocity", "gap_tolerance", "max_events"});
+                          "step", "theta", "impact_level", "rest_velocity", "gap_tolerance", "max_events"});
   SimulationOptions options;
   options.end_time = node.Required("end_time").AsDouble();
   if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
@@ -296,6 +296,12 @@ Scene LoadScene(const std::filesystem::path& file) {
         item.Required("friction").Fail(fmt::format("{:g}: method event_driven integrates frictionless contacts only "
                                                    "(friction 0); Coulomb friction under method moreau_jean",
                                                    contact->law().friction));
+      }
+      if (scene.options.moreau_jean && scene.options.moreau_jean->impact_level == ImpactLevel::kPosition &&
+          contact->law().restitution > 0.0) {
+        item.Required("restitution").Fail(fmt::format("{:g}: impact_level position takes no restitution (the points' "
+                                                      "impacts follow from the step's positions); velocity level for e > 0",
+                                                      contact->law().restitution));
       }
       if (!scene.options.moreau_jean && !scene.options.event_driven) {
         item.Fail(fmt::format("contact '{}' is unilateral, which only simulation.method moreau_jean or "

@@ -53,7 +53,7 @@ UnilateralLaw ReadLaw(const YamlNode& node, const std::string& name) {
 
 std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulation, bool selected) {
   if (!selected) {
-    for (const std::string_view key : {"step", "theta"}) {
+    for (const std::string_view key : {"step", "theta", "impact_level"}) {
       if (simulation.Has(key)) simulation.Required(key).Fail("only for method moreau_jean");
     }
     return std::nullopt;
@@ -69,6 +69,18 @@ std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulatio
     const YamlNode theta = simulation.Required("theta");
     options.theta = theta.AsDouble();
     if (!(options.theta >= 0.5 && options.theta <= 1.0)) theta.Fail(fmt::format("{:g} must be in [0.5, 1]", options.theta));
+  }
+  if (simulation.Has("impact_level")) {
+    const YamlNode level = simulation.Required("impact_level");
+    const std::string name = level.AsString();
+    if (name == "position") {
+      options.impact_level = ImpactLevel::kPosition;
+      if (options.theta != 1.0) {
+        level.Fail(fmt::format("position needs theta: 1 (the gap the positions reach), not {:g}", options.theta));
+      }
+    } else if (name != "velocity") {
+      level.Fail(fmt::format("'{}' must be one of: velocity, position", name));
+    }
   }
   return options;
 }

@@ -79,6 +79,7 @@ TEST_F(SimulateContactsTest, UnilateralContactUnderAnOdeMethodIsRefused) {
   scene.replace(scene.find("method: moreau_jean"), 19, "method: implicit   ");
   scene.replace(scene.find("  step: 0.005"), 13, "  # step gone");
   scene.replace(scene.find("  theta: 0.5"), 12, "  # no theta");
+  scene.replace(scene.find("  impact_level:"), 15, "  # no level:  ");
   flexmbs::testing::ExpectInputError(Simulate(scene), "contacts[0]: contact 'floor' is unilateral");
   EXPECT_FALSE(fs::exists(results_));
 }

@@ -32,6 +32,14 @@ const char* kContacts = R"(contacts:
 )";
 const char* kMoreauJean = "simulation: {end_time: 1, method: moreau_jean, step: 1e-3, theta: 0.6}\n";
 
+/// `text` with `from` replaced by `to` (once; `from` must occur).
+std::string Replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
 class UnilateralSceneTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -45,11 +53,8 @@ class UnilateralSceneTest : public ::testing::Test {
     return file;
   }
   /// The InputError of loading `text` with `from` replaced by `to` (once, in the contacts).
-  std::string Refused(std::string text, const std::string& from, const std::string& to) const {
-    const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    if (at != std::string::npos) text.replace(at, from.size(), to);
-    const fs::path file = Write(text);
+  std::string Refused(const std::string& text, const std::string& from, const std::string& to) const {
+    const fs::path file = Write(Replaced(text, from, to));
     return flexmbs::testing::InputErrorMessage([&] { LoadScene(file); });
   }
   fs::path dir_;
@@ -128,6 +133,28 @@ TEST_F(UnilateralSceneTest, UnilateralContactsNeedMoreauJeanAndMoreauJeanNeedsIt
   EXPECT_NE(message.find("simulation.step: only for method moreau_jean"), std::string::npos) << message;
   message = Refused(contacts + kMoreauJean, "method: moreau_jean", "method: event_driven");
   EXPECT_NE(message.find("simulation.step: only for method moreau_jean"), std::string::npos) << message;
+}
+
+TEST_F(UnilateralSceneTest, ImpactLevelPositionLoadsAndNeedsThetaOneAndNoRestitution) {
+  const std::string position = "simulation: {end_time: 1, method: moreau_jean, step: 1e-3, theta: 1, impact_level: position}\n";
+  const std::string plastic = std::string(kBodies) + kContacts;
+  const Scene scene = LoadScene(Write(Replaced(plastic, "restitution: 0.9", "restitution: 0") + position));
+  ASSERT_TRUE(scene.options.moreau_jean.has_value());
+  EXPECT_EQ(scene.options.moreau_jean->impact_level, ImpactLevel::kPosition);
+  EXPECT_EQ(LoadScene(Write(plastic + kMoreauJean)).options.moreau_jean->impact_level, ImpactLevel::kVelocity);
+  std::string message = Refused(plastic + position, "restitution: 0.9", "restitution: 0.9");
+  EXPECT_NE(message.find("contacts[0].restitution: 0.9: impact_level position takes no restitution"), std::string::npos)
+      << message;
+  message = Refused(plastic + position, "theta: 1", "theta: 0.5");
+  EXPECT_NE(message.find("simulation.impact_level: position needs theta: 1 (the gap the positions reach), not 0.5"),
+            std::string::npos)
+      << message;
+  message = Refused(plastic + position, "impact_level: position", "impact_level: acceleration");
+  EXPECT_NE(message.find("simulation.impact_level: 'acceleration' must be one of: velocity, position"),
+            std::string::npos)
+      << message;
+  message = Refused(plastic + position, "method: moreau_jean, step: 1e-3, theta: 1, ", "method: event_driven, ");
+  EXPECT_NE(message.find("simulation.impact_level: only for method moreau_jean"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -73,11 +73,12 @@ ContactScene BlockOnIncline(double angle, double friction, double g) {
   return scene;
 }
 
-StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double theta) {
+StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double theta, ImpactLevel level) {
   SimulationOptions options;
   options.end_time = end_time;
   options.output_interval = h;
   options.moreau_jean = MoreauJeanOptions{h, theta};
+  options.moreau_jean->impact_level = level;
   StepHistory history;
   const MultibodySystem& system = *scene.system;
   Simulate(

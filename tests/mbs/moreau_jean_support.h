@@ -39,7 +39,8 @@ struct StepHistory {
   std::vector<double> energy;               ///< kinetic + potential [J]
 };
 
-/// Runs `scene` to end_time by steps of h (theta) with an output at every step.
-StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double theta = 0.5);
+/// Runs `scene` to end_time by steps of h (theta, impact level) with an output at every step.
+StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double theta = 0.5,
+                          ImpactLevel level = ImpactLevel::kVelocity);
 
 }  // namespace flexmbs::mbs::testing
