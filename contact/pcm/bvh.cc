@@ -1,0 +1,109 @@
+#include "contact/pcm/bvh.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "core/error.h"
+
+namespace flexmbs::contact {
+
+Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int face, double margin) {
+  Aabb box;
+  box.lo = box.hi = mesh.vertices_W.col(mesh.face_vertices[face_offsets[face]]);
+  for (int k = 1; k < mesh.face_sizes[face]; ++k) {
+    const Eigen::Vector3d p = mesh.vertices_W.col(mesh.face_vertices[face_offsets[face] + k]);
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  box.lo.array() -= margin;
+  box.hi.array() += margin;
+  return box;
+}
+
+Bvh::Bvh(const PolygonMesh& mesh, double margin, int leaf_size) : margin_(margin), leaf_size_(leaf_size) {
+  FLEXMBS_CHECK(leaf_size >= 1 && margin >= 0.0, "a BVH needs leaf_size >= 1 and margin >= 0");
+  FLEXMBS_CHECK(!mesh.face_sizes.empty(), "a BVH needs at least one face");
+  face_offsets_.resize(mesh.face_sizes.size());
+  int offset = 0;
+  for (std::size_t f = 0; f < mesh.face_sizes.size(); ++f) {
+    FLEXMBS_CHECK(mesh.face_sizes[f] >= 3, "a face has at least 3 vertices");
+    face_offsets_[f] = offset;
+    offset += mesh.face_sizes[f];
+  }
+  FLEXMBS_CHECK(offset == static_cast<int>(mesh.face_vertices.size()), "face sizes and vertices disagree");
+  for (const int v : mesh.face_vertices) {
+    FLEXMBS_CHECK(v >= 0 && v < mesh.vertices_W.cols(), "a face vertex out of range");
+  }
+  Rebuild(mesh);
+}
+
+void Bvh::UpdateFaceBoxes(const PolygonMesh& mesh) {
+  FLEXMBS_CHECK(mesh.face_sizes.size() == face_offsets_.size(), "a BVH refits the mesh it was built on");
+  face_boxes_.resize(face_offsets_.size());
+  for (std::size_t f = 0; f < face_offsets_.size(); ++f) {
+    face_boxes_[f] = FaceBox(mesh, face_offsets_, static_cast<int>(f), margin_);
+  }
+}
+
+void Bvh::Rebuild(const PolygonMesh& mesh) {
+  UpdateFaceBoxes(mesh);
+  const int num_faces = static_cast<int>(face_boxes_.size());
+  faces_.resize(num_faces);
+  std::iota(faces_.begin(), faces_.end(), 0);
+  std::vector<Eigen::Vector3d> centres(num_faces);
+  for (int f = 0; f < num_faces; ++f) centres[f] = 0.5 * (face_boxes_[f].lo + face_boxes_[f].hi);
+  nodes_.clear();
+  nodes_.reserve(2 * (num_faces / leaf_size_) + 1);
+  Build(0, num_faces, centres);
+  built_relative_area_ = RelativeSurfaceArea();
+}
+
+int Bvh::Build(int begin, int end, std::vector<Eigen::Vector3d>& centres) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  Aabb box = face_boxes_[faces_[begin]];
+  Aabb centre_box{centres[faces_[begin]], centres[faces_[begin]]};
+  for (int i = begin + 1; i < end; ++i) {
+    box.Extend(face_boxes_[faces_[i]]);
+    centre_box.Extend(Aabb{centres[faces_[i]], centres[faces_[i]]});
+  }
+  nodes_[index].box = box;
+  if (end - begin <= leaf_size_) {
+    nodes_[index].first = begin;
+    nodes_[index].count = end - begin;
+    return index;
+  }
+  int axis = 0;
+  (centre_box.hi - centre_box.lo).maxCoeff(&axis);
+  const int middle = begin + (end - begin) / 2;
+  std::nth_element(faces_.begin() + begin, faces_.begin() + middle, faces_.begin() + end,
+                   [&](int a, int b) { return centres[a](axis) < centres[b](axis); });
+  Build(begin, middle, centres);
+  const int right = Build(middle, end, centres);
+  nodes_[index].first = right;
+  nodes_[index].count = 0;
+  return index;
+}
+
+void Bvh::Refit(const PolygonMesh& mesh) {
+  UpdateFaceBoxes(mesh);
+  for (auto node = nodes_.rbegin(); node != nodes_.rend(); ++node) {
+    if (node->count > 0) {
+      node->box = face_boxes_[faces_[node->first]];
+      for (int i = 1; i < node->count; ++i) node->box.Extend(face_boxes_[faces_[node->first + i]]);
+    } else {
+      const BvhNode* self = &*node;
+      node->box = self[1].box;
+      node->box.Extend(nodes_[node->first].box);
+    }
+  }
+}
+
+double Bvh::RelativeSurfaceArea() const {
+  double sum = 0.0;
+  for (const BvhNode& node : nodes_) sum += node.box.SurfaceArea();
+  const double root = nodes_.front().box.SurfaceArea();
+  return root > 0.0 ? sum / root : 1.0;
+}
+
+}  // namespace flexmbs::contact

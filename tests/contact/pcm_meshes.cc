@@ -1,0 +1,102 @@
+#include "tests/contact/pcm_meshes.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace flexmbs::contact::testing {
+namespace {
+
+PolygonMesh TriangleMesh(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& triangles) {
+  PolygonMesh mesh;
+  mesh.vertices_W.resize(3, static_cast<Eigen::Index>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) mesh.vertices_W.col(static_cast<Eigen::Index>(i)) = points[i];
+  for (const auto& t : triangles) {
+    mesh.face_sizes.push_back(3);
+    mesh.face_vertices.insert(mesh.face_vertices.end(), t.begin(), t.end());
+  }
+  return mesh;
+}
+
+}  // namespace
+
+PolygonMesh Icosphere(const Eigen::Vector3d& centre, double radius, int level) {
+  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> unit = {{-1, g, 0}, {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                                       {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+  for (auto& p : unit) p.normalize();
+  std::vector<std::array<int, 3>> triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                               {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                               {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                               {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> midpoints;
+    const auto midpoint = [&](int a, int b) {
+      const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+      const auto found = midpoints.find(key);
+      if (found != midpoints.end()) return found->second;
+      unit.push_back((unit[a] + unit[b]).normalized());
+      const int index = static_cast<int>(unit.size()) - 1;
+      midpoints.emplace(key, index);
+      return index;
+    };
+    std::vector<std::array<int, 3>> finer;
+    for (const auto& [a, b, c] : triangles) {
+      const int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      finer.push_back({a, ab, ca});
+      finer.push_back({b, bc, ab});
+      finer.push_back({c, ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    triangles = std::move(finer);
+  }
+  for (auto& p : unit) p = centre + radius * p;
+  return TriangleMesh(unit, triangles);
+}
+
+PolygonMesh FlatGrid(double half_width, int n, double height) {
+  std::vector<Eigen::Vector3d> points;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      points.emplace_back(-half_width + 2.0 * half_width * i / n, -half_width + 2.0 * half_width * j / n, height);
+    }
+  }
+  std::vector<std::array<int, 3>> triangles;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int v = j * (n + 1) + i;
+      triangles.push_back({v, v + 1, v + n + 2});
+      triangles.push_back({v, v + n + 2, v + n + 1});
+    }
+  }
+  return TriangleMesh(points, triangles);
+}
+
+PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> position(0.0, size), offset(-edge, edge);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (int t = 0; t < count; ++t) {
+    const Eigen::Vector3d p(position(rng), position(rng), position(rng));
+    points.push_back(p);
+    points.push_back(p + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)));
+    points.push_back(p + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)));
+    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  return TriangleMesh(points, triangles);
+}
+
+void Wave(PolygonMesh& mesh, double amplitude, double wave_number, double phase) {
+  for (Eigen::Index v = 0; v < mesh.vertices_W.cols(); ++v) {
+    const Eigen::Vector3d p = mesh.vertices_W.col(v);
+    mesh.vertices_W.col(v) += amplitude * Eigen::Vector3d(std::sin(wave_number * p.y() + phase),
+                                                          std::sin(wave_number * p.z() + phase),
+                                                          std::sin(wave_number * p.x() + phase));
+  }
+}
+
+}  // namespace flexmbs::contact::testing

@@ -1,0 +1,29 @@
+#pragma once
+// Triangle meshes for the Polygonal Contact Model's tests and bench: icospheres, a flat grid and
+// random triangle soups.
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "contact/geometry/sphere_surface.h"
+
+namespace flexmbs::contact::testing {
+
+/// The icosahedron inscribed in the sphere (centre, radius [m]), each triangle split into four
+/// `level` times with the new vertices pushed onto the sphere: 20 * 4^level triangles,
+/// counter-clockwise seen from outside, closed.
+PolygonMesh Icosphere(const Eigen::Vector3d& centre, double radius, int level);
+
+/// The square [-half_width, half_width]^2 in the plane z = height [m], n x n squares each split
+/// into two triangles counter-clockwise seen from +z (its outward normal): 2 n^2 triangles, open.
+PolygonMesh FlatGrid(double half_width, int n, double height);
+
+/// `count` triangles with vertices uniform in the cube [0, size]^3, edges up to `edge` [m]
+/// (each triangle a random point and two offsets), no shared vertices.
+PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t seed);
+
+/// Moves every vertex by amplitude * (sin(k y + phase), sin(k z + phase), sin(k x + phase)) [m]:
+/// a smooth deformation like a flexible body's.
+void Wave(PolygonMesh& mesh, double amplitude, double wave_number, double phase);
+
+}  // namespace flexmbs::contact::testing
