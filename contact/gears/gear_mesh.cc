@@ -1,0 +1,90 @@
+#include "contact/gears/gear_mesh.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/error.h"
+
+namespace flexmbs::contact {
+namespace {
+
+/// Tooth index sigma i mod z of the i-th roll angle t = t_0 + i 2 pi / z.
+int ToothIndex(double sigma, long i, int teeth) {
+  const long k = (static_cast<long>(sigma) * i) % teeth;
+  return static_cast<int>(k < 0 ? k + teeth : k);
+}
+
+/// Appends the tooth pairs on one side (MeshingToothPairs).
+void AddSide(const GearPair& pair, double a, double phi1, double phi2, FlankSide side, std::vector<ToothPair>& out) {
+  const SpurGear& g1 = pair.gear1;
+  const SpurGear& g2 = pair.gear2;
+  const double sigma = Sign(side);
+  const double alpha_w = std::acos((g1.base_radius + g2.base_radius) / a);
+  const double line = a * std::sin(alpha_w);
+  const double centre = PairBacklash(pair, a) / 2.0;
+  const double step1 = 2.0 * std::numbers::pi / g1.spec.teeth;
+  const double step2 = 2.0 * std::numbers::pi / g2.spec.teeth;
+  const double base1 = alpha_w + sigma * phi1 + g1.base_half_angle;
+  const double base2 = alpha_w + std::numbers::pi + sigma * phi2 + g2.base_half_angle;
+  const Eigen::Vector2d n(std::cos(alpha_w), -sigma * std::sin(alpha_w));
+  const Eigen::Vector2d e(std::sin(alpha_w), sigma * std::cos(alpha_w));
+  const long first = static_cast<long>(std::ceil(-base1 / step1));
+  const long last = static_cast<long>(std::floor((g1.tip_roll - base1) / step1));
+  for (long i1 = first; i1 <= last; ++i1) {
+    ToothPair tp;
+    tp.side = side;
+    tp.roll1 = base1 + static_cast<double>(i1) * step1;
+    const double s1 = g1.base_radius * tp.roll1;
+    // Wheel 2's flank expected at s1 + half the backlash: the nearest of its flanks, p_b apart.
+    const double target = (line - s1 - centre) / g2.base_radius;
+    const long i2 = std::lround((target - base2) / step2);
+    tp.roll2 = base2 + static_cast<double>(i2) * step2;
+    if (tp.roll2 < 0.0 || tp.roll2 > g2.tip_roll) continue;
+    const double s2 = line - g2.base_radius * tp.roll2;
+    tp.tooth1 = ToothIndex(sigma, i1, g1.spec.teeth);
+    tp.tooth2 = ToothIndex(sigma, i2, g2.spec.teeth);
+    tp.gap = s2 - s1;
+    tp.p_O1C = g1.base_radius * n + 0.5 * (s1 + s2) * e;
+    tp.n_12 = e;
+    out.push_back(tp);
+  }
+}
+
+}  // namespace
+
+std::vector<ToothPair> MeshingToothPairs(const GearPair& pair, double centre_distance, double phi1, double phi2) {
+  FLEXMBS_CHECK(centre_distance > pair.gear1.base_radius + pair.gear2.base_radius && std::isfinite(centre_distance),
+                "a gear pair's centre distance must exceed the sum of the base radii");
+  std::vector<ToothPair> pairs;
+  AddSide(pair, centre_distance, phi1, phi2, FlankSide::kPositive, pairs);
+  AddSide(pair, centre_distance, phi1, phi2, FlankSide::kNegative, pairs);
+  return pairs;
+}
+
+double SmallestGap(const std::vector<ToothPair>& pairs, FlankSide side) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const ToothPair& tp : pairs) {
+    if (tp.side == side) smallest = std::min(smallest, tp.gap);
+  }
+  return smallest;
+}
+
+double TouchingAngle2(const GearPair& pair, double centre_distance, double phi1, double phi2_guess, FlankSide side) {
+  const double sigma = Sign(side);
+  const double half_pitch = std::numbers::pi / pair.gear2.spec.teeth;
+  double phi2 = phi2_guess;
+  for (int i = 0; i < 20; ++i) {
+    const double gap = SmallestGap(MeshingToothPairs(pair, centre_distance, phi1, phi2), side);
+    if (!std::isfinite(gap)) {  // no pair on this side at this angle: try half a pitch on
+      phi2 += half_pitch;
+      continue;
+    }
+    phi2 += sigma * gap / pair.gear2.base_radius;
+    if (std::abs(gap) <= 1e-15 * centre_distance) return phi2;
+  }
+  FLEXMBS_CHECK(false, "TouchingAngle2 did not close the gap in 20 steps");
+  return phi2;
+}
+
+}  // namespace flexmbs::contact
