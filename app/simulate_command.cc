@@ -238,7 +238,7 @@ void RunSimulate(const SimulateOptions& options) {
     if (std::isnan(energy_start)) energy_start = sample.kinetic_energy + sample.potential_energy;
     energy_end = sample.kinetic_energy + sample.potential_energy;
     writer.Append(sample);
-    if (paraview) paraview->Record(t, y);
+    if (paraview) paraview->Record(t, y, contacts);
     progress.Show(fmt::format("t = {:.6g} s of {:g} s", t, end_time));
   };
   mbs::SimulationStatistics stats;

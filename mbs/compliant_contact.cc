@@ -87,6 +87,12 @@ void CompliantContact::AddForces(const MultibodySystem& system, const ContactPoi
   AddModalLoad(system, b_, point.modal_b, -f_W, h);
 }
 
+void CompliantContact::AppendLoad(const ContactPoint& point, std::vector<ContactLoad>* loads) const {
+  const Loads evaluated = Evaluate(point);
+  if (!(evaluated.normal.force > 0.0)) return;
+  loads->push_back({0, point.p_Wc_W, point.n_W, evaluated.normal.force * point.n_W + evaluated.tangential.force});
+}
+
 void CompliantContact::AddForceJacobian(const MultibodySystem& system, const ContactPoint& point,
                                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
   const Loads loads = Evaluate(point);

@@ -7,11 +7,13 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "contact/laws/friction.h"
 #include "contact/laws/normal_law.h"
 #include "core/error.h"
 #include "mbs/body.h"
+#include "mbs/contact_load.h"
 #include "mbs/marker_ref.h"
 
 namespace flexmbs::mbs {
@@ -74,6 +76,8 @@ class CompliantContact {
   /// the lever arms' and the slip's change by a body's rotation (the load times that rotation).
   void AddForceJacobian(const MultibodySystem& system, const ContactPoint& point, Eigen::Ref<Eigen::MatrixXd> dh_dx,
                         Eigen::Ref<Eigen::MatrixXd> dh_du) const;
+  /// Appends the load f on A at `point` to `loads` if the point is in contact (F_N > 0).
+  void AppendLoad(const ContactPoint& point, std::vector<ContactLoad>* loads) const;
   /// The normal force F_N [N] at `point` (0 apart).
   double NormalForce(const ContactPoint& point) const { return Evaluate(point).normal.force; }
   /// The normal law's spring energy at `point` [J] (contact::ElasticEnergy).

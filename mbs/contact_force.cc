@@ -98,4 +98,18 @@ void SphereSphereContact::AddForceJacobian(double t, const MultibodySystem& syst
   contact_.AddForceJacobian(system, Geometry(t, system, y), dh_dx, dh_du);
 }
 
+std::vector<ContactLoad> SpherePlaneContact::ContactLoads(double /*t*/, const MultibodySystem& system,
+                                                          const ConstVectorRef& y) const {
+  std::vector<ContactLoad> loads;
+  contact_.AppendLoad(Geometry(system, y), &loads);
+  return loads;
+}
+
+std::vector<ContactLoad> SphereSphereContact::ContactLoads(double t, const MultibodySystem& system,
+                                                           const ConstVectorRef& y) const {
+  std::vector<ContactLoad> loads;
+  contact_.AppendLoad(Geometry(t, system, y), &loads);
+  return loads;
+}
+
 }  // namespace flexmbs::mbs

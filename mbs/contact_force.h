@@ -35,6 +35,9 @@ class SpherePlaneContact final : public ForceElement {
   void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
+  bool is_contact() const override { return true; }
+  /// The load at the contact point while in contact.
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
  private:
   ContactPoint Geometry(const MultibodySystem& system, const ConstVectorRef& y) const;
 
@@ -62,6 +65,9 @@ class SphereSphereContact final : public ForceElement {
   void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
+  bool is_contact() const override { return true; }
+  /// The load at the contact point while in contact.
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
  private:
   ContactPoint Geometry(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
 

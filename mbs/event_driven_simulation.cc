@@ -272,6 +272,13 @@ MoreauJeanStepReport EventDrivenRun::Report(double t, const VectorXd& z, VectorX
       result.U_N = kinematics[s].W_N.dot(y.tail(system_.num_velocities()));
     }
   }
+  for (std::size_t c = 0; c < closed.size(); ++c) {
+    const UnilateralContactKinematics& point = kinematics[static_cast<std::size_t>(closed[c])];
+    const double lambda_N = forces.lambda_N(static_cast<Eigen::Index>(c));
+    if (lambda_N == 0.0) continue;
+    report.contacts[static_cast<std::size_t>(contacts_.points()[static_cast<std::size_t>(closed[c])].contact)]
+        .loads.push_back({0, point.p_WA_W, point.n_W, lambda_N * point.n_W});
+  }
   for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
     ContactStepResult& result = report.contacts[static_cast<std::size_t>(k)];
     result.P_N += interval_impulse_(k);

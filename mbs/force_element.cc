@@ -83,6 +83,11 @@ void ForceElement::AddForceJacobian(double /*t*/, const MultibodySystem& /*syste
                                     Eigen::Ref<Eigen::MatrixXd> /*dh_dx*/,
                                     Eigen::Ref<Eigen::MatrixXd> /*dh_du*/) const {}
 
+std::vector<ContactLoad> ForceElement::ContactLoads(double /*t*/, const MultibodySystem& /*system*/,
+                                                    const ConstVectorRef& /*y*/) const {
+  return {};
+}
+
 double ForceElement::PotentialEnergy(double /*t*/, const MultibodySystem& /*system*/,
                                      const ConstVectorRef& /*y*/) const {
   return 0.0;

@@ -6,8 +6,10 @@
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <vector>
 
 #include "mbs/body.h"
+#include "mbs/contact_load.h"
 #include "mbs/marker_ref.h"
 #include "mbs/time_function.h"
 
@@ -32,6 +34,11 @@ class ForceElement {
   /// Newton matrix (mbs/system_jacobian.h); the default adds nothing.
   virtual void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                                 Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const;
+  /// Whether the element is a contact (its ContactLoads are drawn in the ParaView files).
+  virtual bool is_contact() const { return false; }
+  /// The loads at the element's contact points in contact at (t, y) (contact_id 0: the caller
+  /// numbers them); none for a load that is not a contact (the default).
+  virtual std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
 };
 
 /// The frame of a point load's components.

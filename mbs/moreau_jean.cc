@@ -144,9 +144,10 @@ ActiveContacts FindActiveContacts(const MultibodySystem& system, const ContactPo
   return active;
 }
 
-/// The per-contact results of a step from its points: the end-of-step gaps (at y_next) with the
-/// normal velocity U_N = W_N(x_k) v_next at the smallest, and the active points' impulses P.
-std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, double t_next,
+/// The per-contact results of a step of length h from its points: the end-of-step gaps (at
+/// y_next) with the normal velocity U_N = W_N(x_k) v_next at the smallest, and the active points'
+/// impulses P (summed, and per point as the load P / h).
+std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, double t_next, double h,
                                                  const ConstVectorRef& y_next, const ContactPoints& points,
                                                  const VectorXd& v_next, const ActiveContacts& active,
                                                  const VectorXd& P) {
@@ -170,6 +171,10 @@ std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, 
     ++results[k].active_points;
     results[k].P_N += P(i3);
     results[k].P_T += P.segment<2>(i3 + 1);
+    if (P.segment<3>(i3).isZero(0.0)) continue;
+    const UnilateralContactKinematics& c = points.kinematics[static_cast<std::size_t>(active.index[i])];
+    results[k].loads.push_back(
+        {0, c.p_WA_W, c.n_W, (P(i3) * c.n_W + P(i3 + 1) * c.t1_W + P(i3 + 2) * c.t2_W) / h});
   }
   return results;
 }
@@ -258,7 +263,7 @@ MoreauJeanStepReport MoreauJeanStepper::Initial(double t, const ConstVectorRef& 
   report.lambda = VectorXd::Zero(system_.num_constraints());
   const ContactPoints points = EvaluateContactPoints(system_, t, y);
   report.contacts =
-      SummarizeContacts(system_, t, y, points, y.tail(system_.num_velocities()), ActiveContacts{}, VectorXd());
+      SummarizeContacts(system_, t, 1.0, y, points, y.tail(system_.num_velocities()), ActiveContacts{}, VectorXd());
   return report;
 }
 
@@ -307,7 +312,7 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
   report_.active_contacts = static_cast<int>(n_a);
   report_.lambda = VectorXd::Zero(system_.num_constraints());
   for (std::size_t r = 0; r < smooth.kept.size(); ++r) report_.lambda(smooth.kept[r]) = impulse(static_cast<Index>(r)) / h;
-  report_.contacts = SummarizeContacts(system_, t + h, y, points, v_next, active, P);
+  report_.contacts = SummarizeContacts(system_, t + h, h, y, points, v_next, active, P);
   ++statistics_.steps;
   statistics_.max_active_contacts = std::max(statistics_.max_active_contacts, static_cast<int>(n_a));
   return report_;

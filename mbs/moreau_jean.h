@@ -12,6 +12,7 @@
 #include <functional>
 #include <vector>
 
+#include "mbs/contact_load.h"
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
@@ -52,6 +53,9 @@ struct ContactStepResult {
   /// Tangential impulses along t1_W, t2_W summed over the points [N s] (the points of a
   /// surface_plane contact share the plane's tangents).
   Eigen::Vector2d P_T = Eigen::Vector2d::Zero();
+  /// Per point with an impulse: where, and the impulse over the step as a force on A, P / h [N]
+  /// (event-driven: the closed points' contact forces at the output time).
+  std::vector<ContactLoad> loads;
 };
 
 /// What one step did.

@@ -43,10 +43,10 @@ std::string XmlEscaped(const std::string& text) {
   return out;
 }
 
-/// Whether `name` is <stem>_<k>.vtm or <stem>_<k>_<b>.vtp (k, b digits), or the temporary of
-/// one that a killed run left (TemporaryPathFor): a file of a run.
+/// Whether `name` is <stem>_<k>.vtm, <stem>_<k>_<b>.vtp or <stem>_<k>_contacts.vtp (k, b digits),
+/// or the temporary of one that a killed run left (TemporaryPathFor): a file of a run.
 bool IsSampleFileName(const std::string& name, const std::string& stem) {
-  static const std::regex kSample(R"((\d+\.vtm|\d+_\d+\.vtp)(\.tmp\.\d+)?)");
+  static const std::regex kSample(R"((\d+\.vtm|\d+_(\d+|contacts)\.vtp)(\.tmp\.\d+)?)");
   const std::string prefix = stem + "_";
   return name.starts_with(prefix) && std::regex_match(name.substr(prefix.size()), kSample);
 }
@@ -132,6 +132,50 @@ void AppendPiece(PolyDataBuffers& out, const BodyGeometry& body, int body_id) {
   fmt::format_to(std::back_inserter(out.xml), "    </Piece>\n");
 }
 
+/// The one <Piece> of a contacts PolyData file: a vertex per load.
+void AppendContactPiece(PolyDataBuffers& out, const std::vector<ContactLoad>& loads) {
+  const std::size_t n = loads.size();
+  Eigen::Matrix3Xd p_W(3, static_cast<Eigen::Index>(n)), f_W(3, static_cast<Eigen::Index>(n)),
+      n_W(3, static_cast<Eigen::Index>(n));
+  std::vector<double> normal_force(n);
+  std::vector<int> contact_id(n), vertices(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Index c = static_cast<Eigen::Index>(i);
+    p_W.col(c) = loads[i].p_W;
+    f_W.col(c) = loads[i].f_W;
+    n_W.col(c) = loads[i].n_W;
+    normal_force[i] = loads[i].f_W.dot(loads[i].n_W);
+    contact_id[i] = loads[i].contact_id;
+    vertices[i] = static_cast<int>(i);
+  }
+  fmt::format_to(std::back_inserter(out.xml),
+                 "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+                 "NumberOfPolys=\"0\">\n      <PointData Vectors=\"force\" Scalars=\"normal_force\">\n",
+                 n, n);
+  AppendArray<double>(out, "Float64", "Name=\"force\" NumberOfComponents=\"3\"", Flat(f_W));
+  AppendArray<double>(out, "Float64", "Name=\"normal\" NumberOfComponents=\"3\"", Flat(n_W));
+  AppendArray<double>(out, "Float64", "Name=\"normal_force\"", normal_force);
+  AppendArray<std::int32_t>(out, "Int32", "Name=\"contact_id\"", contact_id);
+  fmt::format_to(std::back_inserter(out.xml), "      </PointData>\n      <Points>\n");
+  AppendArray<double>(out, "Float64", "Name=\"Points\" NumberOfComponents=\"3\"", Flat(p_W));
+  fmt::format_to(std::back_inserter(out.xml), "      </Points>\n");
+  AppendCells(out, "Verts", std::vector<int>(n, 1), vertices);
+  fmt::format_to(std::back_inserter(out.xml), "    </Piece>\n");
+}
+
+/// Writes a PolyData file whose one piece `append_piece` adds.
+template <typename AppendPieceTo>
+void WritePolyDataFile(std::ostream& out, AppendPieceTo append_piece) {
+  PolyDataBuffers buffers;
+  fmt::format_to(std::back_inserter(buffers.xml),
+                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                 "header_type=\"UInt64\">\n  <PolyData>\n");
+  append_piece(buffers);
+  fmt::format_to(std::back_inserter(buffers.xml), "  </PolyData>\n  <AppendedData encoding=\"base64\">\n   _");
+  out.write(buffers.xml.data(), static_cast<std::streamsize>(buffers.xml.size()));
+  out << buffers.appended << "\n  </AppendedData>\n</VTKFile>\n";
+}
+
 }  // namespace
 
 fs::path ParaviewCollectionFor(const fs::path& results) {
@@ -139,14 +183,11 @@ fs::path ParaviewCollectionFor(const fs::path& results) {
 }
 
 void WritePolyData(std::ostream& out, const BodyGeometry& body, int body_id) {
-  PolyDataBuffers buffers;
-  fmt::format_to(std::back_inserter(buffers.xml),
-                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-                 "header_type=\"UInt64\">\n  <PolyData>\n");
-  AppendPiece(buffers, body, body_id);
-  fmt::format_to(std::back_inserter(buffers.xml), "  </PolyData>\n  <AppendedData encoding=\"base64\">\n   _");
-  out.write(buffers.xml.data(), static_cast<std::streamsize>(buffers.xml.size()));
-  out << buffers.appended << "\n  </AppendedData>\n</VTKFile>\n";
+  WritePolyDataFile(out, [&](PolyDataBuffers& buffers) { AppendPiece(buffers, body, body_id); });
+}
+
+void WriteContactPolyData(std::ostream& out, const std::vector<ContactLoad>& loads) {
+  WritePolyDataFile(out, [&](PolyDataBuffers& buffers) { AppendContactPiece(buffers, loads); });
 }
 
 ParaviewWriter::ParaviewWriter(const MultibodySystem& system, const fs::path& collection, int every)
@@ -168,6 +209,8 @@ ParaviewWriter::ParaviewWriter(const MultibodySystem& system, const fs::path& co
     }
   }
   for (int b = 0; b < system_.num_bodies(); ++b) drawings_.emplace_back(system_.body(b));
+  draws_contacts_ = system_.num_unilateral_contacts() > 0;
+  for (int i = 0; i < system_.num_force_elements(); ++i) draws_contacts_ |= system_.force_element(i).is_contact();
   WriteCollection();
 }
 
@@ -177,7 +220,27 @@ fs::path ParaviewWriter::BodyFile(long k, int b) const {
   return folder_ / fmt::format("{}_{:06d}_{}.vtp", stem_, k, b);
 }
 
-bool ParaviewWriter::Record(double t, const ConstVectorRef& y) {
+fs::path ParaviewWriter::ContactFile(long k) const { return folder_ / fmt::format("{}_{:06d}_contacts.vtp", stem_, k); }
+
+std::vector<ContactLoad> ParaviewWriter::ContactLoads(double t, const ConstVectorRef& y,
+                                                      const MoreauJeanStepReport& contacts) const {
+  std::vector<ContactLoad> loads;
+  for (std::size_t k = 0; k < contacts.contacts.size(); ++k) {
+    for (ContactLoad load : contacts.contacts[k].loads) {
+      load.contact_id = static_cast<int>(k);
+      loads.push_back(load);
+    }
+  }
+  for (int i = 0; i < system_.num_force_elements(); ++i) {
+    for (ContactLoad load : system_.force_element(i).ContactLoads(t, system_, y)) {
+      load.contact_id = system_.num_unilateral_contacts() + i;
+      loads.push_back(load);
+    }
+  }
+  return loads;
+}
+
+bool ParaviewWriter::Record(double t, const ConstVectorRef& y, const MoreauJeanStepReport& contacts) {
   const bool write = offered_ % every_ == 0;
   ++offered_;
   if (!write) return false;
@@ -191,6 +254,12 @@ bool ParaviewWriter::Record(double t, const ConstVectorRef& y) {
     WriteFileAtomically(BodyFile(k, b), [&](std::ostream& out) { WritePolyData(out, geometry, b); });
     fmt::format_to(std::back_inserter(blocks), "    <DataSet index=\"{}\" name=\"{}\" file=\"{}\"/>\n", b,
                    XmlEscaped(system_.body(b).name()), XmlEscaped(BodyFile(k, b).filename().string()));
+  }
+  if (draws_contacts_) {
+    const std::vector<ContactLoad> loads = ContactLoads(t, y, contacts);
+    WriteFileAtomically(ContactFile(k), [&](std::ostream& out) { WriteContactPolyData(out, loads); });
+    fmt::format_to(std::back_inserter(blocks), "    <DataSet index=\"{}\" name=\"contacts\" file=\"{}\"/>\n",
+                   system_.num_bodies(), XmlEscaped(ContactFile(k).filename().string()));
   }
   fmt::format_to(std::back_inserter(blocks), "  </vtkMultiBlockDataSet>\n</VTKFile>\n");
   WriteFileAtomically(SampleFile(k), [&](std::ostream& out) {

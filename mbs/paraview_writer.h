@@ -1,7 +1,8 @@
 #pragma once
 // ParaView files of a simulation (docs/results.md, "ParaView files"), written while it runs:
-// per written sample one VTK XML PolyData file (.vtp, ascii) per body (BodyDrawing) and a
-// multiblock file (.vtm) naming them after the bodies, and a ParaView data collection (.pvd)
+// per written sample one VTK XML PolyData file (.vtp) per body (BodyDrawing), one of the contact
+// points and their loads if the system has contacts, and a multiblock file (.vtm) naming them
+// after the bodies ("contacts" the last), and a ParaView data collection (.pvd)
 // listing every finished .vtm with its time. Each file is written atomically and the .pvd is
 // rewritten after every sample, so an interrupted run leaves a valid collection of every
 // sample written so far.
@@ -18,6 +19,8 @@
 #include <vector>
 
 #include "mbs/body_geometry.h"
+#include "mbs/contact_load.h"
+#include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
@@ -31,19 +34,28 @@ std::filesystem::path ParaviewCollectionFor(const std::filesystem::path& results
 /// cell data `body_id`.
 void WritePolyData(std::ostream& out, const BodyGeometry& body, int body_id);
 
+/// Writes contact loads as a VTK XML PolyData file of one vertex per load: point data `force`
+/// (3 components, [N] in W, the load on body A), `normal` (the unit normal from B to A),
+/// `normal_force` (f . n [N]) and `contact_id`.
+void WriteContactPolyData(std::ostream& out, const std::vector<ContactLoad>& loads);
+
 /// Writes the ParaView files of a run of `system` (which must outlive the writer).
 class ParaviewWriter {
  public:
   /// Files beside `collection` (<stem>.pvd), in the folder <stem>_vtk: per written sample k
-  /// (k = 000000, 000001, ...) <stem>_<k>.vtm and <stem>_<k>_<b>.vtp per body b. Creates the
+  /// (k = 000000, 000001, ...) <stem>_<k>.vtm, <stem>_<k>_<b>.vtp per body b and, if the system
+  /// has unilateral contacts or contact force elements, <stem>_<k>_contacts.vtp. Creates the
   /// folder, deletes the .vtm and .vtp files of an earlier run of the same stem and writes an
   /// empty collection. Every `every`-th sample offered to Record is written (every >= 1).
   /// Throws InputError naming the path if the folder or a file cannot be written.
   ParaviewWriter(const MultibodySystem& system, const std::filesystem::path& collection, int every = 1);
 
-  /// Offers the sample at time t [s] with state y; writes it (its .vtp files, its .vtm, then
-  /// the .pvd) if it is the first or an `every`-th one since. Returns whether it was written.
-  bool Record(double t, const ConstVectorRef& y);
+  /// Offers the sample at time t [s] with state y and the unilateral contacts' report of the
+  /// output interval that ended there; writes it (its .vtp files, its .vtm, then the .pvd) if it
+  /// is the first or an `every`-th one since. The contact loads: a unilateral contact k's
+  /// (ContactStepResult::loads) with contact_id k, a contact force element i's (ContactLoads at
+  /// y) with contact_id num_unilateral_contacts() + i. Returns whether it was written.
+  bool Record(double t, const ConstVectorRef& y, const MoreauJeanStepReport& contacts = {});
 
   /// The samples written so far.
   long samples() const { return samples_; }
@@ -53,6 +65,9 @@ class ParaviewWriter {
   /// The multiblock file of written sample k and the .vtp of body b in it.
   std::filesystem::path SampleFile(long k) const;
   std::filesystem::path BodyFile(long k, int b) const;
+  std::filesystem::path ContactFile(long k) const;
+  /// The contact loads of a sample (see Record).
+  std::vector<ContactLoad> ContactLoads(double t, const ConstVectorRef& y, const MoreauJeanStepReport& contacts) const;
   /// Rewrites the .pvd with every sample written so far (O(samples) bytes).
   void WriteCollection() const;
 
@@ -63,6 +78,7 @@ class ParaviewWriter {
   int every_;
   long offered_ = 0;
   std::vector<BodyDrawing> drawings_;
+  bool draws_contacts_ = false;
   long samples_ = 0;
   std::string collection_entries_;  ///< the .pvd's DataSet lines so far
 };

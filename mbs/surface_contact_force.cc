@@ -111,4 +111,18 @@ double SurfacePlaneContact::NormalForce(const MultibodySystem& system, const Con
   return force;
 }
 
+std::vector<ContactLoad> SphereSurfaceContact::ContactLoads(double t, const MultibodySystem& system,
+                                                            const ConstVectorRef& y) const {
+  std::vector<ContactLoad> loads;
+  contact_.AppendLoad(Geometry(t, system, y), &loads);
+  return loads;
+}
+
+std::vector<ContactLoad> SurfacePlaneContact::ContactLoads(double /*t*/, const MultibodySystem& system,
+                                                           const ConstVectorRef& y) const {
+  std::vector<ContactLoad> loads;
+  for (const ContactPoint& point : Points(system, y)) contact_.AppendLoad(point, &loads);
+  return loads;
+}
+
 }  // namespace flexmbs::mbs

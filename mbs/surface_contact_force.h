@@ -47,6 +47,9 @@ class SphereSurfaceContact final : public ForceElement {
   const sid::ContactSurface& surface() const { return surface_; }
   const CompliantContactLaw& law() const { return contact_.law(); }
 
+  bool is_contact() const override { return true; }
+  /// The load at the contact point while in contact.
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
  private:
 
   std::string name_;
@@ -79,6 +82,9 @@ class SurfacePlaneContact final : public ForceElement {
   /// The normal forces summed over the vertices [N] at y.
   double NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const;
 
+  bool is_contact() const override { return true; }
+  /// The load at every vertex in contact.
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
  private:
   /// Every vertex's contact point at y.
   std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const;

@@ -15,7 +15,8 @@ namespace flexmbs::testing {
 
 /// For a .pvd: per DataSet its `time`, `file` (a .vtm) and `blocks` as VTK's multiblock reader
 /// reads them: per block its `name`, `points` (x, y, z rows), point data `displacement` (rows)
-/// and `magnitude`, cell data `body_id` and `cells` ([VTK cell type, point ids...]). Every
+/// and `magnitude`, cell data `body_id` (empty where the block has none), every point data
+/// array by name in `point_data`, and `cells` ([VTK cell type, point ids...]). Every
 /// file is also parsed as strict XML. The script exits 1 on malformed XML and on any VTK error
 /// or warning (VTK reports them through its output window rather than raising).
 inline constexpr const char* kParaviewReadScript = R"(
@@ -38,19 +39,24 @@ for dataset in root.find('Collection').findall('DataSet'):
     if messages.GetOutput():
         sys.exit('VTK: ' + messages.GetOutput())
     output = reader.GetOutput()
+    def arrays(fields):
+        return {fields.GetArrayName(i): vtk_to_numpy(fields.GetArray(i)).tolist()
+                for i in range(fields.GetNumberOfArrays())}
     blocks = []
     for b in range(output.GetNumberOfBlocks()):
         data = output.GetBlock(b)
+        point_data = arrays(data.GetPointData())
         cells = []
         for c in range(data.GetNumberOfCells()):
             ids = data.GetCell(c).GetPointIds()
             cells.append([data.GetCellType(c)] + [ids.GetId(k) for k in range(ids.GetNumberOfIds())])
         blocks.append({
             'name': output.GetMetaData(b).Get(vtk.vtkCompositeDataSet.NAME()),
-            'points': vtk_to_numpy(data.GetPoints().GetData()).tolist(),
-            'displacement': vtk_to_numpy(data.GetPointData().GetArray('displacement')).tolist(),
-            'magnitude': vtk_to_numpy(data.GetPointData().GetArray('displacement_magnitude')).tolist(),
-            'body_id': vtk_to_numpy(data.GetCellData().GetArray('body_id')).tolist(),
+            'points': vtk_to_numpy(data.GetPoints().GetData()).tolist() if data.GetPoints() else [],
+            'displacement': point_data.get('displacement', []),
+            'magnitude': point_data.get('displacement_magnitude', []),
+            'body_id': arrays(data.GetCellData()).get('body_id', []),
+            'point_data': point_data,
             'cells': cells})
     samples.append({'time': float(dataset.get('timestep')), 'file': dataset.get('file'), 'blocks': blocks})
 json.dump(samples, open(sys.argv[2], 'w'))

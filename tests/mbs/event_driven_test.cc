@@ -136,6 +136,10 @@ TEST(EventDriven, BouncingBallHitsAtTheClosedFormTimesAndRestsAtTheAccumulationT
     EXPECT_LT(std::abs(contact.g_N), 1e-12) << run.t[k];
     EXPECT_LT(run.y[k].tail(6).norm(), 1e-12) << run.t[k];
     EXPECT_NEAR(contact.P_N / (run.t[k] - run.t[k - 1]), kMass * kG, 1e-8 * kMass * kG) << run.t[k];
+    // The load the ParaView files draw: the contact force m g up at the ball's lowest point.
+    ASSERT_EQ(contact.loads.size(), 1u) << run.t[k];
+    EXPECT_LT((contact.loads[0].f_W - Vector3d(0.0, 0.0, kMass * kG)).norm(), 1e-12) << run.t[k];
+    EXPECT_LT(std::abs(contact.loads[0].p_W.z()), 1e-12) << run.t[k];
   }
   EXPECT_GE(resting, 99);
 }
