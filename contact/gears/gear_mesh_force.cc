@@ -1,0 +1,37 @@
+#include "contact/gears/gear_mesh_force.h"
+
+#include <algorithm>
+
+#include "contact/laws/law_checks.h"
+
+namespace flexmbs::contact {
+namespace {
+
+/// The z component of the planar cross product a x b.
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+}  // namespace
+
+NormalLaw ToothPairLaw(const GearMeshCompliance& compliance, const GearPair& pair) {
+  RequirePositive("mesh stiffness c' [N/m^2]", compliance.single_pair_stiffness);
+  const double face_width = std::min(pair.gear1.spec.face_width, pair.gear2.spec.face_width);
+  return LinearLaw(compliance.single_pair_stiffness * face_width, compliance.damping);
+}
+
+MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance, double phi1, double phi2,
+                       double omega1, double omega2) {
+  MeshLoads loads;
+  const Eigen::Vector2d p_O1O2(centre_distance, 0.0);
+  for (const ToothPair& tp : MeshingToothPairs(pair, centre_distance, phi1, phi2)) {
+    if (!(tp.gap < 0.0)) continue;
+    const double rate = Sign(tp.side) * (pair.gear1.base_radius * omega1 + pair.gear2.base_radius * omega2);
+    const double force = Evaluate(law, -tp.gap, rate).force;
+    if (force == 0.0) continue;
+    loads.pairs.push_back({tp, force});
+    loads.torque1 += Cross(tp.p_O1C, -force * tp.n_12);
+    loads.torque2 += Cross(tp.p_O1C - p_O1O2, force * tp.n_12);
+  }
+  return loads;
+}
+
+}  // namespace flexmbs::contact

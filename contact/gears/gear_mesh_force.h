@@ -1,0 +1,48 @@
+#pragma once
+// The mesh force of a spur pair with compliant teeth on rigid flanks (docs/contact.md, "Spur
+// gears"): each tooth pair in contact a linear spring-dashpot along its line of action, from the
+// single-pair mesh stiffness of ISO 6336-1, and the torques on both wheels. Axes at rest.
+
+#include <vector>
+
+#include "contact/gears/gear_mesh.h"
+#include "contact/laws/normal_law.h"
+
+namespace flexmbs::contact {
+
+/// The compliance of a mesh.
+struct GearMeshCompliance {
+  /// c' [N/m per m of face width]: the single-pair stiffness, force per face width along the line
+  /// of action per deflection; ISO 6336-1:2019 sec. 9's 14 N/(mm um) = 1.4e10 N/m^2 for steel
+  /// spur pairs of the basic rack profile.
+  double single_pair_stiffness = 1.4e10;
+  double damping = 0.0;  ///< c [N s/m] per tooth pair in contact, on the deflection's rate
+};
+
+/// The normal law of one tooth pair: F = max(0, c' b delta + c delta') (LinearLaw) with b the
+/// common face width min(b1, b2) [m]. InputError "mesh stiffness c' [N/m^2] <value> must be finite
+/// and > 0" or LinearLaw's for a negative damping.
+NormalLaw ToothPairLaw(const GearMeshCompliance& compliance, const GearPair& pair);
+
+/// One tooth pair's load: F >= 0 [N] pushes wheel 2 along n_12 at the contact point and wheel 1
+/// the opposite way.
+struct ToothPairLoad {
+  ToothPair pair;
+  double force = 0.0;
+};
+
+/// The loads of a mesh: every pair in contact and the torques about +z [N m] on both wheels.
+struct MeshLoads {
+  std::vector<ToothPairLoad> pairs;
+  double torque1 = 0.0;  ///< sum of p_O1C x (-F n_12): -sigma F r_b1 per pair
+  double torque2 = 0.0;  ///< sum of (p_O1C - O2) x (F n_12): -sigma F r_b2 per pair
+};
+
+/// The mesh loads of `pair` at centre distance a [m] (axes at rest), angles phi1, phi2 [rad] and
+/// angular velocities omega1, omega2 [rad/s] about +z: each tooth pair of MeshingToothPairs with
+/// a penetration delta = -g > 0 carries law(delta, delta'), delta' = sigma (r_b1 omega1 + r_b2
+/// omega2) (the gap's rate, dg/dphi_i = -sigma r_bi).
+MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance, double phi1, double phi2,
+                       double omega1, double omega2);
+
+}  // namespace flexmbs::contact
