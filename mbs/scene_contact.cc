@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/contact_force.h"
+#include "mbs/scene_spur_gear.h"
 #include "mbs/scene_surface.h"
 #include "mbs/scene_values.h"
 #include "mbs/surface_contact_force.h"
@@ -124,12 +125,13 @@ CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, co
 
 bool IsContactForceType(std::string_view type) {
   return type == "sphere_plane_contact" || type == "sphere_sphere_contact" || type == "sphere_surface_contact" ||
-         type == "surface_plane_contact";
+         type == "surface_plane_contact" || type == "spur_gear_contact";
 }
 
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
                                                const MultibodySystem& system,
                                                const std::function<MarkerRef(const YamlNode&)>& read_marker) {
+  if (type == "spur_gear_contact") return ReadSpurGearContact(node, name, read_marker);
   if (type == "sphere_plane_contact") {
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
                             "restitution", "impact_speed", "materials", "friction"});

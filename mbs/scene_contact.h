@@ -1,7 +1,8 @@
 #pragma once
 // Reading the compliant contact force elements of a scene file (docs/scene.md, "Contact
 // elements"): `sphere_plane_contact`, `sphere_sphere_contact`, `sphere_surface_contact` and
-// `surface_plane_contact` with their law, restitution, materials and friction keys.
+// `surface_plane_contact` with their law, restitution, materials and friction keys;
+// `spur_gear_contact` by mbs/scene_spur_gear.h.
 
 #include <functional>
 #include <memory>

@@ -1,0 +1,23 @@
+#pragma once
+// Reading a `spur_gear_contact` force element of a scene file (docs/scene.md, "Contact elements").
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/yaml_node.h"
+#include "mbs/force_element.h"
+#include "mbs/marker_ref.h"
+
+namespace flexmbs::mbs {
+
+/// The SpurGearContact `name` from its entry `node`: markers `wheel1`, `wheel2` (read by
+/// `read_marker`), wheels `gear1`, `gear2` ({module, teeth, face_width} required;
+/// pressure_angle default 20 deg, profile_shift 0, addendum_coefficient 1, dedendum_coefficient
+/// 1.25), optional `centre_distance` (default a_0), `backlash` (0), `mesh_stiffness` c' [N/m^2]
+/// (1.4e10) and `damping` [N s/m] (0). Every bad key or value, and a pair that cannot mesh, is
+/// an InputError "<file>:<line>:<col>: <item>: force element '<name>': <problem>".
+std::unique_ptr<ForceElement> ReadSpurGearContact(const YamlNode& node, const std::string& name,
+                                                  const std::function<MarkerRef(const YamlNode&)>& read_marker);
+
+}  // namespace flexmbs::mbs

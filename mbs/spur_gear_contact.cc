@@ -1,0 +1,97 @@
+#include "mbs/spur_gear_contact.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <utility>
+
+#include "mbs/multibody_system.h"
+#include "mbs/simulation_error.h"
+
+namespace flexmbs::mbs {
+
+struct SpurGearContact::Frame {
+  MarkerKinematics wheel1, wheel2;
+  double centre_distance = 0.0;
+  Eigen::Vector3d x_W, y_W;             ///< the pair frame's x (W1 -> W2) and y axes in W
+  Eigen::Vector3d p_WO_W;               ///< its origin: W1's origin moved half the axial offset
+  double phi1 = 0.0, phi2 = 0.0;        ///< the wheels' angles from x about W1's z [rad]
+};
+
+SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
+                                 contact::NormalLaw law)
+    : name_(std::move(name)), wheel1_(std::move(wheel1)), wheel2_(std::move(wheel2)), pair_(std::move(pair)),
+      contact_(CompliantContactLaw{law, {}}, wheel2_, wheel1_) {}
+
+SpurGearContact::Frame SpurGearContact::PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+  Frame f;
+  f.wheel1 = system.MarkerState(wheel1_, y);
+  f.wheel2 = system.MarkerState(wheel2_, y);
+  const Eigen::Vector3d z = f.wheel1.R_WM.col(2);
+  const Eigen::Vector3d d = f.wheel2.p_WM_W - f.wheel1.p_WM_W;
+  const Eigen::Vector3d in_plane = d - z.dot(d) * z;
+  f.centre_distance = in_plane.norm();
+  if (!(f.centre_distance > pair_.gear1.base_radius + pair_.gear2.base_radius)) {
+    throw SimulationError(t, fmt::format("t = {:.9g} s: spur gear contact '{}': the axes are {:.6g} m apart, within the "
+                                         "sum of the base radii",
+                                         t, name_, f.centre_distance));
+  }
+  f.x_W = in_plane / f.centre_distance;
+  f.y_W = z.cross(f.x_W);
+  f.p_WO_W = f.wheel1.p_WM_W + 0.5 * z.dot(d) * z;
+  const auto angle = [&](const MarkerKinematics& m) {
+    const Eigen::Vector3d x = m.R_WM.col(0);
+    return std::atan2(x.dot(f.y_W), x.dot(f.x_W));
+  };
+  f.phi1 = angle(f.wheel1);
+  f.phi2 = angle(f.wheel2);
+  return f;
+}
+
+std::vector<contact::ToothPair> SpurGearContact::ToothPairs(double t, const MultibodySystem& system,
+                                                            const ConstVectorRef& y) const {
+  const Frame f = PairFrame(t, system, y);
+  return contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2);
+}
+
+std::vector<ContactPoint> SpurGearContact::Contacts(double t, const MultibodySystem& system,
+                                                    const ConstVectorRef& y) const {
+  const Frame f = PairFrame(t, system, y);
+  std::vector<ContactPoint> points;
+  for (const contact::ToothPair& tp : contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
+    if (!(tp.gap < 0.0)) continue;
+    ContactPoint point;
+    point.a = f.wheel2;
+    point.b = f.wheel1;
+    point.n_W = tp.n_12.x() * f.x_W + tp.n_12.y() * f.y_W;
+    point.p_Wc_W = f.p_WO_W + tp.p_O1C.x() * f.x_W + tp.p_O1C.y() * f.y_W;
+    point.penetration = -tp.gap;
+    points.push_back(point);
+  }
+  return points;
+}
+
+void SpurGearContact::AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                Eigen::Ref<Eigen::VectorXd> h) const {
+  for (const ContactPoint& point : Contacts(t, system, y)) contact_.AddForces(system, point, h);
+}
+
+double SpurGearContact::PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+  double energy = 0.0;
+  for (const ContactPoint& point : Contacts(t, system, y)) energy += contact_.PotentialEnergy(point);
+  return energy;
+}
+
+void SpurGearContact::AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                       Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  for (const ContactPoint& point : Contacts(t, system, y)) contact_.AddForceJacobian(system, point, dh_dx, dh_du);
+}
+
+double SpurGearContact::MeshForce(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+  double force = 0.0;
+  for (const ContactPoint& point : Contacts(t, system, y)) force += contact_.NormalForce(point);
+  return force;
+}
+
+}  // namespace flexmbs::mbs

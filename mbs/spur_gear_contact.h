@@ -1,0 +1,63 @@
+#pragma once
+// A rigid involute spur gear pair between two markers as a compliant force element (docs/mbs.md,
+// "Seams for contact"; docs/contact.md, "Spur gears"): contact/gears finds the tooth pairs and
+// their gaps, mbs/compliant_contact.h loads both bodies at each pair's contact point.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "contact/gears/gear_mesh.h"
+#include "contact/gears/spur_gear.h"
+#include "mbs/compliant_contact.h"
+#include "mbs/force_element.h"
+#include "mbs/marker_ref.h"
+
+namespace flexmbs::mbs {
+
+/// Wheel 1 on marker W1, wheel 2 on marker W2 (either may be the ground): each marker's z axis is
+/// its wheel's axis and its x axis tooth 0's centre line. The transverse plane is W1's xy plane;
+/// the pair frame's x axis runs from W1 to W2's origin projected on it (the current centre
+/// distance a), and each wheel's angle phi_i (contact::FlankPoint) is that of its marker's x axis
+/// from there about W1's z. Every tooth pair of contact::MeshingToothPairs with a penetration
+/// -g > 0 is a contact point in the middle of its two flank points, half way between the two
+/// markers' planes, with normal n_12 (wheel 2 takes F n_12): CompliantContact with the tooth-pair
+/// law (contact::ToothPairLaw) on the relative velocity of the two wheels' material points there,
+/// which is the gap's rate. Axes that stay parallel are assumed; the Jacobian leaves out the line
+/// of action's turning with moving axes. Throws SimulationError if the axes come within
+/// r_b1 + r_b2 of each other.
+class SpurGearContact final : public ForceElement {
+ public:
+  /// `pair` from contact::MakeGearPair, `law` from contact::ToothPairLaw.
+  SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair, contact::NormalLaw law);
+  const std::string& name() const override { return name_; }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const override;
+  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  /// CompliantContact::AddForceJacobian of every tooth pair in contact.
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
+
+  /// The sum of the tooth pairs' normal forces [N] at time t [s] and state y: the mesh force along
+  /// the lines of action (wheel 2 pushed along the driving side's n_12).
+  double MeshForce(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// The tooth pairs that can mesh at state y (gaps of both signs), with the current a and angles.
+  std::vector<contact::ToothPair> ToothPairs(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// The pair's geometry (its nominal centre distance; the element uses the markers' one).
+  const contact::GearPair& pair() const { return pair_; }
+
+ private:
+  /// The pair frame at state y: the markers, a, the axes x, y of the pair frame in W and the angles.
+  /// SimulationError if the axes came within the sum of the base radii.
+  struct Frame;
+  Frame PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// The contact points of the tooth pairs in contact (penetration > 0).
+  std::vector<ContactPoint> Contacts(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+
+  std::string name_;
+  MarkerRef wheel1_, wheel2_;
+  contact::GearPair pair_;
+  CompliantContact contact_;
+};
+
+}  // namespace flexmbs::mbs
