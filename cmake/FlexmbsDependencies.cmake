@@ -106,3 +106,11 @@ find_library(SICONOS_NUMERICS_LIBRARY siconos_numerics REQUIRED)
 add_library(ext::siconos INTERFACE IMPORTED)
 target_include_directories(ext::siconos SYSTEM INTERFACE ${SICONOS_NUMERICS_INCLUDE_DIR} ${SICONOS_CONFIG_INCLUDE_DIR})
 target_link_libraries(ext::siconos INTERFACE ${SICONOS_NUMERICS_LIBRARY})
+
+# FCL 0.7 (the broad-phase peer of bench/pcm_bench.cc): Debian's CMake config (target `fcl`); its
+# .pc file would add -std=c++11. Headers as SYSTEM, as Eigen's.
+find_package(fcl REQUIRED)
+add_library(ext::fcl INTERFACE IMPORTED)
+target_link_libraries(ext::fcl INTERFACE fcl)
+get_target_property(_fcl_inc fcl INTERFACE_INCLUDE_DIRECTORIES)
+set_target_properties(fcl PROPERTIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_fcl_inc}")

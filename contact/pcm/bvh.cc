@@ -1,11 +1,62 @@
 #include "contact/pcm/bvh.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 #include "core/error.h"
 
 namespace flexmbs::contact {
+namespace {
+
+/// Binned surface-area split (Wald 2007, "On fast construction of SAH-based bounding volume
+/// hierarchies"): the face centres of [begin, end) sorted into 16 bins along `axis`, the plane
+/// between bins that minimises SA(left) n_left + SA(right) n_right, the faces partitioned by it.
+/// Returns the first face of the right part, or -1 if all centres share a bin.
+int SurfaceAreaSplit(std::vector<int>& faces, int begin, int end, const std::vector<Aabb>& boxes,
+                     const std::vector<Eigen::Vector3d>& centres, const Aabb& centre_box, int axis) {
+  constexpr int kBins = 16;
+  const double lo = centre_box.lo(axis), extent = centre_box.hi(axis) - lo;
+  if (!(extent > 0.0)) return -1;
+  const auto bin = [&](int face) { return std::min(kBins - 1, static_cast<int>(kBins * (centres[face](axis) - lo) / extent)); };
+  std::array<Aabb, kBins> bin_boxes;
+  std::array<int, kBins> counts{};
+  for (int i = begin; i < end; ++i) {
+    const int b = bin(faces[i]);
+    if (counts[b]++ == 0) bin_boxes[b] = boxes[faces[i]];
+    bin_boxes[b].Extend(boxes[faces[i]]);
+  }
+  // right_cost[k]: SA of bins k.. times their count.
+  std::array<double, kBins> right_cost{};
+  Aabb right;
+  int right_count = 0;
+  for (int k = kBins - 1; k > 0; --k) {
+    if (counts[k] > 0 && right_count == 0) right = bin_boxes[k];
+    if (counts[k] > 0) right.Extend(bin_boxes[k]);
+    right_count += counts[k];
+    right_cost[k] = right_count > 0 ? right.SurfaceArea() * right_count : 0.0;
+  }
+  Aabb left;
+  int left_count = 0, best_split = -1;
+  double best_cost = 0.0;
+  for (int k = 1; k < kBins; ++k) {
+    if (counts[k - 1] > 0 && left_count == 0) left = bin_boxes[k - 1];
+    if (counts[k - 1] > 0) left.Extend(bin_boxes[k - 1]);
+    left_count += counts[k - 1];
+    if (left_count == 0 || left_count == end - begin) continue;
+    const double cost = left.SurfaceArea() * left_count + right_cost[k];
+    if (best_split < 0 || cost < best_cost) {
+      best_split = k;
+      best_cost = cost;
+    }
+  }
+  if (best_split < 0) return -1;
+  return static_cast<int>(std::partition(faces.begin() + begin, faces.begin() + end,
+                                         [&](int face) { return bin(face) < best_split; }) -
+                          faces.begin());
+}
+
+}  // namespace
 
 Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int face, double margin) {
   Aabb box;
@@ -20,7 +71,8 @@ Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int 
   return box;
 }
 
-Bvh::Bvh(const PolygonMesh& mesh, double margin, int leaf_size) : margin_(margin), leaf_size_(leaf_size) {
+Bvh::Bvh(const PolygonMesh& mesh, double margin, int leaf_size, BvhSplit split)
+    : margin_(margin), leaf_size_(leaf_size), split_(split) {
   FLEXMBS_CHECK(leaf_size >= 1 && margin >= 0.0, "a BVH needs leaf_size >= 1 and margin >= 0");
   FLEXMBS_CHECK(!mesh.face_sizes.empty(), "a BVH needs at least one face");
   face_offsets_.resize(mesh.face_sizes.size());
@@ -75,9 +127,14 @@ int Bvh::Build(int begin, int end, std::vector<Eigen::Vector3d>& centres) {
   }
   int axis = 0;
   (centre_box.hi - centre_box.lo).maxCoeff(&axis);
-  const int middle = begin + (end - begin) / 2;
-  std::nth_element(faces_.begin() + begin, faces_.begin() + middle, faces_.begin() + end,
-                   [&](int a, int b) { return centres[a](axis) < centres[b](axis); });
+  int middle = split_ == BvhSplit::kSurfaceArea
+                   ? SurfaceAreaSplit(faces_, begin, end, face_boxes_, centres, centre_box, axis)
+                   : -1;
+  if (middle < 0) {
+    middle = begin + (end - begin) / 2;
+    std::nth_element(faces_.begin() + begin, faces_.begin() + middle, faces_.begin() + end,
+                     [&](int a, int b) { return centres[a](axis) < centres[b](axis); });
+  }
   Build(begin, middle, centres);
   const int right = Build(middle, end, centres);
   nodes_[index].first = right;

@@ -45,15 +45,18 @@ std::vector<FacePair> Sorted(std::vector<FacePair> pairs) {
   return pairs;
 }
 
-TEST(PcmBvh, CandidatePairsOfRandomSoupsEqualTheBruteForcePairsForEveryLeafSizeAndMargin) {
+TEST(PcmBvh, CandidatePairsOfRandomSoupsEqualTheBruteForcePairsForEveryLeafSizeMarginAndSplit) {
   const PolygonMesh A = RandomTriangles(700, 1.0, 0.08, 1), B = RandomTriangles(500, 1.0, 0.1, 2);
-  for (const int leaf_size : {1, 2, 5}) {
-    for (const double margin : {0.0, 0.02}) {
-      const std::vector<FacePair> expected = BruteForcePairs(A, margin, B, 0.0);
-      ASSERT_GT(expected.size(), 100u);  // the soups touch in many places
-      const std::vector<FacePair> found = CandidatePairs(Bvh(A, margin, leaf_size), Bvh(B, 0.0, leaf_size));
-      EXPECT_EQ(found.size(), expected.size()) << "no pair twice; leaf size " << leaf_size << ", margin " << margin;
-      EXPECT_EQ(Sorted(found), expected) << "leaf size " << leaf_size << ", margin " << margin;
+  for (const BvhSplit split : {BvhSplit::kMedian, BvhSplit::kSurfaceArea}) {
+    for (const int leaf_size : {1, 2, 5}) {
+      for (const double margin : {0.0, 0.02}) {
+        const std::vector<FacePair> expected = BruteForcePairs(A, margin, B, 0.0);
+        ASSERT_GT(expected.size(), 100u);  // the soups touch in many places
+        const std::vector<FacePair> found =
+            CandidatePairs(Bvh(A, margin, leaf_size, split), Bvh(B, 0.0, leaf_size, split));
+        EXPECT_EQ(found.size(), expected.size()) << "no pair twice; leaf size " << leaf_size << ", margin " << margin;
+        EXPECT_EQ(Sorted(found), expected) << "leaf size " << leaf_size << ", margin " << margin;
+      }
     }
   }
 }
@@ -64,12 +67,14 @@ TEST(PcmBvh, CandidatePairsOfASpherePressedIntoAFlatEqualTheBruteForcePairs) {
   const std::vector<FacePair> expected = BruteForcePairs(sphere, 0.0, flat, 0.15);
   ASSERT_GT(expected.size(), 50u);
   EXPECT_EQ(Sorted(CandidatePairs(Bvh(sphere, 0.0), Bvh(flat, 0.15))), expected);
+  EXPECT_EQ(Sorted(CandidatePairs(Bvh(sphere, 0.0, 2, BvhSplit::kSurfaceArea), Bvh(flat, 0.15, 2, BvhSplit::kSurfaceArea))),
+            expected);
 }
 
 TEST(PcmBvh, RefittedTreesFindTheRebuiltTreesPairsOnDeformingMeshes) {
   PolygonMesh A = Icosphere(Eigen::Vector3d(0.0, 0.0, 0.0), 1.0, 4);
   PolygonMesh B = Icosphere(Eigen::Vector3d(1.7, 0.2, 0.1), 1.0, 3);
-  Bvh tree_A(A, 0.01), tree_B(B);
+  Bvh tree_A(A, 0.01), tree_B(B, 0.0, 2, BvhSplit::kSurfaceArea);
   for (int step = 1; step <= 5; ++step) {
     Wave(A, 0.03, 4.0, 0.7 * step);
     Wave(B, 0.05, 3.0, -0.4 * step);

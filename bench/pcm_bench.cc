@@ -1,0 +1,184 @@
+// The Polygonal Contact Model's broad phase (docs/contact.md, "Polygonal Contact Model"): time
+// per step for two deforming icospheres of 1.3e3 to 3.3e5 triangles each, flexmbs' AABB tree
+// refitted (SAH), flexmbs' tree rebuilt (median and SAH splits), and FCL 0.7's BVHModel<AABB> refitted and BVHModel<OBBRSS>
+// rebuilt, each followed by its tree-vs-tree query, on the same meshes in one run; then the
+// degradation of a refitted tree against its query time, which sets the rebuild threshold.
+//
+//   bench_pcm [levels, default 3,4,5,6,7]
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench/command_line.h"
+#include "contact/pcm/bvh.h"
+#include "contact/pcm/candidate_pairs.h"
+#include "tests/contact/pcm_meshes.h"
+
+namespace {
+
+using flexmbs::contact::Bvh;
+using flexmbs::contact::BvhSplit;
+using flexmbs::contact::CandidatePairs;
+using flexmbs::contact::PolygonMesh;
+namespace testing = flexmbs::contact::testing;
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The two surfaces at step k: unit icospheres 1.8 apart, each moved by a travelling wave of
+/// amplitude 0.01 (a flexible body's small deformation).
+struct Scene {
+  PolygonMesh rest_A, rest_B, A, B;
+  explicit Scene(int level)
+      : rest_A(testing::Icosphere(Eigen::Vector3d::Zero(), 1.0, level)),
+        rest_B(testing::Icosphere(Eigen::Vector3d(1.8, 0.1, 0.05), 1.0, level)),
+        A(rest_A),
+        B(rest_B) {}
+  void Step(int k, double amplitude = 0.01) {
+    A.vertices_W = rest_A.vertices_W;
+    B.vertices_W = rest_B.vertices_W;
+    testing::Wave(A, amplitude, 6.0, 0.3 * k);
+    testing::Wave(B, amplitude, 5.0, -0.2 * k);
+  }
+};
+
+std::vector<fcl::Vector3d> Points(const PolygonMesh& mesh) {
+  std::vector<fcl::Vector3d> points(mesh.vertices_W.cols());
+  for (Eigen::Index v = 0; v < mesh.vertices_W.cols(); ++v) points[v] = mesh.vertices_W.col(v);
+  return points;
+}
+
+template <typename Bv>
+std::shared_ptr<fcl::BVHModel<Bv>> FclModel(const PolygonMesh& mesh) {
+  std::vector<fcl::Triangle> triangles;
+  for (std::size_t f = 0; f < mesh.face_sizes.size(); ++f) {
+    const int* v = &mesh.face_vertices[3 * f];
+    triangles.emplace_back(v[0], v[1], v[2]);
+  }
+  auto model = std::make_shared<fcl::BVHModel<Bv>>();
+  model->beginModel();
+  model->addSubModel(Points(mesh), triangles);
+  model->endModel();
+  return model;
+}
+
+/// FCL's collide of two models at rest in W: the number of intersecting triangle pairs (all of
+/// them: the request asks for up to 1e9 contacts).
+template <typename Bv>
+std::size_t FclCollide(const std::shared_ptr<fcl::BVHModel<Bv>>& A, const std::shared_ptr<fcl::BVHModel<Bv>>& B) {
+  const fcl::CollisionObjectd object_A(A, fcl::Transform3d::Identity()), object_B(B, fcl::Transform3d::Identity());
+  const fcl::CollisionRequestd request(1000000000, false);
+  fcl::CollisionResultd result;
+  fcl::collide(&object_A, &object_B, request, result);
+  return result.numContacts();
+}
+
+void CompareBroadPhases(const std::vector<int>& levels) {
+  std::printf("broad phase per step, two deforming icospheres (seconds per step; ratios to flexmbs refit)\n");
+  std::printf("%9s %9s %10s %10s %10s %10s %11s %12s %9s %9s %10s %10s\n", "triangles", "pairs", "fcl pairs", "refit",
+              "rebuild", "rebuild", "fcl refit", "fcl rebuild", "median/", "SAH/", "fcl refit/", "fcl rebld/");
+  std::printf("%9s %9s %10s %10s %10s %10s %11s %12s %9s %9s %10s %10s\n", "per body", "(boxes)", "(triangles)",
+              "flexmbs", "median", "SAH", "AABB", "OBBRSS", "refit", "refit", "refit", "refit");
+  for (const int level : levels) {
+    Scene scene(level);
+    const int steps = level >= 7 ? 5 : level >= 6 ? 10 : 40;
+    Bvh tree_A(scene.A), tree_B(scene.B);
+    auto fcl_A = FclModel<fcl::AABBd>(scene.A), fcl_B = FclModel<fcl::AABBd>(scene.B);
+    std::size_t pairs = 0, fcl_pairs = 0;
+    double refit = 0.0, rebuild = 0.0, sah_rebuild = 0.0, fcl_refit = 0.0, fcl_rebuild = 0.0;
+    for (int k = 1; k <= steps; ++k) {
+      scene.Step(k);
+      auto start = std::chrono::steady_clock::now();
+      tree_A.Refit(scene.A);
+      tree_B.Refit(scene.B);
+      pairs = CandidatePairs(tree_A, tree_B).size();
+      refit += Seconds(start);
+
+      start = std::chrono::steady_clock::now();
+      const std::size_t rebuilt_pairs = CandidatePairs(Bvh(scene.A, 0.0, 2, BvhSplit::kMedian),
+                                                       Bvh(scene.B, 0.0, 2, BvhSplit::kMedian)).size();
+      rebuild += Seconds(start);
+      if (rebuilt_pairs != pairs) std::printf("  refit and rebuild disagree: %zu != %zu pairs\n", pairs, rebuilt_pairs);
+
+      start = std::chrono::steady_clock::now();
+      CandidatePairs(Bvh(scene.A), Bvh(scene.B));  // the default: SAH
+      sah_rebuild += Seconds(start);
+
+      start = std::chrono::steady_clock::now();
+      for (const auto& [model, mesh] : {std::pair{&fcl_A, &scene.A}, std::pair{&fcl_B, &scene.B}}) {
+        std::vector<fcl::Vector3d> points = Points(*mesh);
+        (*model)->beginUpdateModel();
+        (*model)->updateSubModel(points);
+        (*model)->endUpdateModel(true, true);
+      }
+      fcl_pairs = FclCollide(fcl_A, fcl_B);
+      fcl_refit += Seconds(start);
+
+      start = std::chrono::steady_clock::now();
+      FclCollide(FclModel<fcl::OBBRSSd>(scene.A), FclModel<fcl::OBBRSSd>(scene.B));
+      fcl_rebuild += Seconds(start);
+    }
+    refit /= steps;
+    rebuild /= steps;
+    sah_rebuild /= steps;
+    fcl_refit /= steps;
+    fcl_rebuild /= steps;
+    std::printf("%9zu %9zu %10zu %10.3e %10.3e %10.3e %11.3e %12.3e %9.2f %9.2f %10.2f %10.2f\n",
+                scene.A.face_sizes.size(), pairs, fcl_pairs, refit, rebuild, sah_rebuild, fcl_refit, fcl_rebuild,
+                rebuild / refit, sah_rebuild / refit, fcl_refit / refit, fcl_rebuild / refit);
+  }
+}
+
+/// The fastest of `repeats` candidate-pair queries [s].
+double QueryTime(const Bvh& A, const Bvh& B, int repeats) {
+  double fastest = 1e300;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    CandidatePairs(A, B);
+    fastest = std::min(fastest, Seconds(start));
+  }
+  return fastest;
+}
+
+/// The query time of a refitted tree (SAH, the default) against rebuilt ones (SAH and median
+/// splits) as the deformation grows; the fastest of 30 queries each.
+void Degradation(int level) {
+  std::printf("\nrefitted tree against rebuilt, %zu triangles per body: deformation amplitude, degradation, query times\n",
+              Scene(level).A.face_sizes.size());
+  std::printf("%10s %12s %12s %12s %12s %8s %12s\n", "amplitude", "degradation", "query refit", "query SAH",
+              "query median", "ratio", "rebuild [s]");
+  for (const double amplitude : {0.0, 0.01, 0.03, 0.1, 0.2, 0.4}) {
+    Scene scene(level);
+    Bvh tree_A(scene.A), tree_B(scene.B);
+    scene.Step(3, amplitude);
+    tree_A.Refit(scene.A);
+    tree_B.Refit(scene.B);
+    const double query_refit = QueryTime(tree_A, tree_B, 30);
+    const auto start = std::chrono::steady_clock::now();
+    const Bvh built_A(scene.A), built_B(scene.B);
+    const double build = Seconds(start);
+    const double query_built = QueryTime(built_A, built_B, 30);
+    const double query_median = QueryTime(Bvh(scene.A, 0.0, 2, BvhSplit::kMedian), Bvh(scene.B, 0.0, 2, BvhSplit::kMedian), 30);
+    std::printf("%10.3f %12.3f %12.3e %12.3e %12.3e %8.2f %12.3e\n", amplitude,
+                0.5 * (tree_A.Degradation() + tree_B.Degradation()), query_refit, query_built, query_median,
+                query_refit / query_built, build);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<int> levels = argc > 1 ? flexmbs::bench::ParseIntList(argv[1]) : std::vector<int>{3, 4, 5, 6, 7};
+  CompareBroadPhases(levels);
+  Degradation(5);
+  return 0;
+}
