@@ -13,8 +13,8 @@ namespace flexmbs::mbs {
 namespace {
 
 contact::SpurGearSpec ReadWheel(const YamlNode& node) {
-  node.RejectUnknownKeys({"module", "teeth", "pressure_angle", "profile_shift", "addendum_coefficient",
-                          "dedendum_coefficient", "face_width"});
+  node.RejectUnknownKeys({"module", "teeth", "pressure_angle", "profile_shift",
+                          "addendum_coefficient", "dedendum_coefficient", "face_width"});
   contact::SpurGearSpec spec;
   spec.module = node.Required("module").AsDouble();
   spec.teeth = node.Required("teeth").AsInt();
@@ -31,19 +31,23 @@ contact::SpurGearSpec ReadWheel(const YamlNode& node) {
 
 }  // namespace
 
-std::unique_ptr<ForceElement> ReadSpurGearContact(const YamlNode& node, const std::string& name,
-                                                  const std::function<MarkerRef(const YamlNode&)>& read_marker) {
-  node.RejectUnknownKeys({"name", "type", "wheel1", "wheel2", "gear1", "gear2", "centre_distance", "backlash",
-                          "mesh_stiffness", "damping"});
-  const MarkerRef wheel1 = read_marker(node.Required("wheel1")), wheel2 = read_marker(node.Required("wheel2"));
-  contact::GearPairSpec spec{ReadWheel(node.Required("gear1")), ReadWheel(node.Required("gear2")), 0.0, 0.0};
+std::unique_ptr<ForceElement> ReadSpurGearContact(
+    const YamlNode& node, const std::string& name,
+    const std::function<MarkerRef(const YamlNode&)>& read_marker) {
+  node.RejectUnknownKeys({"name", "type", "wheel1", "wheel2", "gear1", "gear2", "centre_distance",
+                          "backlash", "mesh_stiffness", "damping"});
+  const MarkerRef wheel1 = read_marker(node.Required("wheel1")),
+                  wheel2 = read_marker(node.Required("wheel2"));
+  contact::GearPairSpec spec{ReadWheel(node.Required("gear1")), ReadWheel(node.Required("gear2")),
+                             0.0, 0.0};
   const auto optional = [&](std::string_view key, double fallback) {
     return node.Has(key) ? node.Required(key).AsDouble() : fallback;
   };
   spec.centre_distance = optional("centre_distance", 0.0);
   spec.backlash = optional("backlash", 0.0);
-  const contact::GearMeshCompliance compliance{optional("mesh_stiffness", contact::GearMeshCompliance{}.single_pair_stiffness),
-                                               optional("damping", 0.0)};
+  const contact::GearMeshCompliance compliance{
+      optional("mesh_stiffness", contact::GearMeshCompliance{}.single_pair_stiffness),
+      optional("damping", 0.0)};
   try {
     const contact::GearPair pair = contact::MakeGearPair(spec);
     const contact::NormalLaw law = contact::ToothPairLaw(compliance, pair);

@@ -17,7 +17,8 @@ namespace flexmbs::mbs {
 /// 1.25), optional `centre_distance` (default a_0), `backlash` (0), `mesh_stiffness` c' [N/m^2]
 /// (1.4e10) and `damping` [N s/m] (0). Every bad key or value, and a pair that cannot mesh, is
 /// an InputError "<file>:<line>:<col>: <item>: force element '<name>': <problem>".
-std::unique_ptr<ForceElement> ReadSpurGearContact(const YamlNode& node, const std::string& name,
-                                                  const std::function<MarkerRef(const YamlNode&)>& read_marker);
+std::unique_ptr<ForceElement> ReadSpurGearContact(
+    const YamlNode& node, const std::string& name,
+    const std::function<MarkerRef(const YamlNode&)>& read_marker);
 
 }  // namespace flexmbs::mbs

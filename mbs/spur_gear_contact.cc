@@ -14,17 +14,21 @@ namespace flexmbs::mbs {
 struct SpurGearContact::Frame {
   MarkerKinematics wheel1, wheel2;
   double centre_distance = 0.0;
-  Eigen::Vector3d x_W, y_W;             ///< the pair frame's x (W1 -> W2) and y axes in W
-  Eigen::Vector3d p_WO_W;               ///< its origin: W1's origin moved half the axial offset
-  double phi1 = 0.0, phi2 = 0.0;        ///< the wheels' angles from x about W1's z [rad]
+  Eigen::Vector3d x_W, y_W;       ///< the pair frame's x (W1 -> W2) and y axes in W
+  Eigen::Vector3d p_WO_W;         ///< its origin: W1's origin moved half the axial offset
+  double phi1 = 0.0, phi2 = 0.0;  ///< the wheels' angles from x about W1's z [rad]
 };
 
-SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
-                                 contact::NormalLaw law)
-    : name_(std::move(name)), wheel1_(std::move(wheel1)), wheel2_(std::move(wheel2)), pair_(std::move(pair)),
+SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2,
+                                 contact::GearPair pair, contact::NormalLaw law)
+    : name_(std::move(name)),
+      wheel1_(std::move(wheel1)),
+      wheel2_(std::move(wheel2)),
+      pair_(std::move(pair)),
       contact_(CompliantContactLaw{law, {}}, wheel2_, wheel1_) {}
 
-SpurGearContact::Frame SpurGearContact::PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+SpurGearContact::Frame SpurGearContact::PairFrame(double t, const MultibodySystem& system,
+                                                  const ConstVectorRef& y) const {
   Frame f;
   f.wheel1 = system.MarkerState(wheel1_, y);
   f.wheel2 = system.MarkerState(wheel2_, y);
@@ -33,9 +37,11 @@ SpurGearContact::Frame SpurGearContact::PairFrame(double t, const MultibodySyste
   const Eigen::Vector3d in_plane = d - z.dot(d) * z;
   f.centre_distance = in_plane.norm();
   if (!(f.centre_distance > pair_.gear1.base_radius + pair_.gear2.base_radius)) {
-    throw SimulationError(t, fmt::format("t = {:.9g} s: spur gear contact '{}': the axes are {:.6g} m apart, within the "
-                                         "sum of the base radii",
-                                         t, name_, f.centre_distance));
+    throw SimulationError(
+        t,
+        fmt::format("t = {:.9g} s: spur gear contact '{}': the axes are {:.6g} m apart, within the "
+                    "sum of the base radii",
+                    t, name_, f.centre_distance));
   }
   f.x_W = in_plane / f.centre_distance;
   f.y_W = z.cross(f.x_W);
@@ -59,7 +65,8 @@ std::vector<ContactPoint> SpurGearContact::Contacts(double t, const MultibodySys
                                                     const ConstVectorRef& y) const {
   const Frame f = PairFrame(t, system, y);
   std::vector<ContactPoint> points;
-  for (const contact::ToothPair& tp : contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
+  for (const contact::ToothPair& tp :
+       contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
     if (!(tp.gap < 0.0)) continue;
     ContactPoint point;
     point.a = f.wheel2;
@@ -77,18 +84,23 @@ void SpurGearContact::AddForces(double t, const MultibodySystem& system, const C
   for (const ContactPoint& point : Contacts(t, system, y)) contact_.AddForces(system, point, h);
 }
 
-double SpurGearContact::PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+double SpurGearContact::PotentialEnergy(double t, const MultibodySystem& system,
+                                        const ConstVectorRef& y) const {
   double energy = 0.0;
-  for (const ContactPoint& point : Contacts(t, system, y)) energy += contact_.PotentialEnergy(point);
+  for (const ContactPoint& point : Contacts(t, system, y))
+    energy += contact_.PotentialEnergy(point);
   return energy;
 }
 
-void SpurGearContact::AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
-                                       Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
-  for (const ContactPoint& point : Contacts(t, system, y)) contact_.AddForceJacobian(system, point, dh_dx, dh_du);
+void SpurGearContact::AddForceJacobian(double t, const MultibodySystem& system,
+                                       const ConstVectorRef& y, Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                                       Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  for (const ContactPoint& point : Contacts(t, system, y))
+    contact_.AddForceJacobian(system, point, dh_dx, dh_du);
 }
 
-double SpurGearContact::MeshForce(double t, const MultibodySystem& system, const ConstVectorRef& y) const {
+double SpurGearContact::MeshForce(double t, const MultibodySystem& system,
+                                  const ConstVectorRef& y) const {
   double force = 0.0;
   for (const ContactPoint& point : Contacts(t, system, y)) force += contact_.NormalForce(point);
   return force;

@@ -29,30 +29,35 @@ namespace flexmbs::mbs {
 class SpurGearContact final : public ForceElement {
  public:
   /// `pair` from contact::MakeGearPair, `law` from contact::ToothPairLaw.
-  SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair, contact::NormalLaw law);
+  SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
+                  contact::NormalLaw law);
   const std::string& name() const override { return name_; }
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
-  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  double PotentialEnergy(double t, const MultibodySystem& system,
+                         const ConstVectorRef& y) const override;
   /// CompliantContact::AddForceJacobian of every tooth pair in contact.
   void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
-                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                        Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
   /// The sum of the tooth pairs' normal forces [N] at time t [s] and state y: the mesh force along
   /// the lines of action (wheel 2 pushed along the driving side's n_12).
   double MeshForce(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
   /// The tooth pairs that can mesh at state y (gaps of both signs), with the current a and angles.
-  std::vector<contact::ToothPair> ToothPairs(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  std::vector<contact::ToothPair> ToothPairs(double t, const MultibodySystem& system,
+                                             const ConstVectorRef& y) const;
   /// The pair's geometry (its nominal centre distance; the element uses the markers' one).
   const contact::GearPair& pair() const { return pair_; }
 
  private:
-  /// The pair frame at state y: the markers, a, the axes x, y of the pair frame in W and the angles.
-  /// SimulationError if the axes came within the sum of the base radii.
+  /// The pair frame at state y: the markers, a, the axes x, y of the pair frame in W and the
+  /// angles. SimulationError if the axes came within the sum of the base radii.
   struct Frame;
   Frame PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
   /// The contact points of the tooth pairs in contact (penetration > 0).
-  std::vector<ContactPoint> Contacts(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  std::vector<ContactPoint> Contacts(double t, const MultibodySystem& system,
+                                     const ConstVectorRef& y) const;
 
   std::string name_;
   MarkerRef wheel1_, wheel2_;

@@ -16,7 +16,8 @@ int ToothIndex(double sigma, long i, int teeth) {
 }
 
 /// Appends the tooth pairs on one side (MeshingToothPairs).
-void AddSide(const GearPair& pair, double a, double phi1, double phi2, FlankSide side, std::vector<ToothPair>& out) {
+void AddSide(const GearPair& pair, double a, double phi1, double phi2, FlankSide side,
+             std::vector<ToothPair>& out) {
   const SpurGear& g1 = pair.gear1;
   const SpurGear& g2 = pair.gear2;
   const double sigma = Sign(side);
@@ -53,8 +54,10 @@ void AddSide(const GearPair& pair, double a, double phi1, double phi2, FlankSide
 
 }  // namespace
 
-std::vector<ToothPair> MeshingToothPairs(const GearPair& pair, double centre_distance, double phi1, double phi2) {
-  FLEXMBS_CHECK(centre_distance > pair.gear1.base_radius + pair.gear2.base_radius && std::isfinite(centre_distance),
+std::vector<ToothPair> MeshingToothPairs(const GearPair& pair, double centre_distance, double phi1,
+                                         double phi2) {
+  FLEXMBS_CHECK(centre_distance > pair.gear1.base_radius + pair.gear2.base_radius &&
+                    std::isfinite(centre_distance),
                 "a gear pair's centre distance must exceed the sum of the base radii");
   std::vector<ToothPair> pairs;
   AddSide(pair, centre_distance, phi1, phi2, FlankSide::kPositive, pairs);
@@ -70,7 +73,8 @@ double SmallestGap(const std::vector<ToothPair>& pairs, FlankSide side) {
   return smallest;
 }
 
-double TouchingAngle2(const GearPair& pair, double centre_distance, double phi1, double phi2_guess, FlankSide side) {
+double TouchingAngle2(const GearPair& pair, double centre_distance, double phi1, double phi2_guess,
+                      FlankSide side) {
   const double sigma = Sign(side);
   const double half_pitch = std::numbers::pi / pair.gear2.spec.teeth;
   double phi2 = phi2_guess;

@@ -15,11 +15,13 @@ namespace flexmbs::contact {
 struct ToothPair {
   FlankSide side = FlankSide::kPositive;  ///< the flanks (and the line of action) they meet on
   int tooth1 = 0, tooth2 = 0;             ///< tooth indices, 0 ... z - 1 (FlankPoint)
-  double roll1 = 0.0, roll2 = 0.0;        ///< t1, t2 [rad]: the roll angles of the flank points on the line
+  /// t1, t2 [rad]: the roll angles of the flank points on the line.
+  double roll1 = 0.0, roll2 = 0.0;
   /// g [m]: the distance from wheel 1's flank to wheel 2's along the line of action; > 0 apart,
   /// < 0 penetration (the teeth overlap by -g).
   double gap = 0.0;
-  Eigen::Vector2d p_O1C = Eigen::Vector2d::Zero();  ///< the middle of the two flank points [m], pair frame
+  /// The middle of the two flank points [m], in the pair frame.
+  Eigen::Vector2d p_O1C = Eigen::Vector2d::Zero();
   /// The line of action's unit direction along which wheel 1 pushes wheel 2 (wheel 1's flank's
   /// outward normal): n_12 = (sin alpha_w, sigma cos alpha_w).
   Eigen::Vector2d n_12 = Eigen::Vector2d::UnitX();
@@ -30,12 +32,13 @@ struct ToothPair {
 /// sides. On side sigma the line of action touches the base circles at T1 = r_b1 (cos alpha_w,
 /// -sigma sin alpha_w) and T2 = O2 - T1 (alpha_w = acos((r_b1 + r_b2) / a)); wheel 1's flank of
 /// tooth k crosses it at s1 = r_b1 t1 from T1, t1 = alpha_w + sigma (phi1 + 2 pi k / z1) + psi_b1,
-/// wheel 2's at s2 = a sin(alpha_w) - r_b2 t2, t2 = alpha_w + pi + sigma (phi2 + 2 pi k / z2) + psi_b2,
-/// both normal to the line there, so the gap g = s2 - s1 = a sin(alpha_w) - r_b1 t1 - r_b2 t2 is
-/// the exact normal distance of the two flanks. A pair is listed where both flank points exist
-/// (0 <= t_i <= tan(alpha_ai)); wheel 2's tooth is the one whose gap lies within half a base pitch
-/// of half the backlash at a (PairBacklash).
-std::vector<ToothPair> MeshingToothPairs(const GearPair& pair, double centre_distance, double phi1, double phi2);
+/// wheel 2's at s2 = a sin(alpha_w) - r_b2 t2, t2 = alpha_w + pi + sigma (phi2 + 2 pi k / z2) +
+/// psi_b2, both normal to the line there, so the gap g = s2 - s1 = a sin(alpha_w) - r_b1 t1 - r_b2
+/// t2 is the exact normal distance of the two flanks. A pair is listed where both flank points
+/// exist (0 <= t_i <= tan(alpha_ai)); wheel 2's tooth is the one whose gap lies within half a base
+/// pitch of half the backlash at a (PairBacklash).
+std::vector<ToothPair> MeshingToothPairs(const GearPair& pair, double centre_distance, double phi1,
+                                         double phi2);
 
 /// The smallest gap [m] among `pairs` on `side`; +infinity if none is on it.
 double SmallestGap(const std::vector<ToothPair>& pairs, FlankSide side);
@@ -43,6 +46,7 @@ double SmallestGap(const std::vector<ToothPair>& pairs, FlankSide side);
 /// Wheel 2's angle [rad] nearest phi2_guess at which the teeth touch on `side` (smallest gap 0)
 /// with wheel 1 at phi1: the rigid kinematic transmission. From dg/dphi2 = -sigma r_b2, each
 /// step turns wheel 2 by sigma g / r_b2 until |g| <= 1e-15 a.
-double TouchingAngle2(const GearPair& pair, double centre_distance, double phi1, double phi2_guess, FlankSide side);
+double TouchingAngle2(const GearPair& pair, double centre_distance, double phi1, double phi2_guess,
+                      FlankSide side);
 
 }  // namespace flexmbs::contact

@@ -8,7 +8,9 @@ namespace flexmbs::contact {
 namespace {
 
 /// The z component of the planar cross product a x b.
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 }  // namespace
 
@@ -18,13 +20,14 @@ NormalLaw ToothPairLaw(const GearMeshCompliance& compliance, const GearPair& pai
   return LinearLaw(compliance.single_pair_stiffness * face_width, compliance.damping);
 }
 
-MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance, double phi1, double phi2,
-                       double omega1, double omega2) {
+MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance,
+                       double phi1, double phi2, double omega1, double omega2) {
   MeshLoads loads;
   const Eigen::Vector2d p_O1O2(centre_distance, 0.0);
   for (const ToothPair& tp : MeshingToothPairs(pair, centre_distance, phi1, phi2)) {
     if (!(tp.gap < 0.0)) continue;
-    const double rate = Sign(tp.side) * (pair.gear1.base_radius * omega1 + pair.gear2.base_radius * omega2);
+    const double rate =
+        Sign(tp.side) * (pair.gear1.base_radius * omega1 + pair.gear2.base_radius * omega2);
     const double force = Evaluate(law, -tp.gap, rate).force;
     if (force == 0.0) continue;
     loads.pairs.push_back({tp, force});

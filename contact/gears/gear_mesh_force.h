@@ -42,7 +42,7 @@ struct MeshLoads {
 /// angular velocities omega1, omega2 [rad/s] about +z: each tooth pair of MeshingToothPairs with
 /// a penetration delta = -g > 0 carries law(delta, delta'), delta' = sigma (r_b1 omega1 + r_b2
 /// omega2) (the gap's rate, dg/dphi_i = -sigma r_bi).
-MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance, double phi1, double phi2,
-                       double omega1, double omega2);
+MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance,
+                       double phi1, double phi2, double omega1, double omega2);
 
 }  // namespace flexmbs::contact

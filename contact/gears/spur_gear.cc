@@ -25,9 +25,11 @@ void CheckSpec(const SpurGearSpec& spec) {
   RequirePositive("module [m]", spec.module);
   if (spec.teeth < 3) throw InputError(fmt::format("teeth {} must be >= 3", spec.teeth));
   if (!(spec.pressure_angle > 0.0 && spec.pressure_angle <= std::numbers::pi / 4)) {
-    throw InputError(fmt::format("pressure angle {} rad must be in (0, pi/4]", spec.pressure_angle));
+    throw InputError(
+        fmt::format("pressure angle {} rad must be in (0, pi/4]", spec.pressure_angle));
   }
-  if (!std::isfinite(spec.profile_shift)) throw InputError(fmt::format("profile shift {} must be finite", spec.profile_shift));
+  if (!std::isfinite(spec.profile_shift))
+    throw InputError(fmt::format("profile shift {} must be finite", spec.profile_shift));
   RequirePositive("addendum coefficient", spec.addendum_coefficient);
   RequirePositive("dedendum coefficient", spec.dedendum_coefficient);
   RequirePositive("face width [m]", spec.face_width);
@@ -40,9 +42,10 @@ void CheckUndercut(const SpurGearSpec& spec) {
   const double z_min = 2.0 * (spec.addendum_coefficient - spec.profile_shift) / sin2;
   if (spec.teeth < z_min) {
     const double x_min = spec.addendum_coefficient - spec.teeth * sin2 / 2.0;
-    throw InputError(fmt::format("teeth {} < z_min = 2 (h_a* - x) / sin^2(alpha) = {:.4g} undercut the flank "
-                                 "(a profile shift x >= {:.4g} avoids it)",
-                                 spec.teeth, z_min, x_min));
+    throw InputError(
+        fmt::format("teeth {} < z_min = 2 (h_a* - x) / sin^2(alpha) = {:.4g} undercut the flank "
+                    "(a profile shift x >= {:.4g} avoids it)",
+                    spec.teeth, z_min, x_min));
   }
 }
 
@@ -56,7 +59,8 @@ SpurGear Derive(const SpurGearSpec& spec) {
   gear.tip_radius = gear.pitch_radius + m * (spec.addendum_coefficient + spec.profile_shift);
   gear.root_radius = gear.pitch_radius - m * (spec.dedendum_coefficient - spec.profile_shift);
   gear.base_pitch = std::numbers::pi * m * std::cos(alpha);
-  const double thickness = m * (std::numbers::pi / 2.0 + 2.0 * spec.profile_shift * std::tan(alpha));
+  const double thickness =
+      m * (std::numbers::pi / 2.0 + 2.0 * spec.profile_shift * std::tan(alpha));
   gear.base_half_angle = thickness / (2.0 * gear.pitch_radius) + Involute(alpha);
   if (gear.tip_radius > gear.base_radius) {
     gear.tip_roll = std::sqrt(std::pow(gear.tip_radius / gear.base_radius, 2) - 1.0);
@@ -66,58 +70,69 @@ SpurGear Derive(const SpurGearSpec& spec) {
 
 void CheckShape(const SpurGear& gear) {
   if (!(gear.root_radius > 0.0)) {
-    throw InputError(fmt::format("root radius {:.6g} m must be > 0 (dedendum m (h_f* - x) too deep)", gear.root_radius));
+    throw InputError(fmt::format(
+        "root radius {:.6g} m must be > 0 (dedendum m (h_f* - x) too deep)", gear.root_radius));
   }
   if (!(gear.tip_radius > gear.base_radius)) {
-    throw InputError(fmt::format("tip radius {:.6g} m must exceed the base radius {:.6g} m (no involute flank)",
-                                 gear.tip_radius, gear.base_radius));
+    throw InputError(
+        fmt::format("tip radius {:.6g} m must exceed the base radius {:.6g} m (no involute flank)",
+                    gear.tip_radius, gear.base_radius));
   }
   const double tip_half_angle = gear.base_half_angle - Involute(std::atan(gear.tip_roll));
   if (!(tip_half_angle > 0.0)) {
-    throw InputError(fmt::format("tip thickness {:.4g} m must be > 0 (pointed teeth: lower the profile shift {} or "
-                                 "the addendum coefficient {})",
-                                 2.0 * gear.tip_radius * tip_half_angle, gear.spec.profile_shift,
-                                 gear.spec.addendum_coefficient));
+    throw InputError(fmt::format(
+        "tip thickness {:.4g} m must be > 0 (pointed teeth: lower the profile shift {} or "
+        "the addendum coefficient {})",
+        2.0 * gear.tip_radius * tip_half_angle, gear.spec.profile_shift,
+        gear.spec.addendum_coefficient));
   }
 }
 
 /// True when two parameters differ by more than round-off.
-bool Differ(double a, double b) { return std::abs(a - b) > 1e-12 * std::max(std::abs(a), std::abs(b)); }
+bool Differ(double a, double b) {
+  return std::abs(a - b) > 1e-12 * std::max(std::abs(a), std::abs(b));
+}
 
 void CheckCanMesh(const SpurGearSpec& gear1, const SpurGearSpec& gear2) {
   if (Differ(gear1.module, gear2.module)) {
-    throw InputError(fmt::format("gears cannot mesh: module {} m of gear 1 differs from {} m of gear 2", gear1.module,
-                                 gear2.module));
+    throw InputError(
+        fmt::format("gears cannot mesh: module {} m of gear 1 differs from {} m of gear 2",
+                    gear1.module, gear2.module));
   }
   if (Differ(gear1.pressure_angle, gear2.pressure_angle)) {
-    throw InputError(fmt::format("gears cannot mesh: pressure angle {} rad of gear 1 differs from {} rad of gear 2",
-                                 gear1.pressure_angle, gear2.pressure_angle));
+    throw InputError(fmt::format(
+        "gears cannot mesh: pressure angle {} rad of gear 1 differs from {} rad of gear 2",
+        gear1.pressure_angle, gear2.pressure_angle));
   }
 }
 
 void CheckPairGeometry(const GearPair& pair) {
   const double a = pair.centre_distance;
   if (pair.path_start < 0.0) {
-    throw InputError(fmt::format("centre distance {:.6g} m: the tip of gear 2 meets gear 1 below its base circle "
-                                 "(interference; s_A = {:.4g} m < 0)",
-                                 a, pair.path_start));
+    throw InputError(fmt::format(
+        "centre distance {:.6g} m: the tip of gear 2 meets gear 1 below its base circle "
+        "(interference; s_A = {:.4g} m < 0)",
+        a, pair.path_start));
   }
   if (pair.path_end > pair.line_length) {
-    throw InputError(fmt::format("centre distance {:.6g} m: the tip of gear 1 meets gear 2 below its base circle "
-                                 "(interference; s_E = {:.6g} m > T1T2 = {:.6g} m)",
-                                 a, pair.path_end, pair.line_length));
+    throw InputError(fmt::format(
+        "centre distance {:.6g} m: the tip of gear 1 meets gear 2 below its base circle "
+        "(interference; s_E = {:.6g} m > T1T2 = {:.6g} m)",
+        a, pair.path_end, pair.line_length));
   }
   const double clearance1 = a - pair.gear1.tip_radius - pair.gear2.root_radius;
   const double clearance2 = a - pair.gear2.tip_radius - pair.gear1.root_radius;
   if (!(clearance1 > 0.0) || !(clearance2 > 0.0)) {
-    throw InputError(fmt::format("centre distance {:.6g} m: a tip reaches the other wheel's root circle (tip "
-                                 "clearances {:.4g} m and {:.4g} m must be > 0; lower an addendum coefficient)",
-                                 a, clearance1, clearance2));
+    throw InputError(
+        fmt::format("centre distance {:.6g} m: a tip reaches the other wheel's root circle (tip "
+                    "clearances {:.4g} m and {:.4g} m must be > 0; lower an addendum coefficient)",
+                    a, clearance1, clearance2));
   }
   if (!(pair.contact_ratio >= 1.0)) {
-    throw InputError(fmt::format("centre distance {:.6g} m is too large: contact ratio {:.4g} < 1, the teeth lose mesh "
-                                 "(a_0 = {:.6g} m)",
-                                 a, pair.contact_ratio, pair.zero_backlash_distance));
+    throw InputError(fmt::format(
+        "centre distance {:.6g} m is too large: contact ratio {:.4g} < 1, the teeth lose mesh "
+        "(a_0 = {:.6g} m)",
+        a, pair.contact_ratio, pair.zero_backlash_distance));
   }
 }
 
@@ -126,7 +141,8 @@ void CheckPairGeometry(const GearPair& pair) {
 double Involute(double alpha) { return std::tan(alpha) - alpha; }
 
 double InverseInvolute(double value) {
-  FLEXMBS_CHECK(value >= 0.0 && std::isfinite(value), "InverseInvolute of a negative or non-finite value");
+  FLEXMBS_CHECK(value >= 0.0 && std::isfinite(value),
+                "InverseInvolute of a negative or non-finite value");
   if (value == 0.0) return 0.0;
   double alpha = std::min(std::cbrt(3.0 * value), 1.5);
   for (int i = 0; i < 100; ++i) {
@@ -156,7 +172,8 @@ double PairBacklash(const GearPair& pair, double centre_distance) {
   const double alpha_w = std::acos(r_b / centre_distance);
   // The gaps along the two lines of action of a tooth in its space add up to a base pitch less the
   // two teeth's base thicknesses, plus what the lines gain from the base circles (docs/contact.md).
-  return g1.base_pitch - 2.0 * (g1.base_radius * g1.base_half_angle + g2.base_radius * g2.base_half_angle) +
+  return g1.base_pitch -
+         2.0 * (g1.base_radius * g1.base_half_angle + g2.base_radius * g2.base_half_angle) +
          2.0 * r_b * Involute(alpha_w);
 }
 
@@ -168,15 +185,19 @@ GearPair MakeGearPair(const GearPairSpec& spec) {
   RequireNonNegative("backlash [m]", spec.backlash);
   const double alpha = spec.gear1.pressure_angle;
   const double r_b = pair.gear1.base_radius + pair.gear2.base_radius;
-  const double inv_w0 = Involute(alpha) + 2.0 * std::tan(alpha) * (spec.gear1.profile_shift + spec.gear2.profile_shift) /
-                                              (spec.gear1.teeth + spec.gear2.teeth);
+  const double inv_w0 =
+      Involute(alpha) + 2.0 * std::tan(alpha) *
+                            (spec.gear1.profile_shift + spec.gear2.profile_shift) /
+                            (spec.gear1.teeth + spec.gear2.teeth);
   pair.zero_backlash_distance = r_b / std::cos(InverseInvolute(inv_w0));
-  pair.centre_distance = spec.centre_distance > 0.0 ? spec.centre_distance : pair.zero_backlash_distance;
+  pair.centre_distance =
+      spec.centre_distance > 0.0 ? spec.centre_distance : pair.zero_backlash_distance;
   const double a = pair.centre_distance;
   if (!std::isfinite(a) || a < pair.zero_backlash_distance * (1.0 - 1e-12)) {
-    throw InputError(fmt::format("centre distance {:.9g} m < a_0 = {:.9g} m (zero backlash): the teeth would "
-                                 "interpenetrate",
-                                 a, pair.zero_backlash_distance));
+    throw InputError(
+        fmt::format("centre distance {:.9g} m < a_0 = {:.9g} m (zero backlash): the teeth would "
+                    "interpenetrate",
+                    a, pair.zero_backlash_distance));
   }
   pair.gear1.base_half_angle -= spec.backlash / (4.0 * pair.gear1.base_radius);
   pair.gear2.base_half_angle -= spec.backlash / (4.0 * pair.gear2.base_radius);

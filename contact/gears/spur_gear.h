@@ -8,24 +8,25 @@ namespace flexmbs::contact {
 
 /// The basic parameters of one external involute spur gear.
 struct SpurGearSpec {
-  double module = 0.0;                ///< m [m] > 0
-  int teeth = 0;                      ///< z >= 3
-  double pressure_angle = 0.0;        ///< alpha [rad] in (0, pi/4]; 20 deg = 0.349066 is the standard
-  double profile_shift = 0.0;         ///< x [-] (the rack's datum line moved out by x m)
-  double addendum_coefficient = 1.0;  ///< h_a* [-] > 0 (addendum m (h_a* + x))
-  double dedendum_coefficient = 1.25; ///< h_f* [-] > 0 (dedendum m (h_f* - x))
-  double face_width = 0.0;            ///< b [m] > 0
+  double module = 0.0;          ///< m [m] > 0
+  int teeth = 0;                ///< z >= 3
+  double pressure_angle = 0.0;  ///< alpha [rad] in (0, pi/4]; 20 deg = 0.349066 is the standard
+  double profile_shift = 0.0;   ///< x [-] (the rack's datum line moved out by x m)
+  double addendum_coefficient = 1.0;   ///< h_a* [-] > 0 (addendum m (h_a* + x))
+  double dedendum_coefficient = 1.25;  ///< h_f* [-] > 0 (dedendum m (h_f* - x))
+  double face_width = 0.0;             ///< b [m] > 0
 };
 
 /// A wheel's derived geometry (ISO 21771 sec. 5). Radii [m], angles [rad].
 struct SpurGear {
   SpurGearSpec spec;
-  double pitch_radius = 0.0;        ///< r = m z / 2
-  double base_radius = 0.0;         ///< r_b = r cos(alpha)
-  double tip_radius = 0.0;          ///< r_a = r + m (h_a* + x)
-  double root_radius = 0.0;         ///< r_f = r - m (h_f* - x)
-  double base_pitch = 0.0;          ///< p_b = pi m cos(alpha) = 2 pi r_b / z
-  double tip_roll = 0.0;            ///< tan(alpha_a), cos(alpha_a) = r_b / r_a: the involute's roll angle at the tip
+  double pitch_radius = 0.0;  ///< r = m z / 2
+  double base_radius = 0.0;   ///< r_b = r cos(alpha)
+  double tip_radius = 0.0;    ///< r_a = r + m (h_a* + x)
+  double root_radius = 0.0;   ///< r_f = r - m (h_f* - x)
+  double base_pitch = 0.0;    ///< p_b = pi m cos(alpha) = 2 pi r_b / z
+  /// tan(alpha_a), cos(alpha_a) = r_b / r_a: the involute's roll angle at the tip.
+  double tip_roll = 0.0;
   /// psi_b = s / (2 r) + inv(alpha): half the tooth's thickness on the base circle as an angle,
   /// s = m (pi/2 + 2 x tan(alpha)) the thickness on the pitch circle. A pair may thin it
   /// (GearPairSpec::backlash).
@@ -59,16 +60,24 @@ struct GearPairSpec {
 /// at wheel 1's centre O1, x axis towards wheel 2's centre O2, both wheels turning about z.
 /// Lengths [m], angles [rad].
 struct GearPair {
-  SpurGear gear1, gear2;                 ///< base_half_angle thinned by the allowance
-  double centre_distance = 0.0;          ///< a
-  double zero_backlash_distance = 0.0;   ///< a_0 = (r_b1 + r_b2) / cos(alpha_w0), inv(alpha_w0) = inv(alpha) + 2 tan(alpha) (x1 + x2) / (z1 + z2)
-  double working_pressure_angle = 0.0;   ///< alpha_w = acos((r_b1 + r_b2) / a)
-  double backlash = 0.0;                 ///< j_bn: normal backlash along the line of action, PairBacklash(a)
-  double circumferential_backlash = 0.0; ///< j_wt = j_bn / cos(alpha_w), on the working pitch circle
-  double line_length = 0.0;              ///< T1T2 = a sin(alpha_w): the line of action between the base circles
-  double path_start = 0.0;               ///< s_A = T1T2 - r_b2 tan(alpha_a2): where wheel 2's tip meets the line, from T1
-  double path_end = 0.0;                 ///< s_E = r_b1 tan(alpha_a1): where wheel 1's tip meets it
-  double contact_ratio = 0.0;            ///< epsilon_alpha = (s_E - s_A) / p_b (ISO 21771 sec. 6.3)
+  SpurGear gear1, gear2;         ///< base_half_angle thinned by the allowance
+  double centre_distance = 0.0;  ///< a
+  /// a_0 = (r_b1 + r_b2) / cos(alpha_w0), inv(alpha_w0) = inv(alpha) + 2 tan(alpha) (x1 + x2) /
+  /// (z1 + z2): the zero-backlash centre distance.
+  double zero_backlash_distance = 0.0;
+  double working_pressure_angle = 0.0;  ///< alpha_w = acos((r_b1 + r_b2) / a)
+  /// j_bn: the normal backlash along the line of action, PairBacklash(a).
+  double backlash = 0.0;
+  /// j_wt = j_bn / cos(alpha_w): the backlash on the working pitch circle.
+  double circumferential_backlash = 0.0;
+  /// T1T2 = a sin(alpha_w): the line of action between the base circles.
+  double line_length = 0.0;
+  /// s_A = T1T2 - r_b2 tan(alpha_a2): where wheel 2's tip meets the line, from T1.
+  double path_start = 0.0;
+  /// s_E = r_b1 tan(alpha_a1): where wheel 1's tip meets it.
+  double path_end = 0.0;
+  /// epsilon_alpha = (s_E - s_A) / p_b (ISO 21771 sec. 6.3).
+  double contact_ratio = 0.0;
 };
 
 /// The pair of `spec` after the wheels' checks (MakeSpurGear, items "gear 1", "gear 2") and the

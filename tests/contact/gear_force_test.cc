@@ -1,13 +1,12 @@
 // contact/gears: the mesh force of compliant teeth on rigid flanks: static deflection under a
 // torque T/(r_b c' b n), the torques' ratio r_b2 / r_b1, the dashpot on the gap's rate.
-#include "contact/gears/gear_mesh_force.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
+#include "contact/gears/gear_mesh_force.h"
 #include "tests/input_error.h"
 
 namespace flexmbs::contact {
@@ -39,7 +38,9 @@ TEST(GearMeshForce, StaticDeflectionUnderATorqueIsTorqueOverBaseRadiusTimesMeshS
   for (int i = 0; i < 40; ++i) {
     const double phi2 = 0.3 + (2.0 * std::numbers::pi / 31) * i / 40.0;  // wheel 2 held here
     const double phi1_touch =
-        0.1 + SmallestGap(MeshingToothPairs(pair, pair.centre_distance, 0.1, phi2), FlankSide::kPositive) / r_b1;
+        0.1 + SmallestGap(MeshingToothPairs(pair, pair.centre_distance, 0.1, phi2),
+                          FlankSide::kPositive) /
+                  r_b1;
     const auto mesh_torque = [&](double phi1) {
       return EvaluateMesh(pair, law, pair.centre_distance, phi1, phi2, 0.0, 0.0).torque1;
     };
@@ -58,15 +59,17 @@ TEST(GearMeshForce, StaticDeflectionUnderATorqueIsTorqueOverBaseRadiusTimesMeshS
     ASSERT_TRUE(n == 1 || n == 2) << n;
     ++seen[n];
     const double expected = torque / (r_b1 * compliance.single_pair_stiffness * 0.02 * n);
-    worst_deflection = std::max(worst_deflection, std::abs(r_b1 * (phi1 - phi1_touch) - expected) / expected);
+    worst_deflection =
+        std::max(worst_deflection, std::abs(r_b1 * (phi1 - phi1_touch) - expected) / expected);
     for (const ToothPairLoad& load : loads.pairs) {
       EXPECT_NEAR(-load.pair.gap, expected, 1e-11 * expected);
       EXPECT_NEAR(load.force, torque / (r_b1 * n), 1e-11 * torque / r_b1);
     }
     worst_ratio = std::max(worst_ratio, std::abs(loads.torque2 / loads.torque1 - r_b2 / r_b1));
   }
-  std::printf("[measured] static deflection against T / (r_b1 c' b n): %.3g relative; torque ratio %.3g\n",
-              worst_deflection, worst_ratio);
+  std::printf(
+      "[measured] static deflection against T / (r_b1 c' b n): %.3g relative; torque ratio %.3g\n",
+      worst_deflection, worst_ratio);
   EXPECT_LT(worst_deflection, 1e-11);  // measured 1.0e-12 (the bisection's last interval)
   EXPECT_LT(worst_ratio, 1e-14);       // measured 8.9e-16
   EXPECT_GT(seen[1], 0);
@@ -80,7 +83,9 @@ TEST(GearMeshForce, DampingActsOnTheRateOfTheGapAndNeverPulls) {
   const double k = 1.4e10 * 0.02, c = 2e3;
   const NormalLaw law = ToothPairLaw({1.4e10, c}, pair);
   const double phi2 = 0.3;
-  const double phi1 = 0.1 + (SmallestGap(MeshingToothPairs(pair, pair.centre_distance, 0.1, phi2), FlankSide::kPositive) + 5e-6) /
+  const double phi1 = 0.1 + (SmallestGap(MeshingToothPairs(pair, pair.centre_distance, 0.1, phi2),
+                                         FlankSide::kPositive) +
+                             5e-6) /
                                 pair.gear1.base_radius;  // 5 um into the teeth
   const double omega1 = 3.0, omega2 = -1.0;
   const double dt = 1e-7;
@@ -97,18 +102,27 @@ TEST(GearMeshForce, DampingActsOnTheRateOfTheGapAndNeverPulls) {
   };
   for (const ToothPairLoad& load : loads.pairs) {
     const double rate = -(gap_of(gaps(dt), load.pair) - gap_of(gaps(-dt), load.pair)) / (2.0 * dt);
-    std::printf("[measured] pair force - (k delta + c delta'): %.3g N of %.3g N\n", load.force - (k * 5e-6 + c * rate), load.force);
-    EXPECT_NEAR(load.force, k * 5e-6 + c * rate, 5e-7);  // measured 4.5e-8 N of 1.45e3 N (the difference's error)
+    std::printf("[measured] pair force - (k delta + c delta'): %.3g N of %.3g N\n",
+                load.force - (k * 5e-6 + c * rate), load.force);
+    EXPECT_NEAR(load.force, k * 5e-6 + c * rate,
+                5e-7);  // measured 4.5e-8 N of 1.45e3 N (the difference's error)
   }
   // Separating at 1 m/s along the line: k delta = 1.4e3 N < c v = 2e3 N, so no force.
   const double separating = -1.0 / pair.gear1.base_radius;
-  EXPECT_TRUE(EvaluateMesh(pair, law, pair.centre_distance, phi1, phi2, separating, 0.0).pairs.empty());
+  EXPECT_TRUE(
+      EvaluateMesh(pair, law, pair.centre_distance, phi1, phi2, separating, 0.0).pairs.empty());
 }
 
 TEST(GearMeshForce, BadComplianceIsAOneLineError) {
   const GearPair pair = Pair(0.0);
-  EXPECT_EQ(InputErrorMessage([&] { ToothPairLaw({0.0, 0.0}, pair); }), "mesh stiffness c' [N/m^2] 0 must be finite and > 0");
-  EXPECT_EQ(InputErrorMessage([&] { ToothPairLaw({1.4e10, -5.0}, pair); }), "damping [N s/m] -5 must be finite and >= 0");
+  EXPECT_EQ(InputErrorMessage([&] {
+              ToothPairLaw({0.0, 0.0}, pair);
+            }),
+            "mesh stiffness c' [N/m^2] 0 must be finite and > 0");
+  EXPECT_EQ(InputErrorMessage([&] {
+              ToothPairLaw({1.4e10, -5.0}, pair);
+            }),
+            "damping [N s/m] -5 must be finite and >= 0");
 }
 
 }  // namespace

@@ -26,7 +26,8 @@ GearPair ShiftedPair(double centre_distance, double allowance) {
 
 /// Wheel 2's flank point in the pair frame (its centre at (a, 0)).
 Eigen::Vector2d Wheel2Point(const GearPair& pair, const ToothPair& tp, double phi2) {
-  return Eigen::Vector2d(pair.centre_distance, 0.0) + FlankPoint(pair.gear2, tp.tooth2, tp.side, tp.roll2, phi2);
+  return Eigen::Vector2d(pair.centre_distance, 0.0) +
+         FlankPoint(pair.gear2, tp.tooth2, tp.side, tp.roll2, phi2);
 }
 
 TEST(GearMesh, FoundPointsLieOnBothTeethsInvolutesWithTheLineOfActionAsTheirNormal) {
@@ -42,12 +43,15 @@ TEST(GearMesh, FoundPointsLieOnBothTeethsInvolutesWithTheLineOfActionAsTheirNorm
       EXPECT_LT((p2 - p1 - tp.gap * tp.n_12).norm(), 2e-16);  // measured 2.1e-17 m
       EXPECT_LT((0.5 * (p1 + p2) - tp.p_O1C).norm(), 2e-16);
       // Each flank's outward normal is the line: wheel 1's along n_12, wheel 2's against it.
-      EXPECT_LT((FlankNormal(pair.gear1, tp.tooth1, tp.side, tp.roll1, phi1) - tp.n_12).norm(), 1e-14);  // measured 1.1e-15
-      EXPECT_LT((FlankNormal(pair.gear2, tp.tooth2, tp.side, tp.roll2, phi2) + tp.n_12).norm(), 1e-14);  // measured 1.1e-15
+      EXPECT_LT((FlankNormal(pair.gear1, tp.tooth1, tp.side, tp.roll1, phi1) - tp.n_12).norm(),
+                1e-14);  // measured 1.1e-15
+      EXPECT_LT((FlankNormal(pair.gear2, tp.tooth2, tp.side, tp.roll2, phi2) + tp.n_12).norm(),
+                1e-14);  // measured 1.1e-15
       // The line of action is tangent to both base circles.
       const Eigen::Vector2d t(-tp.n_12.y(), tp.n_12.x());
       EXPECT_NEAR(std::abs(t.dot(tp.p_O1C)), pair.gear1.base_radius, 2e-16);
-      EXPECT_NEAR(std::abs(t.dot(tp.p_O1C - Eigen::Vector2d(pair.centre_distance, 0.0))), pair.gear2.base_radius, 2e-16);
+      EXPECT_NEAR(std::abs(t.dot(tp.p_O1C - Eigen::Vector2d(pair.centre_distance, 0.0))),
+                  pair.gear2.base_radius, 2e-16);
     }
   }
   EXPECT_GT(pairs_seen, 100);
@@ -59,7 +63,8 @@ TEST(GearMesh, FoundPointsLieOnBothTeethsInvolutesWithTheLineOfActionAsTheirNorm
 double FlankDistance(const GearPair& pair, const ToothPair& tp, double phi1, double phi2) {
   const auto p1 = [&](double t) { return FlankPoint(pair.gear1, tp.tooth1, tp.side, t, phi1); };
   const auto p2 = [&](double t) {
-    return Eigen::Vector2d(Eigen::Vector2d(pair.centre_distance, 0.0) + FlankPoint(pair.gear2, tp.tooth2, tp.side, t, phi2));
+    return Eigen::Vector2d(Eigen::Vector2d(pair.centre_distance, 0.0) +
+                           FlankPoint(pair.gear2, tp.tooth2, tp.side, t, phi2));
   };
   double best = 1e9, t1 = 0.0, t2 = 0.0;
   const int n = 300;
@@ -98,7 +103,8 @@ TEST(GearMesh, PositiveGapIsTheLeastDistanceOfTheTwoFlanksFoundByBruteForce) {
   for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2)) {
     if (tp.side != FlankSide::kNegative) continue;  // the backlash side: g = j_bn = 1.01e-4 m
     const double distance = FlankDistance(pair, tp, phi1, phi2);
-    std::printf("[measured] brute-force flank distance - gap: %.3g m of %.3g m\n", distance - tp.gap, tp.gap);
+    std::printf("[measured] brute-force flank distance - gap: %.3g m of %.3g m\n",
+                distance - tp.gap, tp.gap);
     EXPECT_NEAR(distance, tp.gap, 1e-16);  // measured 9.6e-18 m of 1.0e-4 m
     ++checked;
   }
@@ -135,33 +141,45 @@ TEST(GearMesh, DriverHeldWheelTurnsExactlyTheBacklashAngleBeforeContact) {
   const double allowance = 2e-5;
   const GearPair pair = ShiftedPair(0.0505, allowance);
   const double r_b = pair.gear1.base_radius + pair.gear2.base_radius;
-  const double j_bn = 2.0 * r_b * (Involute(std::acos(r_b / 0.0505)) - Involute(0.36968718266775086)) + allowance;
+  const double j_bn =
+      2.0 * r_b * (Involute(std::acos(r_b / 0.0505)) - Involute(0.36968718266775086)) + allowance;
   const double phi2 = 0.3;  // held
   const double phi1_start = 0.1;
   // Wheel 1's own touching angles on each side from the gaps (dg/dphi1 = -sigma r_b1).
   const auto pairs = MeshingToothPairs(pair, pair.centre_distance, phi1_start, phi2);
-  const double forward = phi1_start + SmallestGap(pairs, FlankSide::kPositive) / pair.gear1.base_radius;
-  const double reverse = phi1_start - SmallestGap(pairs, FlankSide::kNegative) / pair.gear1.base_radius;
+  const double forward =
+      phi1_start + SmallestGap(pairs, FlankSide::kPositive) / pair.gear1.base_radius;
+  const double reverse =
+      phi1_start - SmallestGap(pairs, FlankSide::kNegative) / pair.gear1.base_radius;
   std::printf("[measured] backlash angle - j_bn / r_b1: %.3g rad of %.3g rad\n",
               forward - reverse - j_bn / pair.gear1.base_radius, j_bn / pair.gear1.base_radius);
-  EXPECT_NEAR(forward - reverse, j_bn / pair.gear1.base_radius, 5e-15);  // measured 5.2e-16 rad of 5.65e-3
+  EXPECT_NEAR(forward - reverse, j_bn / pair.gear1.base_radius,
+              5e-15);  // measured 5.2e-16 rad of 5.65e-3
   // Between them no tooth touches; at either end one side does.
   const int steps = 500;
   for (int i = 1; i < steps; ++i) {
     const double phi1 = reverse + (forward - reverse) * i / steps;
-    for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2)) EXPECT_GT(tp.gap, 0.0);
+    for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2))
+      EXPECT_GT(tp.gap, 0.0);
   }
-  EXPECT_NEAR(SmallestGap(MeshingToothPairs(pair, pair.centre_distance, forward, phi2), FlankSide::kPositive), 0.0, 2e-17);  // measured 1.7e-18 m
-  EXPECT_NEAR(SmallestGap(MeshingToothPairs(pair, pair.centre_distance, reverse, phi2), FlankSide::kNegative), 0.0, 2e-17);
+  EXPECT_NEAR(SmallestGap(MeshingToothPairs(pair, pair.centre_distance, forward, phi2),
+                          FlankSide::kPositive),
+              0.0, 2e-17);  // measured 1.7e-18 m
+  EXPECT_NEAR(SmallestGap(MeshingToothPairs(pair, pair.centre_distance, reverse, phi2),
+                          FlankSide::kNegative),
+              0.0, 2e-17);
 }
 
 // Counting the pairs in contact over 20 mesh cycles: 1 or 2, and the share of double contact is
 // epsilon_alpha - 1, epsilon_alpha from the textbook's square roots computed here.
 TEST(GearMesh, PairsInContactSwitchBetweenOneAndTwoAsTheContactRatioSays) {
   const GearPair pair = ShiftedPair(0.0505, 0.0);
-  const auto root = [](const SpurGear& g) { return std::sqrt(std::pow(g.tip_radius, 2) - std::pow(g.base_radius, 2)); };
-  const double epsilon = (root(pair.gear1) + root(pair.gear2) - 0.0505 * std::sin(pair.working_pressure_angle)) /
-                         (std::numbers::pi * 2e-3 * std::cos(20.0 * kDeg));
+  const auto root = [](const SpurGear& g) {
+    return std::sqrt(std::pow(g.tip_radius, 2) - std::pow(g.base_radius, 2));
+  };
+  const double epsilon =
+      (root(pair.gear1) + root(pair.gear2) - 0.0505 * std::sin(pair.working_pressure_angle)) /
+      (std::numbers::pi * 2e-3 * std::cos(20.0 * kDeg));
   const int cycles = 20, per_cycle = 5000;
   int double_contact = 0;
   double phi2 = 0.0;

@@ -1,12 +1,11 @@
 // contact/gears: spur gear and pair parameters against a published worked example (KHK), SciPy's
 // root of the involute equation and the textbook formulas, and their one-line input errors.
-#include "contact/gears/spur_gear.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "contact/gears/spur_gear.h"
 #include "tests/input_error.h"
 
 namespace flexmbs::contact {
@@ -42,7 +41,8 @@ TEST(InverseInvolute, InvertsTheInvoluteToRoundOff) {
 // KHK Gear Technical Reference, "Calculation of profile shifted spur gears", worked example:
 // m = 3 mm, alpha = 20 deg, z = 12 / 24, x = +0.6 / +0.36 gives inv(alpha_w) = 0.034316,
 // alpha_w = 26.0886 deg, a = 56.4999 mm, d = 36 / 72 mm, d_b = 33.829 / 67.658 mm,
-// d_w = 37.667 / 75.333 mm, d_f = 32.100 / 66.660 mm (KHK's tip diameters differ: it shortens the tips).
+// d_w = 37.667 / 75.333 mm, d_f = 32.100 / 66.660 mm (KHK's tip diameters differ: it shortens the
+// tips).
 TEST(SpurGearPair, ProfileShiftedPairMatchesTheKhkWorkedExample) {
   const GearPair pair = MakeGearPair(Pair(3e-3, 12, 24, 0.6, 0.36));
   EXPECT_NEAR(Involute(pair.working_pressure_angle), 0.034316, 0.5e-6);
@@ -63,17 +63,21 @@ TEST(SpurGearPair, ProfileShiftedPairMatchesTheKhkWorkedExample) {
 // SciPy 1.10.1, scipy.optimize.brentq on tan(t) - t = inv(20 deg) + 2 tan(20 deg) (0.3 - 0.1) / 50
 // (xtol 1e-16): alpha_w0 = 0.36968718266775086 rad, a_0 = 0.050388882821418846 m for m = 2 mm,
 // z = 19 / 31. The contact ratio from the textbook's square roots,
-// (sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin(alpha_w)) / (pi m cos(alpha)), computed here.
+// (sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin(alpha_w)) / (pi m cos(alpha)), computed
+// here.
 TEST(SpurGearPair, WorkingPressureAngleAndContactRatioAgreeWithSciPyAndTheTextbook) {
   const GearPair pair = MakeGearPair(Pair(2e-3, 19, 31, 0.3, -0.1));
-  EXPECT_NEAR(pair.working_pressure_angle, 0.36968718266775086, 2e-15);  // measured 5.6e-17
+  EXPECT_NEAR(pair.working_pressure_angle, 0.36968718266775086, 2e-15);   // measured 5.6e-17
   EXPECT_NEAR(pair.zero_backlash_distance, 0.050388882821418846, 1e-16);  // measured 0
-  const auto root = [](const SpurGear& g) { return std::sqrt(std::pow(g.tip_radius, 2) - std::pow(g.base_radius, 2)); };
+  const auto root = [](const SpurGear& g) {
+    return std::sqrt(std::pow(g.tip_radius, 2) - std::pow(g.base_radius, 2));
+  };
   const double a = pair.centre_distance;
   const double alpha = 20.0 * kDeg;
   const double epsilon =
-      (root(pair.gear1) + root(pair.gear2) - a * std::sin(pair.working_pressure_angle)) / (std::numbers::pi * 2e-3 * std::cos(alpha));
-  EXPECT_NEAR(pair.contact_ratio, epsilon, 1e-13);  // measured 2.2e-16
+      (root(pair.gear1) + root(pair.gear2) - a * std::sin(pair.working_pressure_angle)) /
+      (std::numbers::pi * 2e-3 * std::cos(alpha));
+  EXPECT_NEAR(pair.contact_ratio, epsilon, 1e-13);             // measured 2.2e-16
   EXPECT_NEAR(pair.contact_ratio, 1.5285818014065653, 1e-13);  // SciPy script's value
   EXPECT_NEAR(pair.path_end - pair.path_start, pair.contact_ratio * pair.gear1.base_pitch, 1e-17);
 }
@@ -85,7 +89,8 @@ TEST(SpurGearPair, StandardPairMeshesAtTheSumOfPitchRadiiWithThePressureAngle) {
   EXPECT_NEAR(pair.gear1.base_pitch, std::numbers::pi * 2e-3 * std::cos(20.0 * kDeg), 1e-18);
   EXPECT_NEAR(pair.gear1.tip_radius, 0.022, 1e-18);
   EXPECT_NEAR(pair.gear2.root_radius, 0.04 - 2.5e-3, 1e-18);
-  EXPECT_NEAR(pair.contact_ratio, 1.635185963571462, 1e-13);  // the textbook square-root formula, SciPy script
+  EXPECT_NEAR(pair.contact_ratio, 1.635185963571462,
+              1e-13);  // the textbook square-root formula, SciPy script
 }
 
 // Backlash from a larger centre distance: j_bn = 2 (r_b1 + r_b2) (inv(alpha_w) - inv(alpha_w0)),
@@ -100,7 +105,8 @@ TEST(SpurGearPair, BacklashGrowsWithTheCentreDistanceAndTheAllowance) {
   EXPECT_NEAR(wide.backlash, expected, 1e-17);  // measured 3.4e-19 m of 8.1e-5 m
   EXPECT_NEAR(wide.circumferential_backlash, expected / std::cos(alpha_w), 1e-17);
   // The textbook's j_bn ~ 2 (a - a_0) sin(alpha_w) is its first order in a - a_0 = 1.1e-4 m.
-  EXPECT_NEAR(wide.backlash, 2.0 * (0.0505 - 0.050388882821418846) * std::sin(alpha_w), 1e-2 * expected);  // measured 7.2e-3 of it
+  EXPECT_NEAR(wide.backlash, 2.0 * (0.0505 - 0.050388882821418846) * std::sin(alpha_w),
+              1e-2 * expected);  // measured 7.2e-3 of it
   spec.backlash = 5e-5;
   EXPECT_NEAR(MakeGearPair(spec).backlash, expected + 5e-5, 1e-17);
 }
@@ -117,18 +123,22 @@ TEST(SpurGearPair, ShiftedWheelOfFewTeethAvoidsUndercut) {
 TEST(SpurGearInput, BadWheelsAreOneLineErrorsNamingTheParameter) {
   SpurGearSpec spec = Wheel(2e-3, 20, 0.0);
   spec.face_width = 0.0;
-  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 2"); }), "gear 2: face width [m] 0 must be finite and > 0");
+  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 2"); }),
+            "gear 2: face width [m] 0 must be finite and > 0");
   spec = Wheel(-1e-3, 20, 0.0);
-  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }), "gear 1: module [m] -0.001 must be finite and > 0");
+  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
+            "gear 1: module [m] -0.001 must be finite and > 0");
   spec = Wheel(2e-3, 2, 0.0);
-  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }), "gear 1: teeth 2 must be >= 3");
+  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
+            "gear 1: teeth 2 must be >= 3");
   spec = Wheel(2e-3, 20, 0.0);
   spec.pressure_angle = 0.0;
   EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
             "gear 1: pressure angle 0 rad must be in (0, pi/4]");
   spec = Wheel(2e-3, 20, 1.5);
   EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
-            "gear 1: tip thickness -0.0004544 m must be > 0 (pointed teeth: lower the profile shift 1.5 or the "
+            "gear 1: tip thickness -0.0004544 m must be > 0 (pointed teeth: lower the profile "
+            "shift 1.5 or the "
             "addendum coefficient 1)");
 }
 
@@ -144,21 +154,29 @@ TEST(SpurGearInput, PairsThatCannotMeshAreOneLineErrors) {
             "0.4363323129985824 rad of gear 2");
   spec = Pair(2e-3, 19, 31, 0.0, 0.0);
   spec.backlash = -1e-5;
-  EXPECT_EQ(InputErrorMessage([&] { MakeGearPair(spec); }), "backlash [m] -1e-05 must be finite and >= 0");
+  EXPECT_EQ(InputErrorMessage([&] { MakeGearPair(spec); }),
+            "backlash [m] -1e-05 must be finite and >= 0");
   spec.backlash = 0.0;
   spec.centre_distance = 0.0499;
-  EXPECT_EQ(InputErrorMessage([&] { MakeGearPair(spec); }),
-            "centre distance 0.0499 m < a_0 = 0.05 m (zero backlash): the teeth would interpenetrate");
+  EXPECT_EQ(
+      InputErrorMessage([&] { MakeGearPair(spec); }),
+      "centre distance 0.0499 m < a_0 = 0.05 m (zero backlash): the teeth would interpenetrate");
   spec.centre_distance = 0.0525;
   EXPECT_EQ(InputErrorMessage([&] { MakeGearPair(spec); }),
-            "centre distance 0.0525 m is too large: contact ratio 0.5313 < 1, the teeth lose mesh (a_0 = 0.05 m)");
+            "centre distance 0.0525 m is too large: contact ratio 0.5313 < 1, the teeth lose mesh "
+            "(a_0 = 0.05 m)");
   spec = Pair(2e-3, 19, 31, 0.0, 0.0);
-  spec.gear2.addendum_coefficient = 1.6;  // the tip of gear 2 reaches past gear 1's base tangent point
-  EXPECT_NE(InputErrorMessage([&] { MakeGearPair(spec); }).find("the tip of gear 2 meets gear 1 below its base circle"),
+  spec.gear2.addendum_coefficient =
+      1.6;  // the tip of gear 2 reaches past gear 1's base tangent point
+  EXPECT_NE(InputErrorMessage([&] {
+              MakeGearPair(spec);
+            }).find("the tip of gear 2 meets gear 1 below its base circle"),
             std::string::npos);
   spec = Pair(2e-3, 60, 61, 0.0, 0.0);
   spec.gear1.addendum_coefficient = 1.3;  // deeper than the other wheel's dedendum 1.25
-  EXPECT_NE(InputErrorMessage([&] { MakeGearPair(spec); }).find("a tip reaches the other wheel's root circle"),
+  EXPECT_NE(InputErrorMessage([&] {
+              MakeGearPair(spec);
+            }).find("a tip reaches the other wheel's root circle"),
             std::string::npos);
 }
 

@@ -4,6 +4,7 @@
 #include "mbs/spur_gear_contact.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -11,7 +12,6 @@
 #include <fstream>
 #include <numbers>
 #include <string>
-#include <unistd.h>
 
 #include "contact/gears/gear_mesh.h"
 #include "contact/gears/gear_mesh_force.h"
@@ -27,7 +27,9 @@ namespace {
 /// A scene file in a temporary directory, removed with the object.
 class GearScene {
  public:
-  GearScene() : dir_(std::filesystem::temp_directory_path() / ("flexmbs_gears_" + std::to_string(::getpid()))) {
+  GearScene()
+      : dir_(std::filesystem::temp_directory_path() /
+             ("flexmbs_gears_" + std::to_string(::getpid()))) {
     std::filesystem::create_directories(dir_);
   }
   ~GearScene() { std::filesystem::remove_all(dir_); }
@@ -44,9 +46,9 @@ class GearScene {
   std::filesystem::path dir_;
 };
 
-constexpr double kSpeed = 2.0;     // pinion [rad/s]
-constexpr double kTorque = 10.0;   // load on the wheel [N m], against its turning
-constexpr double kCentre = 0.0505; // a [m]: 1.0e-4 m of normal backlash
+constexpr double kSpeed = 2.0;      // pinion [rad/s]
+constexpr double kTorque = 10.0;    // load on the wheel [N m], against its turning
+constexpr double kCentre = 0.0505;  // a [m]: 1.0e-4 m of normal backlash
 
 /// Pinion (19 teeth, x = 0.3) at the origin, wheel (31 teeth, x = -0.1) at (a, 0, 0), both steel
 /// discs of 20 mm on revolute joints about z; the pinion driven at kSpeed, the wheel loaded by
@@ -62,19 +64,24 @@ std::string SceneText(double wheel_angle, const std::string& gear_keys) {
          "    rigid: {mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, 2.3e-4]]}\n"
          "    markers: {axis: {position: [0, 0, 0]}}\n"
          "    initial: {position: [0.0505, 0, 0], rotation: {axis: [0, 0, 1], angle: " +
-         std::to_string(wheel_angle) + "}, angular_velocity: [0, 0, " + std::to_string(-kSpeed * 19.0 / 31.0) + "]}\n" +
+         std::to_string(wheel_angle) + "}, angular_velocity: [0, 0, " +
+         std::to_string(-kSpeed * 19.0 / 31.0) + "]}\n" +
          "joints:\n"
-         "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: axis}, "
+         "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: "
+         "axis}, "
          "driver: {ramp: {offset: 0, slope: 2.0}}}\n"
-         "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, j: {body: wheel, marker: axis}}\n"
+         "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, j: "
+         "{body: wheel, marker: axis}}\n"
          "forces:\n"
-         "  - {name: load, type: point_load, at: {body: wheel, marker: axis}, torque: [0, 0, 10.0]}\n"
+         "  - {name: load, type: point_load, at: {body: wheel, marker: axis}, torque: [0, 0, "
+         "10.0]}\n"
          "  - name: mesh\n"
          "    type: spur_gear_contact\n"
          "    wheel1: {body: pinion, marker: axis}\n"
          "    wheel2: {body: wheel, marker: axis}\n" +
          gear_keys +
-         "simulation: {end_time: 1.1, output_interval: 1e-4, method: explicit, relative_tolerance: 1e-8, "
+         "simulation: {end_time: 1.1, output_interval: 1e-4, method: explicit, relative_tolerance: "
+         "1e-8, "
          "absolute_tolerance: 1e-11, max_step: 1e-4}\n";
 }
 
@@ -95,7 +102,8 @@ TEST(SpurGearContact, DrivenPairKeepsTheRatioAndCarriesTheLoadTorqueOverTheBaseR
   // The wheel's angle where its teeth touch the pinion's on the driving flanks (contact/gears).
   const Scene probe = LoadScene(files.Write(SceneText(0.0, kGearKeys)));
   const auto& mesh = dynamic_cast<const SpurGearContact&>(probe.system->force_element(1));
-  const double start_angle = contact::TouchingAngle2(mesh.pair(), kCentre, 0.0, 0.0, contact::FlankSide::kPositive);
+  const double start_angle =
+      contact::TouchingAngle2(mesh.pair(), kCentre, 0.0, 0.0, contact::FlankSide::kPositive);
   const Scene scene = LoadScene(files.Write(SceneText(start_angle, kGearKeys)));
   MultibodySystem& system = *scene.system;
   const auto& gears = dynamic_cast<const SpurGearContact&>(system.force_element(1));
@@ -110,65 +118,76 @@ TEST(SpurGearContact, DrivenPairKeepsTheRatioAndCarriesTheLoadTorqueOverTheBaseR
   constexpr double kSettled = 1e-3;
   const double mesh_period = 2.0 * std::numbers::pi / 19.0 / kSpeed;
   const double t0 = 0.2, t1 = t0 + 5.0 * mesh_period;
-  double phi1 = 0.0, phi2 = 0.0, turned1 = 0.0, turned2 = 0.0, impulse = 0.0, last_t = -1.0, last_force = 0.0;
+  double phi1 = 0.0, phi2 = 0.0, turned1 = 0.0, turned2 = 0.0, impulse = 0.0, last_t = -1.0,
+         last_force = 0.0;
   double worst_force = 0.0, last_switch = 0.0;
   int samples = 0, last_touching = 0;
-  Simulate(system, scene.options, scene.initial_state, [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
-    const double a1 = AngleAboutZ(system.MarkerState(pinion, y)), a2 = AngleAboutZ(system.MarkerState(wheel, y));
-    const double force = gears.MeshForce(t, system, y);
-    int touching = 0;
-    for (const contact::ToothPair& tp : gears.ToothPairs(t, system, y)) touching += tp.gap < 0.0;
-    if (touching != last_touching) last_switch = t;
-    last_touching = touching;
-    if (t > t0 - 1e-9 && t < t1 + 1e-9) {
-      if (last_t >= 0.0) {
-        turned1 += Unwrapped(phi1, a1);
-        turned2 += Unwrapped(phi2, a2);
-        impulse += 0.5 * (force + last_force) * (t - last_t);
-      }
-      if (t - last_switch > kSettled) worst_force = std::max(worst_force, std::abs(force * r_b2 / kTorque - 1.0));
-      last_t = t;
-      last_force = force;
-      ++samples;
-    }
-    phi1 = a1;
-    phi2 = a2;
-  });
+  Simulate(system, scene.options, scene.initial_state,
+           [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
+             const double a1 = AngleAboutZ(system.MarkerState(pinion, y)),
+                          a2 = AngleAboutZ(system.MarkerState(wheel, y));
+             const double force = gears.MeshForce(t, system, y);
+             int touching = 0;
+             for (const contact::ToothPair& tp : gears.ToothPairs(t, system, y))
+               touching += tp.gap < 0.0;
+             if (touching != last_touching) last_switch = t;
+             last_touching = touching;
+             if (t > t0 - 1e-9 && t < t1 + 1e-9) {
+               if (last_t >= 0.0) {
+                 turned1 += Unwrapped(phi1, a1);
+                 turned2 += Unwrapped(phi2, a2);
+                 impulse += 0.5 * (force + last_force) * (t - last_t);
+               }
+               if (t - last_switch > kSettled)
+                 worst_force = std::max(worst_force, std::abs(force * r_b2 / kTorque - 1.0));
+               last_t = t;
+               last_force = force;
+               ++samples;
+             }
+             phi1 = a1;
+             phi2 = a2;
+           });
   ASSERT_GT(samples, 1000);
   const double ratio = turned2 / turned1;
   const double mean_force = impulse / (t1 - t0);
-  std::printf("[measured] ratio %.12f against -19/31 = %.12f; mean mesh force %.6f N against T/r_b2 = %.6f N; "
-              "largest deviation %.3g ms after a switch %.3g\n",
-              ratio, -19.0 / 31.0, mean_force, kTorque / r_b2, kSettled * 1e3, worst_force);
+  std::printf(
+      "[measured] ratio %.12f against -19/31 = %.12f; mean mesh force %.6f N against T/r_b2 = %.6f "
+      "N; "
+      "largest deviation %.3g ms after a switch %.3g\n",
+      ratio, -19.0 / 31.0, mean_force, kTorque / r_b2, kSettled * 1e3, worst_force);
   EXPECT_NEAR(ratio, -19.0 / 31.0, 2e-11);  // measured 2.3e-12 (the end points' deflections differ)
   // The trapezoid over 1e-4 s outputs misses part of the 5 kHz ringing's spikes: measured 1.7e-4.
   EXPECT_NEAR(mean_force * r_b2 / kTorque, 1.0, 1e-3);
   EXPECT_LT(worst_force, 1e-5);  // measured 9.9e-7 (the integrator's tolerance)
 }
 
-// The element's Jacobian against central differences of its forces, two free wheels 5 um into
-// the two tooth pairs in contact and turning: in u exact (the dashpot on the relative velocity at each
-// contact point); in x for the wheels' turns about their axes (the columns the mesh's
+// The element's Jacobian against central differences of its forces, two free wheels turning
+// with both tooth pairs in contact 5 um deep: in u exact (the dashpot on the relative velocity at
+// each contact point); in x for the wheels' turns about their axes (the columns the mesh's
 // stiffness lives in: the contact points slide along the line of action, parallel to the force,
 // so the levers add nothing). Left out: the line of action's turning when a centre moves.
 TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   MultibodySystem system(Eigen::Vector3d::Zero());
   for (const char* name : {"pinion", "wheel"}) {
-    system.AddBody(std::make_unique<RigidBody>(name, 0.3, Eigen::Vector3d::Zero(), 1e-4 * Eigen::Matrix3d::Identity(),
-                                               std::vector<RigidBodyMarker>{{"axis", Eigen::Vector3d::Zero(),
-                                                                             Eigen::Matrix3d::Identity()}}));
+    system.AddBody(std::make_unique<RigidBody>(
+        name, 0.3, Eigen::Vector3d::Zero(), 1e-4 * Eigen::Matrix3d::Identity(),
+        std::vector<RigidBodyMarker>{
+            {"axis", Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()}}));
   }
   contact::GearPairSpec spec;
-  spec.gear1 = contact::SpurGearSpec{2e-3, 19, 20.0 * std::numbers::pi / 180.0, 0.3, 1.0, 1.25, 0.02};
-  spec.gear2 = contact::SpurGearSpec{2e-3, 31, 20.0 * std::numbers::pi / 180.0, -0.1, 1.0, 1.25, 0.02};
+  spec.gear1 =
+      contact::SpurGearSpec{2e-3, 19, 20.0 * std::numbers::pi / 180.0, 0.3, 1.0, 1.25, 0.02};
+  spec.gear2 =
+      contact::SpurGearSpec{2e-3, 31, 20.0 * std::numbers::pi / 180.0, -0.1, 1.0, 1.25, 0.02};
   spec.centre_distance = kCentre;
   const contact::GearPair pair = contact::MakeGearPair(spec);
-  system.AddForceElement(std::make_unique<SpurGearContact>("mesh", system.Marker("pinion", "axis"),
-                                                           system.Marker("wheel", "axis"), pair,
-                                                           contact::ToothPairLaw({1.4e10, 3e3}, pair)));
+  system.AddForceElement(std::make_unique<SpurGearContact>(
+      "mesh", system.Marker("pinion", "axis"), system.Marker("wheel", "axis"), pair,
+      contact::ToothPairLaw({1.4e10, 3e3}, pair)));
   const double phi1 = 0.37;  // in double contact
   const double phi2 =
-      contact::TouchingAngle2(pair, kCentre, phi1, 0.0, contact::FlankSide::kPositive) + 5e-6 / pair.gear2.base_radius;
+      contact::TouchingAngle2(pair, kCentre, phi1, 0.0, contact::FlankSide::kPositive) +
+      5e-6 / pair.gear2.base_radius;
   Eigen::VectorXd y = system.NeutralState();
   const auto set = [&](int body, double x, double angle, double omega) {
     Eigen::VectorXd q(7), u = Eigen::VectorXd::Zero(6);
@@ -181,7 +200,8 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   set(1, kCentre, phi2, -1.0);
   const ForceElement& mesh = system.force_element(0);
   int penetrating = 0;
-  for (const contact::ToothPair& tp : dynamic_cast<const SpurGearContact&>(mesh).ToothPairs(0.0, system, y)) {
+  for (const contact::ToothPair& tp :
+       dynamic_cast<const SpurGearContact&>(mesh).ToothPairs(0.0, system, y)) {
     penetrating += tp.gap < 0.0;
   }
   ASSERT_EQ(penetrating, 2);
@@ -209,9 +229,11 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   const double error_u = (dh_du - fd_u).cwiseAbs().maxCoeff() / fd_u.cwiseAbs().maxCoeff();
   double error_x = 0.0;
   for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
-    error_x = std::max(error_x, (dh_dx.col(c) - fd_x.col(c)).cwiseAbs().maxCoeff() / fd_x.col(c).cwiseAbs().maxCoeff());
+    error_x = std::max(error_x, (dh_dx.col(c) - fd_x.col(c)).cwiseAbs().maxCoeff() /
+                                    fd_x.col(c).cwiseAbs().maxCoeff());
   }
-  std::printf("[measured] spur gear Jacobian: u %.2g, x (turns) %.2g of the largest entry\n", error_u, error_x);
+  std::printf("[measured] spur gear Jacobian: u %.2g, x (turns) %.2g of the largest entry\n",
+              error_u, error_x);
   EXPECT_LT(error_u, 6e-10);  // measured 5.8e-11
   EXPECT_LT(error_x, 7e-8);   // measured 7.1e-9: the quaternion's round-off over steps of 1e-8 rad
 }
@@ -219,21 +241,27 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
 TEST(SpurGearContact, BadGearEntriesAreOneLineErrorsAtTheirItem) {
   GearScene files;
   const auto refused = [&](const std::string& keys) {
-    return flexmbs::testing::InputErrorMessage([&] { LoadScene(files.Write(SceneText(0.0, keys))); });
+    return flexmbs::testing::InputErrorMessage(
+        [&] { LoadScene(files.Write(SceneText(0.0, keys))); });
   };
   std::string message = refused(
       "    gear1: {module: 2e-3, teeth: 12, face_width: 0.02}\n"
       "    gear2: {module: 2e-3, teeth: 31, face_width: 0.02}\n");
   EXPECT_NE(message.find("scene.yaml:"), std::string::npos) << message;
-  EXPECT_NE(message.find("force element 'mesh': gear 1: teeth 12 < z_min"), std::string::npos) << message;
+  EXPECT_NE(message.find("force element 'mesh': gear 1: teeth 12 < z_min"), std::string::npos)
+      << message;
   message = refused(
       "    gear1: {module: 2e-3, teeth: 19, face_width: 0.02}\n"
       "    gear2: {module: 3e-3, teeth: 31, face_width: 0.02}\n");
-  EXPECT_NE(message.find("force element 'mesh': gears cannot mesh: module 0.002 m of gear 1 differs from 0.003 m"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find(
+          "force element 'mesh': gears cannot mesh: module 0.002 m of gear 1 differs from 0.003 m"),
+      std::string::npos)
       << message;
   message = refused(std::string(kGearKeys) + "    mesh_stiffness: -1\n");
-  EXPECT_NE(message.find("force element 'mesh': mesh stiffness c' [N/m^2] -1 must be finite and > 0"), std::string::npos)
+  EXPECT_NE(
+      message.find("force element 'mesh': mesh stiffness c' [N/m^2] -1 must be finite and > 0"),
+      std::string::npos)
       << message;
   message = refused(std::string(kGearKeys) + "    teeth: 3\n");
   EXPECT_NE(message.find("forces[1].teeth: unknown key 'teeth'"), std::string::npos) << message;

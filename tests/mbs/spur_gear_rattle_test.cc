@@ -3,6 +3,7 @@
 // contact returns the speed times the restitution of the linear spring-dashpot n c' b, c on the
 // wheel's mass reduced to the line of action (closed form below, checked against SciPy).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -10,7 +11,6 @@
 #include <fstream>
 #include <numbers>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "contact/gears/gear_mesh.h"
@@ -22,11 +22,11 @@
 namespace flexmbs::mbs {
 namespace {
 
-constexpr double kWheelInertia = 2.3e-4;  // [kg m^2] about the axis
-constexpr double kDamping = 2e3;          // [N s/m] per tooth pair
+constexpr double kWheelInertia = 2.3e-4;      // [kg m^2] about the axis
+constexpr double kDamping = 2e3;              // [N s/m] per tooth pair
 constexpr double kStiffness = 1.4e10 * 0.02;  // c' b [N/m] per tooth pair
-constexpr double kApproach = 0.05;        // [m/s] along the line of action
-constexpr double kStartGap = 1e-6;        // [m]
+constexpr double kApproach = 0.05;            // [m/s] along the line of action
+constexpr double kStartGap = 1e-6;            // [m]
 
 /// The restitution of m x'' = -max(0, k x + c x') from x = 0, x' = v0 > 0 (underdamped,
 /// zeta < 1/sqrt(2)): x = v0/w_d e^(-zeta w t) sin(w_d t); the force k x + c x' vanishes at
@@ -35,8 +35,10 @@ constexpr double kStartGap = 1e-6;        // [m]
 /// the same ODE (rtol 1e-12, the end of contact as an event) gives e = 0.713880065540117 for
 /// m = 0.27 kg, k = 2.8e8 N/m, c = 2e3 N s/m, which this returns to 8.2e-11.
 double Restitution(double mass, double k, double c) {
-  const double w = std::sqrt(k / mass), zeta = c / (2.0 * mass * w), w_d = w * std::sqrt(1.0 - zeta * zeta);
-  const double t_s = (std::numbers::pi - std::atan(c * w_d / (k * (1.0 - 2.0 * zeta * zeta)))) / w_d;
+  const double w = std::sqrt(k / mass), zeta = c / (2.0 * mass * w),
+               w_d = w * std::sqrt(1.0 - zeta * zeta);
+  const double t_s =
+      (std::numbers::pi - std::atan(c * w_d / (k * (1.0 - 2.0 * zeta * zeta)))) / w_d;
   return -std::exp(-zeta * w * t_s) * (std::cos(w_d * t_s) - zeta * w / w_d * std::sin(w_d * t_s));
 }
 
@@ -55,22 +57,27 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
   std::filesystem::create_directories(dir);
   const auto scene_text = [&](double angle, double omega) {
     return "gravity: [0, 0, 0]\nbodies:\n"
-           "  pinion:\n    rigid: {mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, 3.4e-5]]}\n"
+           "  pinion:\n    rigid: {mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, "
+           "3.4e-5]]}\n"
            "    markers: {axis: {position: [0, 0, 0]}}\n"
-           "  wheel:\n    rigid: {mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, 2.3e-4]]}\n"
+           "  wheel:\n    rigid: {mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, "
+           "2.3e-4]]}\n"
            "    markers: {axis: {position: [0, 0, 0]}}\n"
            "    initial: {position: [0.0505, 0, 0], rotation: {axis: [0, 0, 1], angle: " +
            std::to_string(angle) + "}, angular_velocity: [0, 0, " + std::to_string(omega) + "]}\n" +
            "joints:\n"
-           "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: axis}, driver: 0}\n"
+           "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: "
+           "axis}, driver: 0}\n"
            "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, "
            "j: {body: wheel, marker: axis}}\n"
            "forces:\n"
-           "  - {name: mesh, type: spur_gear_contact, wheel1: {body: pinion, marker: axis}, wheel2: {body: wheel, marker: axis},\n"
+           "  - {name: mesh, type: spur_gear_contact, wheel1: {body: pinion, marker: axis}, "
+           "wheel2: {body: wheel, marker: axis},\n"
            "     gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02},\n"
            "     gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02},\n"
            "     centre_distance: 0.0505, damping: 2e3}\n"
-           "simulation: {end_time: 0.012, output_interval: 1e-6, method: explicit, relative_tolerance: 1e-11, "
+           "simulation: {end_time: 0.012, output_interval: 1e-6, method: explicit, "
+           "relative_tolerance: 1e-11, "
            "absolute_tolerance: 1e-14, max_step: 1e-6}\n";
   };
   const auto load = [&](double angle, double omega) {
@@ -78,10 +85,12 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
     return LoadScene(dir / "scene.yaml");
   };
   const Scene probe = load(0.0, 0.0);
-  const contact::GearPair& pair = dynamic_cast<const SpurGearContact&>(probe.system->force_element(0)).pair();
+  const contact::GearPair& pair =
+      dynamic_cast<const SpurGearContact&>(probe.system->force_element(0)).pair();
   const double r_b2 = pair.gear2.base_radius;
   // The wheel kStartGap short of touching on the positive flanks, closing at kApproach.
-  const double touching = contact::TouchingAngle2(pair, 0.0505, 0.0, 0.0, contact::FlankSide::kPositive);
+  const double touching =
+      contact::TouchingAngle2(pair, 0.0505, 0.0, 0.0, contact::FlankSide::kPositive);
   const Scene scene = load(touching - kStartGap / r_b2, kApproach / r_b2);
   std::filesystem::remove_all(dir);
   MultibodySystem& system = *scene.system;
@@ -90,15 +99,18 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
   std::vector<Sample> samples;
   int pairs[2] = {0, 0};  // tooth pairs on the negative, positive side (constant over the run)
   bool same_pairs = true;
-  Simulate(system, scene.options, scene.initial_state, [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
-    const auto tooth_pairs = gears.ToothPairs(t, system, y);
-    int count[2] = {0, 0};
-    for (const contact::ToothPair& tp : tooth_pairs) ++count[tp.side == contact::FlankSide::kPositive];
-    if (samples.empty()) pairs[0] = count[0], pairs[1] = count[1];
-    same_pairs = same_pairs && count[0] == pairs[0] && count[1] == pairs[1];
-    samples.push_back({t, system.MarkerState(wheel, y).w_WM_W.z(), SmallestGap(tooth_pairs, contact::FlankSide::kPositive),
-                       SmallestGap(tooth_pairs, contact::FlankSide::kNegative)});
-  });
+  Simulate(system, scene.options, scene.initial_state,
+           [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
+             const auto tooth_pairs = gears.ToothPairs(t, system, y);
+             int count[2] = {0, 0};
+             for (const contact::ToothPair& tp : tooth_pairs)
+               ++count[tp.side == contact::FlankSide::kPositive];
+             if (samples.empty()) pairs[0] = count[0], pairs[1] = count[1];
+             same_pairs = same_pairs && count[0] == pairs[0] && count[1] == pairs[1];
+             samples.push_back({t, system.MarkerState(wheel, y).w_WM_W.z(),
+                                SmallestGap(tooth_pairs, contact::FlankSide::kPositive),
+                                SmallestGap(tooth_pairs, contact::FlankSide::kNegative)});
+           });
   ASSERT_TRUE(same_pairs);
 
   // Flights: runs of samples with both gaps open; their speed, start (leaving a side) and end
@@ -107,7 +119,9 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
     double speed, start, end;
   };
   std::vector<Flight> flights;
-  const auto crossing = [](double t0, double g0, double t1, double g1) { return t0 + (t1 - t0) * g0 / (g0 - g1); };
+  const auto crossing = [](double t0, double g0, double t1, double g1) {
+    return t0 + (t1 - t0) * g0 / (g0 - g1);
+  };
   for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
     const Sample& s = samples[i];
     const bool open = s.gap_positive > 0.0 && s.gap_negative > 0.0;
@@ -120,9 +134,11 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
       flights.push_back({r_b2 * std::abs(s.omega2), start, -1.0});
     }
     const Sample& n = samples[i + 1];
-    if (open && !(n.gap_positive > 0.0 && n.gap_negative > 0.0) && !flights.empty() && flights.back().end < 0.0) {
-      flights.back().end = n.gap_positive > 0.0 ? crossing(s.t, s.gap_negative, n.t, n.gap_negative)
-                                                : crossing(s.t, s.gap_positive, n.t, n.gap_positive);
+    if (open && !(n.gap_positive > 0.0 && n.gap_negative > 0.0) && !flights.empty() &&
+        flights.back().end < 0.0) {
+      flights.back().end = n.gap_positive > 0.0
+                               ? crossing(s.t, s.gap_negative, n.t, n.gap_negative)
+                               : crossing(s.t, s.gap_positive, n.t, n.gap_positive);
     }
   }
   ASSERT_GE(flights.size(), 4u);
@@ -134,17 +150,22 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
     const double e = Restitution(mass, pairs[side] * kStiffness, kDamping);
     worst_e = std::max(worst_e, std::abs(flights[k + 1].speed / flights[k].speed - e));
     if (flights[k].end > 0.0) {
-      worst_flight = std::max(worst_flight,
-                              std::abs((flights[k].end - flights[k].start) * flights[k].speed / pair.backlash - 1.0));
+      worst_flight = std::max(
+          worst_flight,
+          std::abs((flights[k].end - flights[k].start) * flights[k].speed / pair.backlash - 1.0));
     }
-    std::printf("[measured] impact %zu on the %s side (%d pairs): speed %.6g -> %.6g m/s, e %.9f (closed form %.9f), "
-                "energy lost %.4g J; flight %.6g s against j_bn / v = %.6g s\n",
-                k + 1, side == 0 ? "negative" : "positive", pairs[side], flights[k].speed, flights[k + 1].speed,
-                flights[k + 1].speed / flights[k].speed, e,
-                0.5 * mass * (flights[k].speed * flights[k].speed - flights[k + 1].speed * flights[k + 1].speed),
-                flights[k].end - flights[k].start, pair.backlash / flights[k].speed);
+    std::printf(
+        "[measured] impact %zu on the %s side (%d pairs): speed %.6g -> %.6g m/s, e %.9f (closed "
+        "form %.9f), "
+        "energy lost %.4g J; flight %.6g s against j_bn / v = %.6g s\n",
+        k + 1, side == 0 ? "negative" : "positive", pairs[side], flights[k].speed,
+        flights[k + 1].speed, flights[k + 1].speed / flights[k].speed, e,
+        0.5 * mass *
+            (flights[k].speed * flights[k].speed - flights[k + 1].speed * flights[k + 1].speed),
+        flights[k].end - flights[k].start, pair.backlash / flights[k].speed);
   }
-  std::printf("[measured] worst restitution error %.3g, worst flight time error %.3g (relative)\n", worst_e, worst_flight);
+  std::printf("[measured] worst restitution error %.3g, worst flight time error %.3g (relative)\n",
+              worst_e, worst_flight);
   EXPECT_LT(worst_e, 2e-8);       // measured 1.8e-9 (the integrator's tolerance)
   EXPECT_LT(worst_flight, 1e-6);  // measured 1.05e-7 (the crossings' interpolation at 1e-6 s)
 }
