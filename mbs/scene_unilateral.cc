@@ -129,7 +129,19 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                        surface.num_modes, law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, surface_plane, sphere_surface",
+  if (kind == "surface_surface") {
+    node.RejectUnknownKeys({"name", "type", "surface1", "surface2", "law", "restitution", "friction"});
+    const std::string owner = fmt::format("contact '{}'", name);
+    const SurfaceRef a = ReadSurface(node.Required("surface1"), system, owner);
+    const SurfaceRef b = ReadSurface(node.Required("surface2"), system, owner);
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] {
+      return std::make_unique<SurfaceSurfaceUnilateral>(name, a.origin, *a.surface, a.num_modes, b.origin, *b.surface,
+                                                        b.num_modes, law);
+    });
+  }
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, surface_plane, sphere_surface, "
+                        "surface_surface",
                         name, kind));
 }
 

@@ -80,4 +80,38 @@ std::vector<UnilateralContactKinematics> SphereSurfaceUnilateral::EvaluatePoints
   return {k};
 }
 
+SurfaceSurfaceUnilateral::SurfaceSurfaceUnilateral(std::string name, MarkerRef origin_a, sid::ContactSurface surface_a,
+                                                   Eigen::Index num_modes_a, MarkerRef origin_b,
+                                                   sid::ContactSurface surface_b, Eigen::Index num_modes_b,
+                                                   UnilateralLaw law)
+    : UnilateralContact(std::move(name), std::move(origin_a), std::move(origin_b), law),
+      surface_a_(std::move(surface_a)),
+      surface_b_(std::move(surface_b)),
+      num_modes_a_(num_modes_a),
+      num_modes_b_(num_modes_b) {
+  CheckSurface(this->name(), surface_a_, num_modes_a_);
+  CheckSurface(this->name(), surface_b_, num_modes_b_);
+}
+
+std::vector<UnilateralContactKinematics> SurfaceSurfaceUnilateral::EvaluatePoints(const MultibodySystem& system,
+                                                                                  const ConstVectorRef& y) const {
+  const SurfaceState a(system, marker_a(), surface_a_, num_modes_a_, y);
+  const SurfaceState b(system, marker_b(), surface_b_, num_modes_b_, y);
+  std::vector<UnilateralContactKinematics> points;
+  points.reserve(static_cast<std::size_t>(num_points()));
+  for (int v = 0; v < num_points(); ++v) {
+    const contact::SphereMeshContact nearest = contact::PointMesh(a.mesh().vertices_W.col(v), b.mesh());
+    UnilateralContactKinematics k;
+    static_cast<contact::PointContactKinematics&>(k) = nearest;
+    k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
+    k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
+    AddPointJacobian(system, marker_a(), a.frame(), k.p_WA_W, 1.0, &k);
+    AddModalJacobian(a.modal_column(), a.ModalJacobian(v), 1.0, &k);
+    AddPointJacobian(system, marker_b(), b.frame(), k.p_WB_W, -1.0, &k);
+    AddModalJacobian(b.modal_column(), b.ModalJacobian(nearest.vertices, nearest.weights), -1.0, &k);
+    points.push_back(std::move(k));
+  }
+  return points;
+}
+
 }  // namespace flexmbs::mbs

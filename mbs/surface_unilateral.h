@@ -1,6 +1,7 @@
 #pragma once
 // Unilateral contacts on a reduced body's contact surface (docs/contact.md, "Flexible bodies"):
-// every vertex against a plane, and a sphere against the surface's faces. The surface deforms
+// every vertex against a plane, a sphere against the surface's faces, and every vertex against
+// another flexible body's surface. The surface deforms
 // with the body's modal coordinates (mbs/surface_state.h); only its own rows of the basis are kept.
 
 #include <Eigen/Core>
@@ -56,6 +57,30 @@ class SphereSurfaceUnilateral final : public UnilateralContact {
   double radius_;
   sid::ContactSurface surface_;
   Eigen::Index num_modes_;
+};
+
+/// Node to surface between two flexible bodies: every vertex V of surface S_A of body A against
+/// the faces of surface S_B of body B (contact::PointMesh on S_B deformed), g_N,V along the normal
+/// of B's face at the nearest point c, W_N,V the velocity of the vertex less that of B's material
+/// point at c (both through their body's frame and modes, SurfaceState). Name the surfaces that
+/// meet (an end face against an end face): a vertex off S_B is apart.
+class SurfaceSurfaceUnilateral final : public UnilateralContact {
+ public:
+  /// `origin_a`, `origin_b` are the bodies' frame markers, the surfaces' phi over each body's
+  /// kept modes (as SurfacePlaneUnilateral's). InputError naming the contact otherwise.
+  SurfaceSurfaceUnilateral(std::string name, MarkerRef origin_a, sid::ContactSurface surface_a,
+                           Eigen::Index num_modes_a, MarkerRef origin_b, sid::ContactSurface surface_b,
+                           Eigen::Index num_modes_b, UnilateralLaw law);
+
+  std::string_view type() const override { return "surface_surface"; }
+  int num_points() const override { return static_cast<int>(surface_a_.vertices.rows()); }
+
+ private:
+  std::vector<UnilateralContactKinematics> EvaluatePoints(const MultibodySystem& system,
+                                                          const ConstVectorRef& y) const override;
+
+  sid::ContactSurface surface_a_, surface_b_;
+  Eigen::Index num_modes_a_, num_modes_b_;
 };
 
 /// Throws InputError naming contact `contact` unless `surface` has vertices, faces, and phi of

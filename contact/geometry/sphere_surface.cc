@@ -12,15 +12,6 @@
 namespace flexmbs::contact {
 namespace {
 
-/// The nearest point of one face of the mesh: its vertices, weights and normal where inside.
-struct Candidate {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  std::array<int, 4> vertices{0, 0, 0, 0};
-  Eigen::Vector4d weights = Eigen::Vector4d::Zero();
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  bool interior = false;
-};
-
 /// The bilinear shape functions at (xi, eta).
 Eigen::Vector4d Bilinear(double xi, double eta) {
   return {(1.0 - xi) * (1.0 - eta), xi * (1.0 - eta), xi * eta, (1.0 - xi) * eta};
@@ -118,60 +109,86 @@ QuadPoint NearestPointOnQuad(const Eigen::Vector3d& p, const std::array<Eigen::V
   return out;
 }
 
-SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh) {
-  FLEXMBS_CHECK(sphere.radius > 0.0, "SphereMesh: the radius must be > 0");
-  Candidate best;
+MeshPoint NearestMeshPoint(const Eigen::Vector3d& p, const PolygonMesh& mesh) {
+  MeshPoint best;
   double best_distance = std::numeric_limits<double>::infinity();
   std::size_t first = 0;
   for (const int size : mesh.face_sizes) {
     FLEXMBS_CHECK((size == 3 || size == 4) && first + static_cast<std::size_t>(size) <= mesh.face_vertices.size(),
-                  "SphereMesh: faces have 3 or 4 vertices");
-    Candidate face;
+                  "NearestMeshPoint: faces have 3 or 4 vertices");
+    MeshPoint face;
     std::array<Eigen::Vector3d, 4> P;
     for (int i = 0; i < size; ++i) {
       const int vertex = mesh.face_vertices[first + static_cast<std::size_t>(i)];
-      FLEXMBS_CHECK(vertex >= 0 && vertex < mesh.vertices_W.cols(), "SphereMesh: a face vertex out of range");
+      FLEXMBS_CHECK(vertex >= 0 && vertex < mesh.vertices_W.cols(), "NearestMeshPoint: a face vertex out of range");
       face.vertices[static_cast<std::size_t>(i)] = vertex;
       P[static_cast<std::size_t>(i)] = mesh.vertices_W.col(vertex);
     }
     if (size == 3) {
-      const TrianglePoint nearest = NearestPointOnTriangle(sphere.p_WS_W, P[0], P[1], P[2]);
+      const TrianglePoint nearest = NearestPointOnTriangle(p, P[0], P[1], P[2]);
       face.point = nearest.point;
       face.weights.head<3>() = nearest.weights;
       face.normal = (P[1] - P[0]).cross(P[2] - P[0]).normalized();
       face.interior = nearest.interior;
     } else {
-      const QuadPoint nearest = NearestPointOnQuad(sphere.p_WS_W, P);
+      const QuadPoint nearest = NearestPointOnQuad(p, P);
       face.point = nearest.point;
       face.weights = nearest.weights;
       face.normal = nearest.normal;
       face.interior = nearest.interior;
     }
-    const double distance = (sphere.p_WS_W - face.point).norm();
+    const double distance = (p - face.point).norm();
     if (distance < best_distance) {
       best_distance = distance;
       best = face;
     }
     first += static_cast<std::size_t>(size);
   }
-  FLEXMBS_CHECK(std::isfinite(best_distance), "SphereMesh: a mesh without faces");
+  FLEXMBS_CHECK(std::isfinite(best_distance), "NearestMeshPoint: a mesh without faces");
+  return best;
+}
+
+SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh) {
+  FLEXMBS_CHECK(sphere.radius > 0.0, "SphereMesh: the radius must be > 0");
+  const MeshPoint nearest = NearestMeshPoint(sphere.p_WS_W, mesh);
   SphereMeshContact contact;
-  contact.vertices = best.vertices;
-  contact.weights = best.weights;
-  contact.p_WB_W = best.point;
-  if (best.interior) {
-    contact.n_W = best.normal;
+  contact.vertices = nearest.vertices;
+  contact.weights = nearest.weights;
+  contact.p_WB_W = nearest.point;
+  if (nearest.interior) {
+    contact.n_W = nearest.normal;
     contact.g_N = contact.n_W.dot(sphere.p_WS_W - contact.p_WB_W) - sphere.radius;
   } else {
-    if (!(best_distance > 1e-12 * sphere.radius)) {
+    const double distance = (sphere.p_WS_W - nearest.point).norm();
+    if (!(distance > 1e-12 * sphere.radius)) {
       throw DegenerateContactError(fmt::format(
           "sphere-surface contact: the sphere's centre lies on the surface's edge (distance {:.3g} m): no normal",
-          best_distance));
+          distance));
     }
-    contact.n_W = (sphere.p_WS_W - contact.p_WB_W) / best_distance;
-    contact.g_N = best_distance - sphere.radius;
+    contact.n_W = (sphere.p_WS_W - contact.p_WB_W) / distance;
+    contact.g_N = distance - sphere.radius;
   }
   contact.p_WA_W = sphere.p_WS_W - sphere.radius * contact.n_W;
+  TangentBasis(contact.n_W, &contact.t1_W, &contact.t2_W);
+  return contact;
+}
+
+SphereMeshContact PointMesh(const Eigen::Vector3d& p_WA_W, const PolygonMesh& mesh) {
+  const MeshPoint nearest = NearestMeshPoint(p_WA_W, mesh);
+  SphereMeshContact contact;
+  contact.vertices = nearest.vertices;
+  contact.weights = nearest.weights;
+  contact.p_WA_W = p_WA_W;
+  contact.p_WB_W = nearest.point;
+  const Eigen::Vector3d d = p_WA_W - nearest.point;
+  const double along = nearest.normal.dot(d), distance = d.norm();
+  if (nearest.interior || std::abs(along) >= (1.0 - 1e-9) * distance) {
+    contact.n_W = nearest.normal;
+    contact.g_N = along;
+  } else {
+    contact.n_W = d / distance;
+    contact.g_N = distance;
+  }
   TangentBasis(contact.n_W, &contact.t1_W, &contact.t2_W);
   return contact;
 }

@@ -1,7 +1,7 @@
 #pragma once
-// A sphere against a polygon mesh (docs/contact.md, "Flexible bodies"): the mesh point nearest the
-// sphere's centre, found face by face, and the vertices and weights that move it, so a deforming
-// mesh (a reduced body's contact surface) can give the point's velocity.
+// A sphere or a point against a polygon mesh (docs/contact.md, "Flexible bodies"): the mesh point
+// nearest the sphere's centre or the point, found face by face, and the vertices and weights that
+// move it, so a deforming mesh (a reduced body's contact surface) can give the point's velocity.
 
 #include <Eigen/Core>
 #include <array>
@@ -43,6 +43,21 @@ struct PolygonMesh {
   std::vector<int> face_vertices;  ///< concatenated, 0-based into vertices_W
 };
 
+/// The face point of a mesh nearest to a point: the vertices and weights that move it (a
+/// triangle's fourth weight 0), its face's outward normal there, and whether it lies inside the
+/// face rather than on its rim.
+struct MeshPoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  std::array<int, 4> vertices{0, 0, 0, 0};
+  Eigen::Vector4d weights = Eigen::Vector4d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  bool interior = false;
+};
+
+/// The face point of `mesh` nearest to p [m] over all faces (the first of equals).
+/// Preconditions (InternalError): faces of 3 or 4 valid vertices, at least one.
+MeshPoint NearestMeshPoint(const Eigen::Vector3d& p, const PolygonMesh& mesh);
+
 /// The point contact of sphere A on mesh B and where B's contact point lies: p_WB_W = sum_i
 /// weights_i vertices_W(:, vertices_i) (a triangle's fourth weight is 0).
 struct SphereMeshContact : PointContactKinematics {
@@ -58,5 +73,12 @@ struct SphereMeshContact : PointContactKinematics {
 /// centre lies on an edge or vertex (no normal). Preconditions (InternalError): radius > 0, a
 /// mesh with faces of 3 or 4 valid vertices.
 SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh);
+
+/// Node-to-surface: point A (a vertex of another body's surface) at p_WA_W against mesh B: the
+/// nearest face point c (NearestMeshPoint) with its face's normal n and g_N = n . (p - c) where
+/// p lies inside the face's prism or on its rim's normal line (|n . (p - c)| >= (1 - 1e-9)
+/// |p - c|: a node level with the face's edge, as where two meshes' nodes meet); elsewhere p is off
+/// the surface and n = (p - c) / |p - c|, g_N = |p - c| > 0. p_WB_W = c.
+SphereMeshContact PointMesh(const Eigen::Vector3d& p_WA_W, const PolygonMesh& mesh);
 
 }  // namespace flexmbs::contact

@@ -1,6 +1,6 @@
 // contact/geometry/sphere_surface.h: the nearest point of a triangle and of a warped bilinear quad
 // against brute-force searches over their parameters, and a sphere against a polygon mesh above
-// a face, beside an edge and with its centre on an edge.
+// a face, beside an edge and with its centre on an edge; a point against a mesh (node to surface).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -90,6 +90,29 @@ TEST(SphereSurface, SphereAboveAFaceBesideAnEdgeAndOnAnEdge) {
   triangles.face_sizes = {3, 3};
   triangles.face_vertices = {0, 1, 2, 0, 2, 3};
   EXPECT_THROW(SphereMesh({Eigen::Vector3d(1.0, 0.5, 0.0), 0.1}, triangles), DegenerateContactError);
+}
+
+TEST(SphereSurface, NodeToSurfaceUsesTheFaceNormalOverTheFaceAndOnItsRimLine) {
+  const PolygonMesh square = UnitSquare();
+  // Inside the face's prism, above and below: the face normal, g_N its signed distance.
+  const SphereMeshContact above = PointMesh(Eigen::Vector3d(0.3, 0.6, 0.2), square);
+  EXPECT_LT((above.n_W - Eigen::Vector3d::UnitZ()).norm(), 1e-15);
+  EXPECT_NEAR(above.g_N, 0.2, 1e-15);
+  const SphereMeshContact below = PointMesh(Eigen::Vector3d(0.3, 0.6, -0.01), square);
+  EXPECT_NEAR(below.g_N, -0.01, 1e-15);
+  EXPECT_LT((below.p_WB_W - Eigen::Vector3d(0.3, 0.6, 0.0)).norm(), 1e-15);
+  // A node level with a vertex (where two aligned meshes' nodes meet), on a triangle mesh whose
+  // nearest point there is a vertex, not an interior point: still the face normal.
+  PolygonMesh triangles = square;
+  triangles.face_sizes = {3, 3};
+  triangles.face_vertices = {0, 1, 2, 0, 2, 3};
+  const SphereMeshContact corner = PointMesh(Eigen::Vector3d(1.0, 1.0, -1e-3), triangles);
+  EXPECT_LT((corner.n_W - Eigen::Vector3d::UnitZ()).norm(), 1e-15);
+  EXPECT_NEAR(corner.g_N, -1e-3, 1e-15);
+  // Off the surface (beside an edge, below its plane): apart, the distance to the edge.
+  const SphereMeshContact beside = PointMesh(Eigen::Vector3d(1.3, 0.5, -0.4), square);
+  EXPECT_NEAR(beside.g_N, 0.5, 1e-15);
+  EXPECT_LT((beside.n_W - Eigen::Vector3d(0.6, 0.0, -0.8)).norm(), 1e-15);
 }
 
 TEST(SphereSurface, NearestPointOnAWarpedQuadIsTheSampledMinimum) {
