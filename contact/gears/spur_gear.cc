@@ -106,8 +106,17 @@ void CheckCanMesh(const SpurGearSpec& gear1, const SpurGearSpec& gear2) {
   }
 }
 
-void CheckPairGeometry(const GearPair& pair) {
+void CheckPairGeometry(const GearPair& pair, double allowance) {
   const double a = pair.centre_distance;
+  for (const SpurGear* gear : {&pair.gear1, &pair.gear2}) {
+    const double tip_half_angle = gear->base_half_angle - Involute(std::atan(gear->tip_roll));
+    if (!(tip_half_angle > 0.0)) {
+      throw InputError(fmt::format(
+          "backlash {} m thins the teeth of gear {} to a tip thickness of {:.4g} m "
+          "(must stay > 0)",
+          allowance, gear == &pair.gear1 ? 1 : 2, 2.0 * gear->tip_radius * tip_half_angle));
+    }
+  }
   if (pair.path_start < 0.0) {
     throw InputError(fmt::format(
         "centre distance {:.6g} m: the tip of gear 2 meets gear 1 below its base circle "
@@ -208,7 +217,7 @@ GearPair MakeGearPair(const GearPairSpec& spec) {
   pair.path_start = pair.line_length - pair.gear2.base_radius * pair.gear2.tip_roll;
   pair.path_end = pair.gear1.base_radius * pair.gear1.tip_roll;
   pair.contact_ratio = (pair.path_end - pair.path_start) / pair.gear1.base_pitch;
-  CheckPairGeometry(pair);
+  CheckPairGeometry(pair, spec.backlash);
   return pair;
 }
 

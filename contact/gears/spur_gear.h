@@ -82,9 +82,10 @@ struct GearPair {
 
 /// The pair of `spec` after the wheels' checks (MakeSpurGear, items "gear 1", "gear 2") and the
 /// pair's: InputError for wheels that cannot mesh (different modules or pressure angles), a
-/// negative backlash, a centre distance below a_0 (the teeth would interpenetrate) or so large
-/// that the contact ratio falls below 1, a tip that meets the other wheel's flank below its base
-/// circle (interference) or reaches its root circle (no tip clearance).
+/// negative backlash or one that thins a wheel's tips to nothing, a centre distance below a_0
+/// (the teeth would interpenetrate) or so large that the contact ratio falls below 1, a tip that
+/// meets the other wheel's flank below its base circle (interference) or reaches its root
+/// circle (no tip clearance).
 GearPair MakeGearPair(const GearPairSpec& spec);
 
 /// The normal backlash j_bn [m] of `pair`'s wheels at centre distance a > r_b1 + r_b2:

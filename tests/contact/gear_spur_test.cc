@@ -172,6 +172,11 @@ TEST(SpurGearInput, PairsThatCannotMeshAreOneLineErrors) {
               MakeGearPair(spec);
             }).find("the tip of gear 2 meets gear 1 below its base circle"),
             std::string::npos);
+  spec = Pair(2e-3, 19, 31, 0.0, 0.0);
+  spec.backlash = 3e-3;  // 1.5 mm off each tooth, ~1.3 mm thick at the tip
+  EXPECT_EQ(InputErrorMessage([&] { MakeGearPair(spec); }),
+            "backlash 0.003 m thins the teeth of gear 1 to a tip thickness of -0.0003872 m (must "
+            "stay > 0)");
   spec = Pair(2e-3, 60, 61, 0.0, 0.0);
   spec.gear1.addendum_coefficient = 1.3;  // deeper than the other wheel's dedendum 1.25
   EXPECT_NE(InputErrorMessage([&] {
