@@ -3,13 +3,21 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "mbs/multibody_system.h"
 #include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
+namespace {
+
+/// The cosine of the largest angle between the wheels' axes the planar mesh accepts (8.1 deg).
+constexpr double kParallelAxes = 0.99;
+
+}  // namespace
 
 struct SpurGearContact::Frame {
   MarkerKinematics wheel1, wheel2;
@@ -33,6 +41,14 @@ SpurGearContact::Frame SpurGearContact::PairFrame(double t, const MultibodySyste
   f.wheel1 = system.MarkerState(wheel1_, y);
   f.wheel2 = system.MarkerState(wheel2_, y);
   const Eigen::Vector3d z = f.wheel1.R_WM.col(2);
+  const double axes_cosine = z.dot(f.wheel2.R_WM.col(2));
+  if (!(axes_cosine > kParallelAxes)) {
+    throw SimulationError(
+        t, fmt::format("t = {:.9g} s: spur gear contact '{}': the wheels' axes (the markers' z) "
+                       "are {:.3g} deg apart; they must be parallel and point the same way",
+                       t, name_,
+                       std::acos(std::clamp(axes_cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi));
+  }
   const Eigen::Vector3d d = f.wheel2.p_WM_W - f.wheel1.p_WM_W;
   const Eigen::Vector3d in_plane = d - z.dot(d) * z;
   f.centre_distance = in_plane.norm();

@@ -25,7 +25,7 @@ namespace flexmbs::mbs {
 /// law (contact::ToothPairLaw) on the relative velocity of the two wheels' material points there,
 /// which is the gap's rate. Axes that stay parallel are assumed; the Jacobian leaves out the line
 /// of action's turning with moving axes. Throws SimulationError if the axes come within
-/// r_b1 + r_b2 of each other.
+/// r_b1 + r_b2 of each other or are more than 8.1 deg from parallel (a marker's z reversed).
 class SpurGearContact final : public ForceElement {
  public:
   /// `pair` from contact::MakeGearPair, `law` from contact::ToothPairLaw.

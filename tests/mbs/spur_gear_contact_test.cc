@@ -19,6 +19,7 @@
 #include "mbs/rigid_body.h"
 #include "mbs/scene.h"
 #include "mbs/simulation.h"
+#include "mbs/simulation_error.h"
 #include "tests/input_error.h"
 
 namespace flexmbs::mbs {
@@ -236,6 +237,32 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
               error_u, error_x);
   EXPECT_LT(error_u, 6e-10);  // measured 5.8e-11
   EXPECT_LT(error_x, 7e-8);   // measured 7.1e-9: the quaternion's round-off over steps of 1e-8 rad
+}
+
+// A wheel marker whose z axis points the other way (the wheels' angles would count in opposite
+// senses) stops the run with the time and the angle between the axes.
+TEST(SpurGearContact, ReversedWheelAxisStopsTheRun) {
+  GearScene files;
+  std::string text = SceneText(0.0, kGearKeys);
+  const std::string markers = "    markers: {axis: {position: [0, 0, 0]}}\n";
+  const std::size_t wheel = text.find(markers, text.find("  wheel:"));
+  text.replace(wheel, markers.size(),
+               "    markers: {axis: {position: [0, 0, 0]}, flipped: {position: [0, 0, 0], "
+               "rotation: {axis: [1, 0, 0], "
+               "angle: 3.141592653589793}}}\n");
+  const std::string key = "wheel2: {body: wheel, marker: axis}";
+  text.replace(text.find(key), key.size(), "wheel2: {body: wheel, marker: flipped}");
+  const Scene scene = LoadScene(files.Write(text));
+  try {
+    Simulate(*scene.system, scene.options, scene.initial_state,
+             [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {});
+    ADD_FAILURE() << "no error";
+  } catch (const SimulationError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "spur gear contact 'mesh': the wheels' axes (the markers' z) are 180 deg apart"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SpurGearContact, BadGearEntriesAreOneLineErrorsAtTheirItem) {
