@@ -1,8 +1,10 @@
 #include "contact/gears/gear_mesh_force.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "contact/laws/law_checks.h"
+#include "core/error.h"
 
 namespace flexmbs::contact {
 namespace {
@@ -35,6 +37,36 @@ MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre
     loads.torque2 += Cross(tp.p_O1C - p_O1O2, force * tp.n_12);
   }
   return loads;
+}
+
+double StaticTransmissionError(const GearPair& pair, const NormalLaw& law, double centre_distance,
+                               double phi1, double torque) {
+  FLEXMBS_CHECK(torque > 0.0 && std::isfinite(torque),
+                "StaticTransmissionError needs a torque > 0");
+  const double r_b2 = pair.gear2.base_radius;
+  const double phi2_0 = TouchingAngle2(pair, centre_distance, phi1, 0.0, FlankSide::kPositive);
+  // The excess of the mesh's resisting torque over T at lag delta (< 0: wheel 1 turns on).
+  const auto excess = [&](double delta) {
+    return -EvaluateMesh(pair, law, centre_distance, phi1, phi2_0 + delta / r_b2, 0.0, 0.0)
+                .torque1 -
+           torque;
+  };
+  double lo = 0.0, hi = 1e-9;
+  while (excess(hi) < 0.0) {
+    lo = hi;
+    hi *= 2.0;
+    FLEXMBS_CHECK(hi < pair.gear1.base_pitch,
+                  "StaticTransmissionError: no equilibrium within a base pitch");
+  }
+  while (hi - lo > 1e-15 * hi) {
+    const double mid = 0.5 * (lo + hi);
+    if (excess(mid) < 0.0) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return 0.5 * (lo + hi);
 }
 
 }  // namespace flexmbs::contact

@@ -45,4 +45,13 @@ struct MeshLoads {
 MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance,
                        double phi1, double phi2, double omega1, double omega2);
 
+/// The static transmission error [m] of `pair` at wheel 1's angle phi1 [rad] and centre distance
+/// a [m] under a torque T > 0 [N m] driving wheel 1 about +z against wheel 2: how far wheel 2
+/// lags its rigid kinematic position along the line of action, delta = r_b2 (phi2 - phi2_0)
+/// (phi2_0 = TouchingAngle2 on the positive flanks), where the mesh's torque on wheel 1 balances
+/// T. Found by bisection on delta (the mesh torque grows with it). With rigid flanks every pair
+/// in contact takes delta, so this is T / (r_b1 c' b n) for n pairs.
+double StaticTransmissionError(const GearPair& pair, const NormalLaw& law, double centre_distance,
+                               double phi1, double torque);
+
 }  // namespace flexmbs::contact
