@@ -1,0 +1,65 @@
+#include "mbs/pcm_contact_force.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <utility>
+
+#include "contact/pcm/bvh.h"
+#include "contact/pcm/candidate_pairs.h"
+#include "contact/pcm/contact_element.h"
+#include "contact/pcm/surface_checks.h"
+#include "core/error.h"
+#include "mbs/multibody_system.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+/// The mesh placed in W by its marker, and its vertices' velocities [m/s].
+struct PlacedMesh {
+  contact::PolygonMesh mesh;
+  Eigen::Matrix3Xd velocities_W;
+};
+PlacedMesh Place(const contact::PolygonMesh& mesh_M, const MarkerKinematics& marker) {
+  PlacedMesh placed{mesh_M, Eigen::Matrix3Xd()};
+  placed.mesh.vertices_W = (marker.R_WM * mesh_M.vertices_W).colwise() + marker.p_WM_W;
+  const Eigen::Matrix3Xd r_W = placed.mesh.vertices_W.colwise() - marker.p_WM_W;
+  placed.velocities_W.resize(3, r_W.cols());
+  for (Eigen::Index v = 0; v < r_W.cols(); ++v) placed.velocities_W.col(v) = marker.v_WM_W + marker.w_WM_W.cross(r_W.col(v));
+  return placed;
+}
+
+}  // namespace
+
+PcmContactForce::PcmContactForce(std::string name, PcmSurface A, PcmSurface B, double areal_damping,
+                                 const contact::RegularisedCoulomb& friction, double max_depth)
+    : name_(std::move(name)), A_(std::move(A)), B_(std::move(B)), max_depth_(max_depth) {
+  try {
+    contact::RequirePcmSurface(A_.mesh_M, A_.name, A_.closed);
+    contact::RequirePcmSurface(B_.mesh_M, B_.name, B_.closed);
+    law_ = contact::MakeElasticFoundation(A_.layer, A_.name, B_.layer, B_.name, areal_damping, friction);
+    if (!(max_depth > 0.0) || !std::isfinite(max_depth)) {
+      throw InputError(fmt::format("max depth [m] {} must be finite and > 0", max_depth));
+    }
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("force element '{}': {}", name_, e.what()));
+  }
+}
+
+void PcmContactForce::AddForces(double, const MultibodySystem& system, const ConstVectorRef& y,
+                                Eigen::Ref<Eigen::VectorXd> h) const {
+  const MarkerKinematics marker_A = system.MarkerState(A_.marker, y), marker_B = system.MarkerState(B_.marker, y);
+  const PlacedMesh A = Place(A_.mesh_M, marker_A), B = Place(B_.mesh_M, marker_B);
+  const std::vector<contact::PcmElement> elements = contact::ContactElements(
+      A.mesh, B.mesh, contact::CandidatePairs(contact::Bvh(A.mesh), contact::Bvh(B.mesh, max_depth_)), max_depth_);
+  if (elements.empty()) return;
+  const contact::PairLoad load =
+      contact::SumLoads(law_, elements, A.mesh, A.velocities_W, B.mesh, B.velocities_W, marker_A.p_WM_W);
+  // About B's origin: -(M_A + (p_A - p_B) x F).
+  const Eigen::Vector3d moment_B = -(load.moment_W + (marker_A.p_WM_W - marker_B.p_WM_W).cross(load.force_W));
+  system.AddMarkerLoad(A_.marker, marker_A, load.force_W, load.moment_W, h);
+  system.AddMarkerLoad(B_.marker, marker_B, -load.force_W, moment_B, h);
+}
+
+}  // namespace flexmbs::mbs

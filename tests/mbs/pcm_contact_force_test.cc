@@ -1,0 +1,151 @@
+// mbs/pcm_contact_force.h: a rigid icosphere on a rigid flat through elastic layers loads its
+// body with the foundation law's force c pi d^2 (R - d/3) and the moment of that force about the
+// body's origin; on two free bodies the loads are equal and opposite; a damped ball dropped on
+// the ground settles at the closed form's rest depth; bad surfaces and layers are one-line
+// errors naming the element.
+#include "mbs/pcm_contact_force.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "mbs/multibody_system.h"
+#include "mbs/rigid_body.h"
+#include "mbs/simulation.h"
+#include "tests/contact/pcm_meshes.h"
+#include "tests/input_error.h"
+
+namespace flexmbs::mbs {
+namespace {
+
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+constexpr double kRadius = 0.02, kDepth = 1e-3, kMaxDepth = 5e-3;  // [m]
+const contact::ElasticLayer kLayer{1e7, 2e-3};                     // c = 2.5e9 N/m^3 for two
+const Vector3d kMarkerOffset(0.004, -0.002, 0.0);                   // the sphere's centre from the ball's origin [m]
+
+std::unique_ptr<RigidBody> Body(const std::string& name, const Vector3d& p_BoM_B, double mass = 0.5) {
+  return std::make_unique<RigidBody>(name, mass, Vector3d::Zero(), (0.4 * mass * kRadius * kRadius * Eigen::Matrix3d::Identity()).eval(),
+                                     std::vector<RigidBodyMarker>{{"surface", p_BoM_B, Eigen::Matrix3d::Identity()}});
+}
+
+PcmSurface Ball(const MultibodySystem& system, int level) {
+  return {"ball", system.Marker("ball", "surface"), contact::testing::Icosphere(Vector3d::Zero(), kRadius, level), kLayer,
+          true};
+}
+PcmSurface Flat(MarkerRef marker) { return {"flat", marker, contact::testing::FlatGrid(0.03, 8, 0.0), kLayer, false}; }
+
+/// The state with the ball's origin at p_ball and the table's (if any) at p_table, at rest.
+VectorXd State(const MultibodySystem& system, const Vector3d& p_ball, const Vector3d& p_table) {
+  VectorXd y = system.NeutralState(), x(7);
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    const Vector3d p = b == 0 ? p_ball : p_table;
+    x << p, 1.0, 0.0, 0.0, 0.0;
+    system.SetBodyState(b, x, VectorXd::Zero(6), y);
+  }
+  return y;
+}
+
+TEST(PcmContactForce, ABallPressedIntoTheGroundTakesTheFoundationForceAndItsMoment) {
+  MultibodySystem system(Vector3d::Zero());
+  system.AddBody(Body("ball", kMarkerOffset));
+  system.AddForceElement(std::make_unique<PcmContactForce>("press", Ball(system, 6), Flat(MarkerRef::Ground(Vector3d::Zero())),
+                                                           0.0, contact::RegularisedCoulomb{0.0, 1e-3}, kMaxDepth));
+  // The sphere's lowest point kDepth under the flat z = 0.
+  const Vector3d p_ball = Vector3d(0.01, 0.003, kRadius - kDepth) - kMarkerOffset;
+  const VectorXd h = system.Forces(0.0, State(system, p_ball, Vector3d::Zero()));
+  const double c = 1.0 / (2.0 * kLayer.thickness / kLayer.modulus);
+  const double exact = c * M_PI * kDepth * kDepth * (kRadius - kDepth / 3.0);
+  // The 81920-triangle sphere's cap volume: -1.85e-3 (tests/contact/pcm_foundation_test.cc).
+  EXPECT_NEAR(h(2) / exact, 1.0, 0.01);
+  EXPECT_LT(h.head<2>().norm(), 1e-12 * exact);
+  // The force acts under the sphere's centre: its moment about the ball's origin (the centre of
+  // mass) is (kMarkerOffset - (R - d) z) x F.
+  const Vector3d moment = (kMarkerOffset - (kRadius - kDepth) * Vector3d::UnitZ()).cross(Vector3d(0.0, 0.0, h(2)));
+  EXPECT_LT((h.segment<3>(3) - moment).norm(), 1e-12 * exact * kRadius);
+}
+
+TEST(PcmContactForce, OnTwoFreeBodiesTheLoadsAreEqualAndOpposite) {
+  MultibodySystem system(Vector3d::Zero());
+  system.AddBody(Body("ball", kMarkerOffset));
+  system.AddBody(Body("table", Vector3d(0.0, 0.0, 0.01)));
+  system.AddForceElement(std::make_unique<PcmContactForce>("press", Ball(system, 4), Flat(system.Marker("table", "surface")),
+                                                           0.0, contact::RegularisedCoulomb{0.0, 1e-3}, kMaxDepth));
+  const Vector3d p_table(0.002, 0.001, -0.01);  // the flat at z = 0
+  const Vector3d p_ball = Vector3d(0.003, 0.0, kRadius - kDepth) - kMarkerOffset;
+  const VectorXd h = system.Forces(0.0, State(system, p_ball, p_table));
+  const Vector3d f_ball = h.segment<3>(0), f_table = h.segment<3>(6);
+  EXPECT_GT(f_ball.z(), 100.0);
+  EXPECT_LT((f_ball + f_table).norm(), 1e-12 * f_ball.norm());
+  const Vector3d total_moment = h.segment<3>(3) + p_ball.cross(f_ball) + h.segment<3>(9) + p_table.cross(f_table);
+  EXPECT_LT(total_moment.norm(), 1e-12 * f_ball.norm() * kRadius);
+}
+
+TEST(PcmContactForce, ADampedBallDroppedOnTheGroundSettlesWhereTheFoundationCarriesItsWeight) {
+  constexpr double kMass = 20.0, kG = 9.81;
+  const double c = 1.0 / (2.0 * kLayer.thickness / kLayer.modulus);
+  // The closed form's rest depth: c pi d^2 (R - d/3) = m g, by bisection.
+  double lo = 0.0, hi = kMaxDepth;
+  for (int i = 0; i < 100; ++i) {
+    const double d = 0.5 * (lo + hi);
+    (c * M_PI * d * d * (kRadius - d / 3.0) < kMass * kG ? lo : hi) = d;
+  }
+  const double rest = 0.5 * (lo + hi);
+  // Critical damping of the contact linearised at rest: k = c pi (2 R d - d^2) = c A.
+  const double area = M_PI * (2.0 * kRadius * rest - rest * rest);
+  const double areal_damping = 2.0 * std::sqrt(c * area * kMass) / area;
+  MultibodySystem system(Vector3d(0.0, 0.0, -kG));
+  system.AddBody(Body("ball", Vector3d::Zero(), kMass));  // centred: no moment to tip it
+  system.AddForceElement(std::make_unique<PcmContactForce>("press", Ball(system, 4), Flat(MarkerRef::Ground(Vector3d::Zero())),
+                                                           areal_damping, contact::RegularisedCoulomb{0.0, 1e-3}, kMaxDepth));
+  SimulationOptions options;
+  options.integrator.method = OdeMethod::kExplicit;
+  options.end_time = 0.15;  // 20 periods of the linearised contact (omega = 130 rad/s)
+  options.output_interval = 0.01;
+  options.integrator.relative_tolerance = 1e-7;
+  options.integrator.absolute_tolerance = 1e-10;
+  VectorXd last;
+  Simulate(system, options, State(system, Vector3d(0.0, 0.0, kRadius), Vector3d::Zero()),
+           [&](double, const VectorXd& y, const VectorXd&) { last = y; });
+  const double depth = kRadius - last(2);
+  std::printf("[ numbers  ] rest depth %.6e m, closed form %.6e m (%.3e), speed %.3e m/s\n", depth, rest,
+              depth / rest - 1.0, last(7 + 2));
+  // Measured +1.33 %: the 5120-triangle sphere's cap is shallower than the sphere's (its force
+  // is 3 % low at 1 mm, tests/contact/pcm_foundation_test.cc), so it sinks deeper; at rest to
+  // 9.4e-9 m/s.
+  EXPECT_NEAR(depth / rest, 1.0, 0.03);
+  EXPECT_LT(std::abs(last(7 + 2)), 1e-7);
+}
+
+TEST(PcmContactForce, BadLayersSurfacesAndDepthAreOneLineErrorsNamingTheElement) {
+  MultibodySystem system(Vector3d::Zero());
+  system.AddBody(Body("ball", kMarkerOffset));
+  const MarkerRef ground = MarkerRef::Ground(Vector3d::Zero());
+  const contact::RegularisedCoulomb no_friction{0.0, 1e-3};
+  const auto make = [&](PcmSurface A, PcmSurface B, double max_depth) {
+    PcmContactForce("press", std::move(A), std::move(B), 0.0, no_friction, max_depth);
+  };
+  PcmSurface thin = Ball(system, 1);
+  thin.layer.thickness = 0.0;
+  EXPECT_EQ(testing::InputErrorMessage([&] { make(thin, Flat(ground), kMaxDepth); }),
+            "force element 'press': layer thickness of surface 'ball' 0 must be finite and > 0");
+  PcmSurface flipped = Ball(system, 1);
+  std::swap(flipped.mesh_M.face_vertices[4], flipped.mesh_M.face_vertices[5]);
+  EXPECT_NE(testing::InputErrorMessage([&] { make(flipped, Flat(ground), kMaxDepth); })
+                .find("force element 'press': surface 'ball': triangles "),
+            std::string::npos);
+  PcmSurface open_flat = Flat(ground);
+  open_flat.closed = true;
+  EXPECT_NE(testing::InputErrorMessage([&] { make(Ball(system, 1), open_flat, kMaxDepth); }).find("a hole"),
+            std::string::npos);
+  EXPECT_EQ(testing::InputErrorMessage([&] { make(Ball(system, 1), Flat(ground), 0.0); }),
+            "force element 'press': max depth [m] 0 must be finite and > 0");
+}
+
+}  // namespace
+}  // namespace flexmbs::mbs
