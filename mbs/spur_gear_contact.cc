@@ -115,6 +115,13 @@ void SpurGearContact::AddForceJacobian(double t, const MultibodySystem& system,
     contact_.AddForceJacobian(system, point, dh_dx, dh_du);
 }
 
+std::vector<ContactLoad> SpurGearContact::ContactLoads(double t, const MultibodySystem& system,
+                                                       const ConstVectorRef& y) const {
+  std::vector<ContactLoad> loads;
+  for (const ContactPoint& point : Contacts(t, system, y)) contact_.AppendLoad(point, &loads);
+  return loads;
+}
+
 double SpurGearContact::MeshForce(double t, const MultibodySystem& system,
                                   const ConstVectorRef& y) const {
   double force = 0.0;

@@ -41,6 +41,11 @@ class SpurGearContact final : public ForceElement {
                         Eigen::Ref<Eigen::MatrixXd> dh_dx,
                         Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
+  bool is_contact() const override { return true; }
+  /// Each tooth pair's load on wheel 2 at its contact point (ParaView's contact points).
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system,
+                                        const ConstVectorRef& y) const override;
+
   /// The sum of the tooth pairs' normal forces [N] at time t [s] and state y: the mesh force along
   /// the lines of action (wheel 2 pushed along the driving side's n_12).
   double MeshForce(double t, const MultibodySystem& system, const ConstVectorRef& y) const;

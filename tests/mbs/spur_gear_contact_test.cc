@@ -206,6 +206,17 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
     penetrating += tp.gap < 0.0;
   }
   ASSERT_EQ(penetrating, 2);
+  // Each pair's load on the wheel along its line of action, as ParaView draws them.
+  const auto loads = mesh.ContactLoads(0.0, system, y);
+  ASSERT_EQ(loads.size(), 2u);
+  EXPECT_TRUE(mesh.is_contact());
+  double total = 0.0;
+  for (const ContactLoad& load : loads) {
+    EXPECT_LT((load.f_W - load.f_W.norm() * load.n_W).norm(), 1e-12 * load.f_W.norm());
+    total += load.f_W.norm();
+  }
+  EXPECT_NEAR(total, dynamic_cast<const SpurGearContact&>(mesh).MeshForce(0.0, system, y),
+              1e-12 * total);
   const Eigen::Index n = system.num_velocities();
   const auto forces = [&](const Eigen::VectorXd& state) {
     Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
