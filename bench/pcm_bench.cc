@@ -2,7 +2,8 @@
 // per step for two deforming icospheres of 1.3e3 to 3.3e5 triangles each, flexmbs' AABB tree
 // refitted (SAH), flexmbs' tree rebuilt (median and SAH splits), and FCL 0.7's BVHModel<AABB> refitted and BVHModel<OBBRSS>
 // rebuilt, each followed by its tree-vs-tree query, on the same meshes in one run; then the
-// degradation of a refitted tree against its query time, which sets the rebuild threshold.
+// degradation of a refitted tree against its query time, which sets the rebuild threshold; and a
+// whole PCM step (refit, pairs, elements, loads) on the same pair.
 //
 //   bench_pcm [levels, default 3,4,5,6,7]
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -20,6 +21,8 @@
 #include "bench/command_line.h"
 #include "contact/pcm/bvh.h"
 #include "contact/pcm/candidate_pairs.h"
+#include "contact/pcm/contact_element.h"
+#include "contact/pcm/foundation.h"
 #include "tests/contact/pcm_meshes.h"
 
 namespace {
@@ -34,13 +37,13 @@ double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// The two surfaces at step k: unit icospheres 1.8 apart, each moved by a travelling wave of
-/// amplitude 0.01 (a flexible body's small deformation).
+/// The two surfaces at step k: unit icospheres `distance` apart (1.8: overlapping by 0.2), each
+/// moved by a travelling wave of amplitude 0.01 (a flexible body's small deformation).
 struct Scene {
   PolygonMesh rest_A, rest_B, A, B;
-  explicit Scene(int level)
+  explicit Scene(int level, double distance = 1.8)
       : rest_A(testing::Icosphere(Eigen::Vector3d::Zero(), 1.0, level)),
-        rest_B(testing::Icosphere(Eigen::Vector3d(1.8, 0.1, 0.05), 1.0, level)),
+        rest_B(testing::Icosphere(Eigen::Vector3d(distance, 0.1, 0.05).normalized() * distance, 1.0, level)),
         A(rest_A),
         B(rest_B) {}
   void Step(int k, double amplitude = 0.01) {
@@ -138,6 +141,48 @@ void CompareBroadPhases(const std::vector<int>& levels) {
   }
 }
 
+/// A whole PCM step on a deforming pair pressed 0.02 into each other (1 % of the radius, a
+/// foundation contact's order): both trees refitted (B's faces swept to the depth searched,
+/// 0.05), the candidate pairs, the elements and their loads, timed part by part.
+void FullStep(const std::vector<int>& levels) {
+  constexpr double kMaxDepth = 0.05;
+  const flexmbs::contact::ElasticFoundation law = flexmbs::contact::MakeElasticFoundation(
+      {1e7, 1e-2}, "A", {1e7, 1e-2}, "B", 1e3, flexmbs::contact::RegularisedCoulomb{0.3, 1e-3});
+  std::printf("\nwhole step, A pressing 0.02 into B (seconds per step)\n");
+  std::printf("%9s %9s %9s %10s %10s %10s %10s %10s %9s\n", "triangles", "pairs", "elements", "refit", "pairs",
+              "elements", "loads", "total", "steps/s");
+  for (const int level : levels) {
+    Scene scene(level, 1.98);
+    const int steps = level >= 7 ? 5 : level >= 6 ? 10 : 40;
+    Bvh tree_A(scene.A), tree_B(scene.B, kMaxDepth);
+    const Eigen::Matrix3Xd v_A = Eigen::Matrix3Xd::Zero(3, scene.A.vertices_W.cols());
+    const Eigen::Matrix3Xd v_B = Eigen::Matrix3Xd::Ones(3, scene.B.vertices_W.cols());
+    double refit = 0.0, query = 0.0, narrow = 0.0, loads = 0.0;
+    std::size_t num_pairs = 0, num_elements = 0;
+    for (int k = 1; k <= steps; ++k) {
+      scene.Step(k);
+      auto start = std::chrono::steady_clock::now();
+      tree_A.Refit(scene.A);
+      tree_B.Refit(scene.B);
+      refit += Seconds(start);
+      start = std::chrono::steady_clock::now();
+      const std::vector<flexmbs::contact::FacePair> pairs = CandidatePairs(tree_A, tree_B);
+      query += Seconds(start);
+      start = std::chrono::steady_clock::now();
+      const auto elements = flexmbs::contact::ContactElements(scene.A, scene.B, pairs, kMaxDepth);
+      narrow += Seconds(start);
+      start = std::chrono::steady_clock::now();
+      flexmbs::contact::SumLoads(law, elements, scene.A, v_A, scene.B, v_B, Eigen::Vector3d::Zero());
+      loads += Seconds(start);
+      num_pairs = pairs.size();
+      num_elements = elements.size();
+    }
+    const double total = (refit + query + narrow + loads) / steps;
+    std::printf("%9zu %9zu %9zu %10.3e %10.3e %10.3e %10.3e %10.3e %9.0f\n", scene.A.face_sizes.size(), num_pairs,
+                num_elements, refit / steps, query / steps, narrow / steps, loads / steps, total, 1.0 / total);
+  }
+}
+
 /// The fastest of `repeats` candidate-pair queries [s].
 double QueryTime(const Bvh& A, const Bvh& B, int repeats) {
   double fastest = 1e300;
@@ -180,5 +225,6 @@ int main(int argc, char** argv) {
   const std::vector<int> levels = argc > 1 ? flexmbs::bench::ParseIntList(argv[1]) : std::vector<int>{3, 4, 5, 6, 7};
   CompareBroadPhases(levels);
   Degradation(5);
+  FullStep(levels);
   return 0;
 }

@@ -25,8 +25,8 @@ struct PcmSurface {
 
 /// Surface A pressing into surface B (B's face normals are the contact normals; take the flatter
 /// surface as B). At each evaluation both meshes are placed in W by their markers, the face
-/// hierarchies are built (SAH; rebuilt, not refitted, in this first version) with B's margin
-/// max_depth, and the elements and their loads follow contact/pcm (ContactElements, SumLoads):
+/// hierarchies are built (SAH; rebuilt, not refitted, in this first version) with B's faces swept
+/// to max_depth, and the elements and their loads follow contact/pcm (ContactElements, SumLoads):
 /// A takes the resultant force F and its moment about A's marker origin, B the opposites. Each
 /// vertex moves with its marker: v = v_WM + w_WM x (p - p_WM). No potential energy and no
 /// Jacobian yet (explicit integration).

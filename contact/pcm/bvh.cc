@@ -1,5 +1,7 @@
 #include "contact/pcm/bvh.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <numeric>
@@ -58,22 +60,32 @@ int SurfaceAreaSplit(std::vector<int>& faces, int begin, int end, const std::vec
 
 }  // namespace
 
-Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int face, double margin) {
-  Aabb box;
-  box.lo = box.hi = mesh.vertices_W.col(mesh.face_vertices[face_offsets[face]]);
+Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int face, double depth) {
+  const int* v = &mesh.face_vertices[face_offsets[face]];
+  const Eigen::Vector3d p0 = mesh.vertices_W.col(v[0]);
+  Aabb box{p0, p0};
+  Eigen::Vector3d twice_area = Eigen::Vector3d::Zero();
   for (int k = 1; k < mesh.face_sizes[face]; ++k) {
-    const Eigen::Vector3d p = mesh.vertices_W.col(mesh.face_vertices[face_offsets[face] + k]);
+    const Eigen::Vector3d p = mesh.vertices_W.col(v[k]);
     box.lo = box.lo.cwiseMin(p);
     box.hi = box.hi.cwiseMax(p);
+    if (k + 1 < mesh.face_sizes[face]) twice_area += (p - p0).cross(mesh.vertices_W.col(v[k + 1]) - p0);
   }
-  box.lo.array() -= margin;
-  box.hi.array() += margin;
+  if (depth == 0.0) return box;
+  const double norm = twice_area.norm();
+  if (!(norm > 0.0)) {
+    box.lo.array() -= depth;
+    box.hi.array() += depth;
+    return box;
+  }
+  const Eigen::Vector3d sweep = -depth / norm * twice_area;
+  box.Extend(Aabb{box.lo + sweep, box.hi + sweep});
   return box;
 }
 
-Bvh::Bvh(const PolygonMesh& mesh, double margin, int leaf_size, BvhSplit split)
-    : margin_(margin), leaf_size_(leaf_size), split_(split) {
-  FLEXMBS_CHECK(leaf_size >= 1 && margin >= 0.0, "a BVH needs leaf_size >= 1 and margin >= 0");
+Bvh::Bvh(const PolygonMesh& mesh, double depth, int leaf_size, BvhSplit split)
+    : depth_(depth), leaf_size_(leaf_size), split_(split) {
+  FLEXMBS_CHECK(leaf_size >= 1 && depth >= 0.0, "a BVH needs leaf_size >= 1 and depth >= 0");
   FLEXMBS_CHECK(!mesh.face_sizes.empty(), "a BVH needs at least one face");
   face_offsets_.resize(mesh.face_sizes.size());
   int offset = 0;
@@ -93,7 +105,7 @@ void Bvh::UpdateFaceBoxes(const PolygonMesh& mesh) {
   FLEXMBS_CHECK(mesh.face_sizes.size() == face_offsets_.size(), "a BVH refits the mesh it was built on");
   face_boxes_.resize(face_offsets_.size());
   for (std::size_t f = 0; f < face_offsets_.size(); ++f) {
-    face_boxes_[f] = FaceBox(mesh, face_offsets_, static_cast<int>(f), margin_);
+    face_boxes_[f] = FaceBox(mesh, face_offsets_, static_cast<int>(f), depth_);
   }
 }
 

@@ -31,14 +31,17 @@ struct Aabb {
   }
 };
 
-/// The box of face `face` of `mesh`, grown by `margin` [m] >= 0 on every side.
-Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int face, double margin);
+/// The box of face `face` of `mesh` swept inward along its unit normal n (right-hand rule,
+/// Newell's) by `depth` [m] >= 0: the box of the face and of the face moved by -depth n, which
+/// holds every point under the face to that depth (where a PCM element of the face can lie). A
+/// face without area is grown by depth on every side instead.
+Aabb FaceBox(const PolygonMesh& mesh, const std::vector<int>& face_offsets, int face, double depth);
 
 /// How a node's faces are split in two: at the median of their box centres along the longest
 /// axis of the centres' box, or by the binned surface-area heuristic along that axis (the median
 /// where all centres fall in one bin). bench/pcm_bench.cc measures both (docs/contact.md): SAH
-/// builds take 1.0 to 1.3x the median's time, queries on SAH trees are 1.5 to 1.7x faster, so
-/// SAH is the default.
+/// builds take 0.85 to 1.33x the median's time, queries on SAH trees are 1.6 to 2.0x faster,
+/// so SAH is the default.
 enum class BvhSplit { kMedian, kSurfaceArea };
 
 /// One node of a Bvh: a leaf holds faces [first, first + count) of Bvh::faces(); an inner node
@@ -55,16 +58,16 @@ class Bvh {
  public:
   /// Builds top-down: each node's faces are split in two by `split` until at most `leaf_size`
   /// faces remain. Each face's box
-  /// is grown by `margin` [m] (the deepest penetration a contact search must see; 0 for plain
-  /// overlap). Preconditions (InternalError): leaf_size >= 1, margin >= 0, faces of >= 3 valid
+  /// is swept inward by `depth` [m] (FaceBox: the deepest penetration a contact search must see;
+  /// 0 for plain overlap). Preconditions (InternalError): leaf_size >= 1, depth >= 0, faces of >= 3 valid
   /// vertices, at least one face.
-  Bvh(const PolygonMesh& mesh, double margin = 0.0, int leaf_size = 2,
+  Bvh(const PolygonMesh& mesh, double depth = 0.0, int leaf_size = 2,
       BvhSplit split = BvhSplit::kSurfaceArea);
 
   /// Recomputes every face box and node box from the moved vertices of `mesh` (same faces as
   /// at construction), leaves first; the tree's shape is kept. O(faces).
   void Refit(const PolygonMesh& mesh);
-  /// Builds the tree anew on `mesh` (same margin, leaf size and split).
+  /// Builds the tree anew on `mesh` (same depth, leaf size and split).
   void Rebuild(const PolygonMesh& mesh);
 
   /// The sum of all nodes' surface areas over the root's, >= 1 (the expected number of nodes a
@@ -72,22 +75,22 @@ class Bvh {
   double RelativeSurfaceArea() const;
   /// RelativeSurfaceArea() now over its value when the tree was last built: 1 after a build,
   /// growing as refitting stretches boxes over faces that have moved apart. Measured in
-  /// bench/pcm_bench.cc (docs/contact.md): queries as fast as a fresh tree's up to 1.04, 1.4x at
+  /// bench/pcm_bench.cc (docs/contact.md): queries as fast as a fresh tree's up to 1.04, 1.5x at
   /// 1.15, 1.6x at 1.35; rebuild past about 1.3 if the surface stays deformed that much.
   double Degradation() const { return RelativeSurfaceArea() / built_relative_area_; }
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   /// Face indices, permuted so each leaf's faces are contiguous.
   const std::vector<int>& faces() const { return faces_; }
-  /// The (margin-grown) box of each face, by face index.
+  /// The (swept) box of each face, by face index.
   const std::vector<Aabb>& face_boxes() const { return face_boxes_; }
-  double margin() const { return margin_; }
+  double depth() const { return depth_; }
 
  private:
   int Build(int begin, int end, std::vector<Eigen::Vector3d>& centres);
   void UpdateFaceBoxes(const PolygonMesh& mesh);
 
-  double margin_;
+  double depth_;
   int leaf_size_;
   BvhSplit split_;
   std::vector<int> face_offsets_;

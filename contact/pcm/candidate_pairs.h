@@ -1,6 +1,6 @@
 #pragma once
 // The broad phase of the Polygonal Contact Model (docs/contact.md, "Polygonal Contact Model"):
-// the face pairs of two meshes whose (margin-grown) boxes overlap, by descending both
+// the face pairs of two meshes whose (swept) boxes overlap, by descending both
 // hierarchies together.
 
 #include <vector>
@@ -18,7 +18,7 @@ struct FacePair {
 };
 
 /// Every pair (a, b) with a's box in `A` overlapping b's box in `B` (Bvh::face_boxes(), each
-/// grown by its tree's margin), each once, in no particular order: the tree-vs-tree descent
+/// swept by its tree's depth), each once, in no particular order: the tree-vs-tree descent
 /// (the node with the larger box is opened first) ending in face-box tests at leaf pairs.
 std::vector<FacePair> CandidatePairs(const Bvh& A, const Bvh& B);
 

@@ -42,7 +42,7 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
                                           double max_depth);
 
 /// The elements of the candidate `pairs` (faces of A, faces of B) of two triangle meshes
-/// (RequirePcmSurface), recomputed from the current vertices. B's hierarchy must have a margin
+/// (RequirePcmSurface), recomputed from the current vertices. B's hierarchy must be swept to a depth
 /// >= max_depth [m] for the pairs to hold every element.
 std::vector<PcmElement> ContactElements(const PolygonMesh& A, const PolygonMesh& B, const std::vector<FacePair>& pairs,
                                         double max_depth);

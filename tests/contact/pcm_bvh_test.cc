@@ -18,8 +18,8 @@ using testing::Icosphere;
 using testing::RandomTriangles;
 using testing::Wave;
 
-/// Every face pair whose boxes (each grown by its margin) overlap, by testing all pairs.
-std::vector<FacePair> BruteForcePairs(const PolygonMesh& A, double margin_A, const PolygonMesh& B, double margin_B) {
+/// Every face pair whose boxes (each swept by its depth) overlap, by testing all pairs.
+std::vector<FacePair> BruteForcePairs(const PolygonMesh& A, double depth_A, const PolygonMesh& B, double depth_B) {
   const auto offsets = [](const PolygonMesh& mesh) {
     std::vector<int> result;
     int offset = 0;
@@ -32,9 +32,9 @@ std::vector<FacePair> BruteForcePairs(const PolygonMesh& A, double margin_A, con
   const std::vector<int> offsets_A = offsets(A), offsets_B = offsets(B);
   std::vector<FacePair> pairs;
   for (int a = 0; a < static_cast<int>(A.face_sizes.size()); ++a) {
-    const Aabb box_A = FaceBox(A, offsets_A, a, margin_A);
+    const Aabb box_A = FaceBox(A, offsets_A, a, depth_A);
     for (int b = 0; b < static_cast<int>(B.face_sizes.size()); ++b) {
-      if (box_A.Overlaps(FaceBox(B, offsets_B, b, margin_B))) pairs.push_back({a, b});
+      if (box_A.Overlaps(FaceBox(B, offsets_B, b, depth_B))) pairs.push_back({a, b});
     }
   }
   return pairs;
@@ -45,17 +45,17 @@ std::vector<FacePair> Sorted(std::vector<FacePair> pairs) {
   return pairs;
 }
 
-TEST(PcmBvh, CandidatePairsOfRandomSoupsEqualTheBruteForcePairsForEveryLeafSizeMarginAndSplit) {
+TEST(PcmBvh, CandidatePairsOfRandomSoupsEqualTheBruteForcePairsForEveryLeafSizeDepthAndSplit) {
   const PolygonMesh A = RandomTriangles(700, 1.0, 0.08, 1), B = RandomTriangles(500, 1.0, 0.1, 2);
   for (const BvhSplit split : {BvhSplit::kMedian, BvhSplit::kSurfaceArea}) {
     for (const int leaf_size : {1, 2, 5}) {
-      for (const double margin : {0.0, 0.02}) {
-        const std::vector<FacePair> expected = BruteForcePairs(A, margin, B, 0.0);
+      for (const double depth : {0.0, 0.02}) {
+        const std::vector<FacePair> expected = BruteForcePairs(A, depth, B, 0.0);
         ASSERT_GT(expected.size(), 100u);  // the soups touch in many places
         const std::vector<FacePair> found =
-            CandidatePairs(Bvh(A, margin, leaf_size, split), Bvh(B, 0.0, leaf_size, split));
-        EXPECT_EQ(found.size(), expected.size()) << "no pair twice; leaf size " << leaf_size << ", margin " << margin;
-        EXPECT_EQ(Sorted(found), expected) << "leaf size " << leaf_size << ", margin " << margin;
+            CandidatePairs(Bvh(A, depth, leaf_size, split), Bvh(B, 0.0, leaf_size, split));
+        EXPECT_EQ(found.size(), expected.size()) << "no pair twice; leaf size " << leaf_size << ", depth " << depth;
+        EXPECT_EQ(Sorted(found), expected) << "leaf size " << leaf_size << ", depth " << depth;
       }
     }
   }

@@ -24,7 +24,7 @@ using testing::FlatGrid;
 using testing::Icosphere;
 
 constexpr double kRadius = 0.02;     // [m]
-constexpr double kMaxDepth = 0.005;  // [m], the depth searched and the flat's tree margin
+constexpr double kMaxDepth = 0.005;  // [m], the depth searched and the flat's tree's sweep
 
 /// Two rubber-like layers, 10 MPa over 2 mm each: c = 1 / (2 h / E) = 2.5e9 N/m^3.
 ElasticFoundation Law(double areal_damping = 0.0, double friction = 0.0) {
@@ -81,6 +81,29 @@ TEST(PcmFoundation, SphereOnFlatForceConvergesToTheFoundationLawUnderRefinement)
     EXPECT_LT(load.force_W.head<2>().norm(), 1e-12 * exact) << "no friction: the force is normal";
   }
   EXPECT_LT(previous_error, 0.02);  // measured 1.85e-3 at level 6 (81920 triangles), 7.4e-3 at level 5
+}
+
+TEST(PcmFoundation, TheSweptTreeOfBMissesNoElementOfATiltedPair) {
+  // The sphere on the flat, both turned off the axes: the elements from the trees' candidate
+  // pairs are those of all face pairs.
+  SphereOnFlat pair(4, 2e-3);
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 0.5).normalized())).toRotationMatrix();
+  pair.sphere.vertices_W = R * pair.sphere.vertices_W;
+  pair.flat.vertices_W = R * pair.flat.vertices_W;
+  std::vector<FacePair> all;
+  for (int a = 0; a < static_cast<int>(pair.sphere.face_sizes.size()); ++a) {
+    for (int b = 0; b < static_cast<int>(pair.flat.face_sizes.size()); ++b) all.push_back({a, b});
+  }
+  const std::vector<PcmElement> everything = ContactElements(pair.sphere, pair.flat, all, kMaxDepth);
+  const std::vector<FacePair> candidates = CandidatePairs(Bvh(pair.sphere), Bvh(pair.flat, kMaxDepth));
+  const std::vector<PcmElement> found = ContactElements(pair.sphere, pair.flat, candidates, kMaxDepth);
+  ASSERT_GT(everything.size(), 100u);
+  EXPECT_EQ(found.size(), everything.size());
+  EXPECT_LT(candidates.size(), all.size() / 50);  // the sweep keeps the search local
+  double volume_all = 0.0, volume_found = 0.0;
+  for (const PcmElement& e : everything) volume_all += e.volume;
+  for (const PcmElement& e : found) volume_found += e.volume;
+  EXPECT_NEAR(volume_found, volume_all, 1e-15 * volume_all);
 }
 
 TEST(PcmFoundation, SphereOnFlatDampingAndFrictionFollowTheirClosedForms) {
