@@ -11,6 +11,7 @@
 #include "eigensolvers/block_krylov_check.h"
 #include "eigensolvers/distributed/petsc_block_space.h"
 #include "eigensolvers/distributed/slepc_pair_measures.h"
+#include "eigensolvers/distributed/slepc_refinement.h"
 #include "eigensolvers/distributed/slepc_ritz_gap.h"
 
 namespace flexmbs::eigensolvers {
@@ -175,6 +176,12 @@ double FactorizationFlops(EPS eps, const SubstructuredFactor* substructured) {
   return flops;
 }
 
+// The shift-invert's factorisation as a block space: `substructured`, else the MUMPS factor of
+// `eps` (after EPSSetUp). Valid until the Sturm count refactorises that factor.
+PetscBlockSpace ShiftInvertSpace(EPS eps, const SubstructuredFactor* substructured, Mat M, double sigma) {
+  return substructured ? PetscBlockSpace(*substructured, M, sigma) : PetscBlockSpace(ShiftInvertFactor(eps), M, sigma);
+}
+
 // The number of eigenvalues below `cut` that the block Krylov check establishes for the pairs
 // `x` (all converged, M-orthonormal) with the shift-invert factorisation (`substructured`, else
 // that of `eps`): those found below the cut plus those it found missing; -1 if it could not
@@ -182,8 +189,7 @@ double FactorizationFlops(EPS eps, const SubstructuredFactor* substructured) {
 PetscInt BlockCheckedCount(EPS eps, const SubstructuredFactor* substructured, Mat M, const std::vector<Vec>& x,
                            double cut, const EigenOptions& options, int attempt, EigenSolution* solution) {
   auto phase = std::chrono::steady_clock::now();
-  const PetscBlockSpace space = substructured ? PetscBlockSpace(*substructured, M, solution->shift)
-                                              : PetscBlockSpace(ShiftInvertFactor(eps), M, solution->shift);
+  const PetscBlockSpace space = ShiftInvertSpace(eps, substructured, M, solution->shift);
   const Eigen::MatrixXd found = LocalRows(x, space.local_rows());
   BlockCheckOptions block;
   block.tolerance = options.tolerance;
@@ -202,6 +208,25 @@ PetscInt BlockCheckedCount(EPS eps, const SubstructuredFactor* substructured, Ma
       break;
   }
   return -1;
+}
+
+// The residuals of the `wanted` lowest pairs into *solution (MeasurePairs); where one misses its
+// bound, one step of subspace iteration with Rayleigh-Ritz on every converged pair x with the
+// shift-invert's factorisation (slepc_refinement.h), and the residuals again. Before the Sturm
+// count, which refactorises the MUMPS factor.
+void RefineAboveTheBound(EPS eps, const AttemptContext& c, PetscInt wanted, OwnedVectors* x, EigenSolution* solution) {
+  const auto measure = [&] {
+    const std::vector<Vec> lowest(x->v.begin(), x->v.begin() + wanted);
+    MeasurePairs(c.K, c.M, lowest, solution);
+  };
+  measure();
+  const PairResiduals residuals{solution->relative_residuals, solution->residual_floors};
+  if (residuals.Accepted(c.options.residual_tolerance)) return;
+  RefineBySubspaceIteration(ShiftInvertSpace(eps, c.substructured, c.M, solution->shift), &x->v,
+                            &solution->eigenvalues);
+  solution->operator_applications += static_cast<int>(x->v.size());
+  ++solution->refinement_steps;
+  measure();
 }
 
 // Solves with the shift-invert factorisation so far (KSPPREONLY: one per right-hand side),
@@ -262,7 +287,8 @@ double SecondsSince(std::chrono::steady_clock::time_point* since) {
 }
 
 // One attempt: Krylov-Schur for *nev pairs (MUMPS factorises K - sigma M unless substructured),
-// the pairs into *x and *solution, and the missed-mode check below the cut. Throws InputError when
+// the pairs into *x and *solution, their residuals (refined once where one misses its bound), and
+// the missed-mode check below the cut. Throws InputError when
 // SLEPc converges too few pairs or a second attempt still misses some.
 AttemptEnd RunAttempt(const AttemptContext& c, int attempt, PetscInt* nev, OwnedVectors* x, OwnedMat* held_factor,
                       EigenSolution* solution) {
@@ -298,10 +324,12 @@ AttemptEnd RunAttempt(const AttemptContext& c, int attempt, PetscInt* nev, Owned
   }
   ExtractPairs(eps.eps, c.K, c.M, 0, solution, &x->v);
   solution->operator_applications += OperatorApplications(eps.eps);
-  solution->krylov_seconds += SecondsSince(&phase);
   if (c.keep && !(solution->eigenvalues(0) > c.zero_eigenvalue)) {
+    solution->krylov_seconds += SecondsSince(&phase);
     return AttemptEnd::kNotPositiveDefinite;  // singular to round-off: not held
   }
+  RefineAboveTheBound(eps.eps, c, c.band.wanted, x, solution);  // wanted <= *nev <= converged
+  solution->krylov_seconds += SecondsSince(&phase);
   // Every eigenvalue below the cut after the wanted ones must have been found.
   const CutCount checked = CountBelowCut(eps.eps, c.substructured, shifted ? &*shifted : nullptr, c.K, c.M, x->v,
                                          ritz, c.band, c.top, c.options, c.fixed_dofs, attempt, solution);

@@ -67,7 +67,9 @@ enum class AttemptEnd {
 };
 
 /// One attempt: Krylov-Schur for *nev pairs (MUMPS factorises K - sigma M unless substructured),
-/// the pairs into *x and *solution, and the missed-mode check below the cut. Throws InputError when
+/// the pairs into *x and *solution, the wanted pairs' residuals (MeasurePairs) with one step of
+/// subspace iteration and Rayleigh-Ritz on the pairs if one misses its bound (slepc_refinement.h),
+/// and the missed-mode check below the cut. Throws InputError when
 /// SLEPc converges too few pairs or a second attempt still misses some.
 AttemptEnd RunAttempt(const AttemptContext& c, int attempt, PetscInt* nev, OwnedVectors* x, OwnedMat* held_factor,
                       EigenSolution* solution);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/error.h"
 #include "fem/petsc_check.h"
 
 namespace flexmbs::eigensolvers {
@@ -73,10 +74,11 @@ Eigen::VectorXd GatherVector(Vec x, ModesOn modes_on) {
 // Fills residuals, round-off floors and the M-orthonormality error of the pairs (lambda, x),
 // x distributed: the products with K, M, |K| and |M| run where the rows are. One copy with
 // absolute values at a time (|K| with the products with K and M, then |M|), keeping |K| |x_j|:
-// they are made while a kept factorisation of K lives (SolveDistributedEigenproblem).
+// they are made while the factorisation of K - sigma M lives (RunAttempt).
 void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* solution) {
-  const Eigen::VectorXd& lambda = solution->eigenvalues;
   const auto n = static_cast<Eigen::Index>(x.size());
+  FLEXMBS_CHECK(n <= solution->eigenvalues.size(), "MeasurePairs: more vectors than eigenvalues");
+  const Eigen::VectorXd lambda = solution->eigenvalues.head(n);
   Vec kx, mx, abs_x, abs_mx;
   Vec* abs_kx = nullptr;
   FLEXMBS_PETSC(MatCreateVecs(K, &abs_x, &kx));

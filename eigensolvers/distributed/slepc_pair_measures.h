@@ -26,7 +26,7 @@ Eigen::VectorXd GatherVector(Vec x, ModesOn modes_on);
 
 /// Fills solution's relative_residuals, residual_floors and orthonormality_error for the pairs
 /// (solution->eigenvalues(j), x[j]) of K, M (distributed AIJ, same layout as x), with the shift
-/// solution->shift. Collective.
+/// solution->shift: one per vector, for the first x.size() eigenvalues. Collective.
 void MeasurePairs(Mat K, Mat M, const std::vector<Vec>& x, EigenSolution* solution);
 
 /// What a MUMPS Cholesky factorisation is for.

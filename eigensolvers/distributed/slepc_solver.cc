@@ -238,7 +238,6 @@ EigenSolution SolveDistributedEigenproblem(Mat K, Mat M, const std::vector<int>&
     return AddAbandonedWork(SolveDistributedEigenproblem(K, M, fixed_dofs, options, modes_on, gather_seconds),
                             solution, start);
   }
-  MeasurePairs(K, M, x.v, &solution);
   GatherModes(&x, modes_on, &solution, gather_seconds);
   CheckResiduals(solution, options);
   if (keep) *K_factor = held_factor.Release();

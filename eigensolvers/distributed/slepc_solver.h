@@ -45,14 +45,18 @@ enum class ModesOn {
 /// rank) are removed by zeroing their rows and columns (K diagonal 1, M diagonal 0), which
 /// moves their eigenvalues to infinity; K and M are modified in place. The modes are gathered
 /// as `modes_on` says, in the matrices' row order; residuals and round-off floors are those of
-/// EigenSolution, computed with distributed products (K x, M x, |K| |x|, |M| |x|);
+/// EigenSolution, computed with distributed products (K x, M x, |K| |x|, |M| |x|); where a
+/// Krylov-Schur pair misses its bound (options.residual_tolerance), one step of subspace
+/// iteration with Rayleigh-Ritz refines the pairs with the same factorisation first
+/// (refinement_steps; slepc_refinement.h);
 /// `gather_seconds` (if given) receives the time of the gather [s]. The lowest modes are
 /// checked by a Sturm count after the wanted ones (kSturmCount): the shift-invert's MUMPS
 /// instance refactorises K - cut M numerically with its analysis kept, the cut placed by the
 /// Krylov-Schur run's last Ritz values; for a whole band the cut is its end, counted before.
 /// Fills EigenSolution's work counts and times: factorization_seconds (EPSSetUp: K - sigma M),
-/// krylov_seconds (EPSSolve and the eigenvectors), sturm_seconds, factorizations (numeric),
-/// operator_applications (solves), krylov_runs, restarts (Krylov-Schur iterations). Throws
+/// krylov_seconds (EPSSolve, the eigenvectors, their residuals and refinement), sturm_seconds,
+/// factorizations (numeric), operator_applications (solves, the refinement's columns included),
+/// krylov_runs, restarts (Krylov-Schur iterations), refinement_steps. Throws
 /// InputError if fewer pairs converge than asked, a mode was missed twice or a pair misses its
 /// residual bound, InternalError for a PETSc/SLEPc failure.
 ///
