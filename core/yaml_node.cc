@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -129,6 +130,13 @@ double YamlNode::AsDouble() const {
     Fail(fmt::format("'{}' is not a finite number", node_->Scalar()));
   }
   return value;
+}
+
+int YamlNode::AsChoice(const std::vector<std::string_view>& names) const {
+  const std::string value = AsString();
+  const auto it = std::find(names.begin(), names.end(), value);
+  if (it == names.end()) Fail(fmt::format("'{}' must be one of: {}", value, fmt::join(names, ", ")));
+  return static_cast<int>(it - names.begin());
 }
 
 int YamlNode::AsInt() const {

@@ -36,6 +36,9 @@ class YamlNode {
   int AsInt() const;
   bool AsBool() const;
   std::string AsString() const;
+  /// The index of this scalar among `names` (the file's spellings); else InputError
+  /// "'<value>' must be one of: a, b, c".
+  int AsChoice(const std::vector<std::string_view>& names) const;
   /// A sequence of strings (a single string counts as a one-element list).
   std::vector<std::string> AsStringList() const;
   /// The elements of a sequence node, each knowing its item path ("interfaces[1]").

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <limits>
 #include <string_view>
 #include <utility>
@@ -79,16 +80,9 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
   if (type == "point_load") {
     node.RejectUnknownKeys({"name", "type", "at", "force", "torque", "frame"});
     const MarkerRef at = ReadMarkerRef(node.Required("at"), *system);
-    LoadFrame frame = LoadFrame::kWorld;
-    if (node.Has("frame")) {
-      const YamlNode frame_node = node.Required("frame");
-      const std::string frame_name = frame_node.AsString();
-      if (frame_name == "marker") {
-        frame = LoadFrame::kMarker;
-      } else if (frame_name != "world") {
-        frame_node.Fail(fmt::format("'{}' must be one of: world, marker", frame_name));
-      }
-    }
+    const LoadFrame frame =
+        node.Has("frame") && node.Required("frame").AsChoice({"world", "marker"}) == 1 ? LoadFrame::kMarker
+                                                                                        : LoadFrame::kWorld;
     element = Within(node, [&] {
       return std::make_unique<PointLoad>(name, at, ReadFunctionVector(node, "force"), ReadFunctionVector(node, "torque"),
                                          frame);
@@ -128,90 +122,80 @@ constexpr double kMaxOutputSamples = 1e7;
 /// to t near the end); docs/scene.md.
 constexpr double kMinStepEpsilons = 64.0;
 
+/// The number under `key` of `node`, if given, into `value`; > 0 or InputError at the item.
+void ReadPositive(const YamlNode& node, std::string_view key, double* value) {
+  if (!node.Has(key)) return;
+  const YamlNode item = node.Required(key);
+  *value = item.AsDouble();
+  if (*value <= 0.0) item.Fail(fmt::format("{:g} must be > 0", *value));
+}
+
+/// end_time and output_interval of `simulation:` into `options` (> 0, and at most
+/// kMaxOutputSamples outputs).
+void ReadOutputTimes(const YamlNode& node, SimulationOptions* options) {
+  options->end_time = node.Required("end_time").AsDouble();
+  if (options->end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options->end_time));
+  options->output_interval = node.Has("output_interval") ? node.Required("output_interval").AsDouble()
+                                                         : options->end_time / 100.0;
+  if (options->output_interval <= 0.0) {
+    node.Required("output_interval").Fail(fmt::format("{:g} must be > 0", options->output_interval));
+  }
+  if (options->end_time / options->output_interval > kMaxOutputSamples) {
+    node.Required("output_interval")
+        .Fail(fmt::format("{:g} s asks for {:.3g} samples up to end_time {:g} s, more than the limit of {:g}",
+                          options->output_interval, options->end_time / options->output_interval, options->end_time,
+                          kMaxOutputSamples));
+  }
+}
+
+/// The ODE integrator's keys of `simulation:` (jacobian, newton, tolerances and steps) into
+/// `integrator`, with the combinations it refuses checked here to name the scene's line
+/// (OdeIntegrator refuses them too, but only when the run starts, after the results file is
+/// opened). end_time [s] bounds the steps from below by the time's round-off.
+void ReadIntegratorOptions(const YamlNode& node, double end_time, OdeOptions* integrator) {
+  if (node.Has("jacobian") && node.Required("jacobian").AsChoice({"model", "difference_quotients"}) == 1) {
+    integrator->jacobian = OdeJacobian::kDifferenceQuotients;
+  }
+  if (node.Has("newton")) {
+    constexpr std::array<OdeNewton, 3> kNewton{OdeNewton::kAuto, OdeNewton::kDense, OdeNewton::kSparse};
+    integrator->newton = kNewton[static_cast<std::size_t>(node.Required("newton").AsChoice({"auto", "dense", "sparse"}))];
+  }
+  ReadPositive(node, "relative_tolerance", &integrator->relative_tolerance);
+  ReadPositive(node, "absolute_tolerance", &integrator->absolute_tolerance);
+  ReadPositive(node, "max_step", &integrator->max_step);
+  ReadPositive(node, "fixed_step", &integrator->fixed_step);
+  const double min_step = kMinStepEpsilons * std::numeric_limits<double>::epsilon() * end_time;
+  for (const auto& [key, step] : {std::pair<std::string_view, double>{"max_step", integrator->max_step},
+                                  {"fixed_step", integrator->fixed_step}}) {
+    if (step > 0.0 && step < min_step) {
+      node.Required(key).Fail(fmt::format("{:g} s is below the round-off of the time up to end_time {:g} s "
+                                          "(at least {:g} epsilon x end_time = {:.3g} s)",
+                                          step, end_time, kMinStepEpsilons, min_step));
+    }
+  }
+  if (integrator->fixed_step > 0.0 && integrator->max_step > 0.0) {
+    node.Required("max_step").Fail("excludes fixed_step (a fixed step has no adaptivity to bound): give one of them");
+  }
+  if (integrator->newton == OdeNewton::kSparse && integrator->jacobian == OdeJacobian::kDifferenceQuotients) {
+    node.Required("newton").Fail(
+        "sparse solves with the model Jacobian: set jacobian to model, or newton to dense or auto");
+  }
+}
+
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
                           "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot",
                           "step", "theta", "impact_level", "rest_velocity", "gap_tolerance", "max_events"});
   SimulationOptions options;
-  options.end_time = node.Required("end_time").AsDouble();
-  if (options.end_time <= 0.0) node.Required("end_time").Fail(fmt::format("{:g} must be > 0", options.end_time));
-  options.output_interval = node.Has("output_interval") ? node.Required("output_interval").AsDouble()
-                                                        : options.end_time / 100.0;
-  if (options.output_interval <= 0.0) {
-    node.Required("output_interval").Fail(fmt::format("{:g} must be > 0", options.output_interval));
-  }
-  if (options.end_time / options.output_interval > kMaxOutputSamples) {
-    node.Required("output_interval")
-        .Fail(fmt::format("{:g} s asks for {:.3g} samples up to end_time {:g} s, more than the limit of {:g}",
-                          options.output_interval, options.end_time / options.output_interval, options.end_time,
-                          kMaxOutputSamples));
-  }
-  bool moreau_jean = false, event_driven = false;
-  if (node.Has("method")) {
-    const YamlNode method = node.Required("method");
-    const std::string name = method.AsString();
-    if (name == "implicit") {
-      options.integrator.method = OdeMethod::kImplicit;
-    } else if (name == "moreau_jean") {
-      moreau_jean = true;
-    } else if (name == "event_driven") {
-      event_driven = true;
-    } else if (name != "explicit") {
-      method.Fail(fmt::format("'{}' must be one of: explicit, implicit, moreau_jean, event_driven", name));
-    }
-  }
-  options.moreau_jean = ReadMoreauJeanOptions(node, moreau_jean);
-  options.event_driven = ReadEventDrivenOptions(node, event_driven);
-  if (node.Has("jacobian")) {
-    const YamlNode jacobian = node.Required("jacobian");
-    const std::string name = jacobian.AsString();
-    if (name == "difference_quotients") {
-      options.integrator.jacobian = OdeJacobian::kDifferenceQuotients;
-    } else if (name != "model") {
-      jacobian.Fail(fmt::format("'{}' must be one of: model, difference_quotients", name));
-    }
-  }
-  if (node.Has("newton")) {
-    const YamlNode newton = node.Required("newton");
-    const std::string name = newton.AsString();
-    if (name == "dense") {
-      options.integrator.newton = OdeNewton::kDense;
-    } else if (name == "sparse") {
-      options.integrator.newton = OdeNewton::kSparse;
-    } else if (name != "auto") {
-      newton.Fail(fmt::format("'{}' must be one of: auto, dense, sparse", name));
-    }
-  }
-  auto positive = [&](std::string_view key, double* value) {
-    if (!node.Has(key)) return;
-    const YamlNode item = node.Required(key);
-    *value = item.AsDouble();
-    if (*value <= 0.0) item.Fail(fmt::format("{:g} must be > 0", *value));
-  };
-  positive("relative_tolerance", &options.integrator.relative_tolerance);
-  positive("absolute_tolerance", &options.integrator.absolute_tolerance);
-  positive("max_step", &options.integrator.max_step);
-  positive("fixed_step", &options.integrator.fixed_step);
-  const double min_step = kMinStepEpsilons * std::numeric_limits<double>::epsilon() * options.end_time;
-  for (const auto& [key, step] : {std::pair<std::string_view, double>{"max_step", options.integrator.max_step},
-                                  {"fixed_step", options.integrator.fixed_step}}) {
-    if (step > 0.0 && step < min_step) {
-      node.Required(key).Fail(fmt::format("{:g} s is below the round-off of the time up to end_time {:g} s "
-                                          "(at least {:g} epsilon x end_time = {:.3g} s)",
-                                          step, options.end_time, kMinStepEpsilons, min_step));
-    }
-  }
-  // The integrator's combinations (OdeIntegrator refuses them too, but only when the run starts,
-  // after the results file is opened): checked here to name the scene's line.
-  if (options.integrator.fixed_step > 0.0 && options.integrator.max_step > 0.0) {
-    node.Required("max_step").Fail("excludes fixed_step (a fixed step has no adaptivity to bound): give one of them");
-  }
-  if (options.integrator.newton == OdeNewton::kSparse &&
-      options.integrator.jacobian == OdeJacobian::kDifferenceQuotients) {
-    node.Required("newton").Fail(
-        "sparse solves with the model Jacobian: set jacobian to model, or newton to dense or auto");
-  }
-  positive("baumgarte_frequency", &options.baumgarte_frequency);
+  ReadOutputTimes(node, &options);
+  const int method = node.Has("method")
+                         ? node.Required("method").AsChoice({"explicit", "implicit", "moreau_jean", "event_driven"})
+                         : 0;
+  if (method == 1) options.integrator.method = OdeMethod::kImplicit;
+  options.moreau_jean = ReadMoreauJeanOptions(node, method == 2);
+  options.event_driven = ReadEventDrivenOptions(node, method == 3);
+  ReadIntegratorOptions(node, options.end_time, &options.integrator);
+  ReadPositive(node, "baumgarte_frequency", &options.baumgarte_frequency);
   if (node.Has("redundant_pivot")) {
     const YamlNode item = node.Required("redundant_pivot");
     const double pivot = item.AsDouble();

@@ -70,16 +70,11 @@ std::optional<MoreauJeanOptions> ReadMoreauJeanOptions(const YamlNode& simulatio
     options.theta = theta.AsDouble();
     if (!(options.theta >= 0.5 && options.theta <= 1.0)) theta.Fail(fmt::format("{:g} must be in [0.5, 1]", options.theta));
   }
-  if (simulation.Has("impact_level")) {
-    const YamlNode level = simulation.Required("impact_level");
-    const std::string name = level.AsString();
-    if (name == "position") {
-      options.impact_level = ImpactLevel::kPosition;
-      if (options.theta != 1.0) {
-        level.Fail(fmt::format("position needs theta: 1 (the gap the positions reach), not {:g}", options.theta));
-      }
-    } else if (name != "velocity") {
-      level.Fail(fmt::format("'{}' must be one of: velocity, position", name));
+  if (simulation.Has("impact_level") && simulation.Required("impact_level").AsChoice({"velocity", "position"}) == 1) {
+    options.impact_level = ImpactLevel::kPosition;
+    if (options.theta != 1.0) {
+      simulation.Required("impact_level")
+          .Fail(fmt::format("position needs theta: 1 (the gap the positions reach), not {:g}", options.theta));
     }
   }
   return options;

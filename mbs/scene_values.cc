@@ -81,14 +81,8 @@ TimeFunctionPtr ReadTimeFunction(const YamlNode& node) {
     const YamlNode step = node.Required("smooth_step");
     step.RejectUnknownKeys({"t0", "f0", "t1", "f1", "order"});
     SmoothStepOrder order = SmoothStepOrder::kQuintic;
-    if (step.Has("order")) {
-      const YamlNode order_node = step.Required("order");
-      const std::string name = order_node.AsString();
-      if (name == "cubic") {
-        order = SmoothStepOrder::kCubic;
-      } else if (name != "quintic") {
-        order_node.Fail(fmt::format("'{}' must be one of: cubic, quintic", name));
-      }
+    if (step.Has("order") && step.Required("order").AsChoice({"cubic", "quintic"}) == 0) {
+      order = SmoothStepOrder::kCubic;
     }
     return Make(step, [&] {
       return MakeSmoothStep(step.Required("t0").AsDouble(), step.Required("f0").AsDouble(),

@@ -23,7 +23,7 @@ InterfaceSetting ReadInterface(const YamlNode& node, const std::vector<std::stri
   InterfaceSetting spec;
   spec.node_set = ReadNodeSetName(node.Required("node_set"), node_sets);
   if (node.Has("coupling")) {
-    spec.coupling = static_cast<Coupling>(ReadChoice(node.Required("coupling"), kCouplings));
+    spec.coupling = static_cast<Coupling>(node.Required("coupling").AsChoice(kCouplings));
   }
   if (node.Has("marker")) spec.p_BoMarker_B = ReadVector3(node.Required("marker"));
   return spec;
@@ -39,7 +39,7 @@ CorrectionSpec ReadCorrection(const YamlNode& node, const std::vector<std::strin
     if (spec.direction->norm() == 0.0) direction.Fail("a load direction must not be zero");
   }
   if (node.Has("distribution")) {
-    spec.distribution = static_cast<LoadDistribution>(ReadChoice(node.Required("distribution"), kDistributions));
+    spec.distribution = static_cast<LoadDistribution>(node.Required("distribution").AsChoice(kDistributions));
   }
   return spec;
 }
@@ -70,7 +70,7 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
                             "orthonormalize", "supports", "interfaces", "correction_modes"});
   ReductionSpec spec;
   if (section.Has("method")) {
-    spec.method = static_cast<ReductionMethod>(ReadChoice(section.Required("method"), kMethods));
+    spec.method = static_cast<ReductionMethod>(section.Required("method").AsChoice(kMethods));
   }
   if (section.Has("modes")) {
     const YamlNode modes = section.Required("modes");
@@ -95,7 +95,7 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
   }
   if (section.Has("rigid_body_modes")) {
     const std::vector<std::string_view> kRigid = {"exact", "computed"};
-    spec.exact_rigid_body_modes = ReadChoice(section.Required("rigid_body_modes"), kRigid) == 0;
+    spec.exact_rigid_body_modes = section.Required("rigid_body_modes").AsChoice(kRigid) == 0;
   }
   if (section.Has("orthonormalize")) spec.orthonormalize = section.Required("orthonormalize").AsBool();
   if (section.Has("supports")) {

@@ -29,7 +29,7 @@ MarkerSetting ReadMarker(const YamlNode& node, const std::vector<std::string>& n
   if (marker.name.empty()) name.Fail("a marker name must not be empty");
   marker.node_set = ReadNodeSetName(node.Required("node_set"), node_sets);
   marker.coupling =
-      static_cast<MarkerCoupling>(ReadChoice(node.Required("coupling"), kMarkerCouplings));
+      static_cast<MarkerCoupling>(node.Required("coupling").AsChoice(kMarkerCouplings));
   if (node.Has("position")) {
     const YamlNode position = node.Required("position");
     if (marker.coupling == MarkerCoupling::kNode) {

@@ -7,14 +7,6 @@
 
 namespace flexmbs::reduction {
 
-int ReadChoice(const YamlNode& node, const std::vector<std::string_view>& names) {
-  const std::string value = node.AsString();
-  const auto it = std::find(names.begin(), names.end(), value);
-  if (it == names.end())
-    node.Fail(fmt::format("'{}' must be one of: {}", value, fmt::join(names, ", ")));
-  return static_cast<int>(it - names.begin());
-}
-
 Eigen::Vector3d ReadVector3(const YamlNode& node) {
   const std::vector<YamlNode> xyz = node.AsList();
   if (xyz.size() != 3) node.Fail(fmt::format("expected 3 coordinates, got {}", xyz.size()));

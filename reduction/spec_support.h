@@ -12,9 +12,6 @@
 
 namespace flexmbs::reduction {
 
-/// The index of the value of `node` among `names` (file spellings); else fails with
-/// "'<value>' must be one of: a, b, c".
-int ReadChoice(const YamlNode& node, const std::vector<std::string_view>& names);
 
 /// A list of three numbers (finite: YamlNode::AsDouble); else fails naming the count or the value.
 Eigen::Vector3d ReadVector3(const YamlNode& node);
