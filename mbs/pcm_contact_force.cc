@@ -47,19 +47,35 @@ PcmContactForce::PcmContactForce(std::string name, PcmSurface A, PcmSurface B, d
   }
 }
 
+struct PcmContactForce::Evaluation {
+  MarkerKinematics marker_A, marker_B;
+  PlacedMesh A, B;
+  std::vector<contact::PcmElement> elements;
+};
+
+PcmContactForce::Evaluation PcmContactForce::Evaluate(const MultibodySystem& system, const ConstVectorRef& y) const {
+  Evaluation e{system.MarkerState(A_.marker, y), system.MarkerState(B_.marker, y), {}, {}, {}};
+  e.A = Place(A_.mesh_M, e.marker_A);
+  e.B = Place(B_.mesh_M, e.marker_B);
+  e.elements = contact::ContactElements(
+      e.A.mesh, e.B.mesh, contact::CandidatePairs(contact::Bvh(e.A.mesh), contact::Bvh(e.B.mesh, max_depth_)), max_depth_);
+  return e;
+}
+
 void PcmContactForce::AddForces(double, const MultibodySystem& system, const ConstVectorRef& y,
                                 Eigen::Ref<Eigen::VectorXd> h) const {
-  const MarkerKinematics marker_A = system.MarkerState(A_.marker, y), marker_B = system.MarkerState(B_.marker, y);
-  const PlacedMesh A = Place(A_.mesh_M, marker_A), B = Place(B_.mesh_M, marker_B);
-  const std::vector<contact::PcmElement> elements = contact::ContactElements(
-      A.mesh, B.mesh, contact::CandidatePairs(contact::Bvh(A.mesh), contact::Bvh(B.mesh, max_depth_)), max_depth_);
-  if (elements.empty()) return;
-  const contact::PairLoad load =
-      contact::SumLoads(law_, elements, A.mesh, A.velocities_W, B.mesh, B.velocities_W, marker_A.p_WM_W);
+  const Evaluation e = Evaluate(system, y);
+  if (e.elements.empty()) return;
+  const contact::PairLoad load = contact::SumLoads(law_, e.elements, e.A.mesh, e.A.velocities_W, e.B.mesh,
+                                                   e.B.velocities_W, e.marker_A.p_WM_W);
   // About B's origin: -(M_A + (p_A - p_B) x F).
-  const Eigen::Vector3d moment_B = -(load.moment_W + (marker_A.p_WM_W - marker_B.p_WM_W).cross(load.force_W));
-  system.AddMarkerLoad(A_.marker, marker_A, load.force_W, load.moment_W, h);
-  system.AddMarkerLoad(B_.marker, marker_B, -load.force_W, moment_B, h);
+  const Eigen::Vector3d moment_B = -(load.moment_W + (e.marker_A.p_WM_W - e.marker_B.p_WM_W).cross(load.force_W));
+  system.AddMarkerLoad(A_.marker, e.marker_A, load.force_W, load.moment_W, h);
+  system.AddMarkerLoad(B_.marker, e.marker_B, -load.force_W, moment_B, h);
+}
+
+double PcmContactForce::PotentialEnergy(double, const MultibodySystem& system, const ConstVectorRef& y) const {
+  return contact::ElasticEnergy(law_, Evaluate(system, y).elements);
 }
 
 }  // namespace flexmbs::mbs

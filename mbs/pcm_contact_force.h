@@ -28,8 +28,8 @@ struct PcmSurface {
 /// hierarchies are built (SAH; rebuilt, not refitted, in this first version) with B's faces swept
 /// to max_depth, and the elements and their loads follow contact/pcm (ContactElements, SumLoads):
 /// A takes the resultant force F and its moment about A's marker origin, B the opposites. Each
-/// vertex moves with its marker: v = v_WM + w_WM x (p - p_WM). No potential energy and no
-/// Jacobian yet (explicit integration).
+/// vertex moves with its marker: v = v_WM + w_WM x (p - p_WM). Potential energy: the layers'
+/// contact::ElasticEnergy. No Jacobian yet (explicit integration).
 class PcmContactForce final : public ForceElement {
  public:
   /// Checks both surfaces (contact::RequirePcmSurface), the layers, d_A and friction
@@ -40,8 +40,13 @@ class PcmContactForce final : public ForceElement {
   const std::string& name() const override { return name_; }
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
+  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
 
  private:
+  /// Both meshes placed in W, with their vertices' velocities, and the elements between them.
+  struct Evaluation;
+  Evaluation Evaluate(const MultibodySystem& system, const ConstVectorRef& y) const;
+
   std::string name_;
   PcmSurface A_, B_;
   contact::ElasticFoundation law_;

@@ -70,7 +70,7 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
   if (patch.count < 3) return std::nullopt;
   // Fan from vertex 0: for linear f, g on a triangle of area s, integral(f g) = s/12 (sum f_i g_i
   // + sum f_i sum g_i); the areas carry the patch's orientation (clockwise: A faces B), fixed below.
-  double area = 0.0, volume = 0.0;
+  double area = 0.0, volume = 0.0, depth_squared = 0.0;
   Eigen::Vector2d first_moment = Eigen::Vector2d::Zero(), depth_moment = Eigen::Vector2d::Zero();
   const Eigen::Vector3d& p0 = patch.vertices[0];
   for (int k = 1; k + 1 < patch.count; ++k) {
@@ -81,6 +81,7 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
     const double delta_sum = p0.z() + p1.z() + p2.z();
     area += s;
     volume += s * delta_sum / 3.0;
+    depth_squared += s / 12.0 * (p0.z() * p0.z() + p1.z() * p1.z() + p2.z() * p2.z() + delta_sum * delta_sum);
     first_moment += s * x_sum / 3.0;
     depth_moment += s / 12.0 * (p0.z() * p0.head<2>() + p1.z() * p1.head<2>() + p2.z() * p2.head<2>() + delta_sum * x_sum);
   }
@@ -90,6 +91,7 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
   element.area = std::abs(area);
   element.volume = std::abs(volume);
   element.depth = element.volume / element.area;
+  element.depth_squared = std::abs(depth_squared);
   element.normal_W = n;
   const auto world = [&](const Eigen::Vector2d& x) -> Eigen::Vector3d { return b0 + x.x() * t1 + x.y() * t2; };
   element.barycentre_W = world(barycentre);

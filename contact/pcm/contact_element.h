@@ -23,6 +23,7 @@ struct PcmElement {
   double area = 0.0;    ///< of the patch in B's plane [m^2]
   double volume = 0.0;  ///< integral of delta over the patch [m^3]
   double depth = 0.0;   ///< volume / area: delta at the barycentre [m]
+  double depth_squared = 0.0;  ///< integral of delta^2 over the patch [m^4] (the foundation's energy)
   Eigen::Vector3d normal_W = Eigen::Vector3d::Zero();           ///< B's outward unit normal: pushes A out
   Eigen::Vector3d barycentre_W = Eigen::Vector3d::Zero();       ///< of the patch, in B's plane [m]
   Eigen::Vector3d pressure_centre_W = Eigen::Vector3d::Zero();  ///< integral(delta x) / volume, in B's plane [m]

@@ -25,6 +25,12 @@ ElasticFoundation MakeElasticFoundation(const ElasticLayer& A, std::string_view 
   return law;
 }
 
+double ElasticEnergy(const ElasticFoundation& law, const std::vector<PcmElement>& elements) {
+  double depth_squared = 0.0;
+  for (const PcmElement& element : elements) depth_squared += element.depth_squared;
+  return 0.5 * law.stiffness * depth_squared;
+}
+
 ElementLoad Evaluate(const ElasticFoundation& law, const PcmElement& element, const Eigen::Vector3d& v_AB_W) {
   const Eigen::Vector3d& n = element.normal_W;
   const double v_N = n.dot(v_AB_W);

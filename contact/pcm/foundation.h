@@ -33,6 +33,10 @@ struct ElasticFoundation {
 ElasticFoundation MakeElasticFoundation(const ElasticLayer& A, std::string_view name_A, const ElasticLayer& B,
                                         std::string_view name_B, double areal_damping, const RegularisedCoulomb& friction);
 
+/// The energy stored in the layers by the elements [J]: c/2 times the sum of their integrals of
+/// delta^2, whose derivative by a rigid approach along a flat B's normal is c V, the force.
+double ElasticEnergy(const ElasticFoundation& law, const std::vector<PcmElement>& elements);
+
 /// An element's load on A (B takes its opposite at the same point).
 struct ElementLoad {
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();  ///< normal and friction force on A [N]

@@ -16,7 +16,7 @@ namespace {
 /// midpoint x the depth delta of A's plane under it along n, kept if x - delta n lies in A's
 /// triangle and 0 <= delta <= max_depth.
 struct Integrals {
-  double area = 0.0, volume = 0.0;
+  double area = 0.0, volume = 0.0, depth_squared = 0.0;
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero(), depth_moment = Eigen::Vector3d::Zero();
 };
 Integrals Integrate(const Eigen::Vector3d (&a)[3], const Eigen::Vector3d (&b)[3], double max_depth, int n) {
@@ -36,6 +36,7 @@ Integrals Integrate(const Eigen::Vector3d (&a)[3], const Eigen::Vector3d (&b)[3]
     if (delta < 0.0 || delta > max_depth || !inside_A(x - delta * normal_B)) return;
     result.area += cell;
     result.volume += cell * delta;
+    result.depth_squared += cell * delta * delta;
     result.first_moment += cell * x;
     result.depth_moment += cell * delta * x;
   };
@@ -78,6 +79,7 @@ TEST(PcmElement, RandomTrianglePairsMatchTheMidpointIntegrationOfTheirOverlap) {
     EXPECT_NEAR(element->area, reference.area, 3e-4) << trial;
     EXPECT_NEAR(element->volume, reference.volume, 2e-5) << trial;
     EXPECT_NEAR(element->depth, element->volume / element->area, 1e-15);
+    EXPECT_NEAR(element->depth_squared, reference.depth_squared, 4e-6) << trial;  // measured 4.1e-7
     EXPECT_TRUE(element->normal_W.isApprox(R.col(2), 1e-14));
     if (reference.area > 0.05) {
       EXPECT_LT((element->barycentre_W - reference.first_moment / reference.area).norm(), 6e-4) << trial;

@@ -1,13 +1,14 @@
 // mbs/pcm_contact_force.h: a rigid icosphere on a rigid flat through elastic layers loads its
 // body with the foundation law's force c pi d^2 (R - d/3) and the moment of that force about the
 // body's origin; on two free bodies the loads are equal and opposite; a damped ball dropped on
-// the ground settles at the closed form's rest depth; bad surfaces and layers are one-line
-// errors naming the element.
+// the ground settles at the closed form's rest depth, an undamped one keeps its energy through
+// an impact; bad surfaces and layers are one-line errors naming the element.
 #include "mbs/pcm_contact_force.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -120,6 +121,31 @@ TEST(PcmContactForce, ADampedBallDroppedOnTheGroundSettlesWhereTheFoundationCarr
   // 9.4e-9 m/s.
   EXPECT_NEAR(depth / rest, 1.0, 0.03);
   EXPECT_LT(std::abs(last(7 + 2)), 1e-7);
+}
+
+TEST(PcmContactForce, AnUndampedBallBouncesOnTheGroundWithoutGainingEnergy) {
+  MultibodySystem system(Vector3d(0.0, 0.0, -9.81));
+  system.AddBody(Body("ball", Vector3d::Zero(), 20.0));
+  system.AddForceElement(std::make_unique<PcmContactForce>("press", Ball(system, 3), Flat(MarkerRef::Ground(Vector3d::Zero())),
+                                                           0.0, contact::RegularisedCoulomb{0.0, 1e-3}, kMaxDepth));
+  VectorXd y0 = State(system, Vector3d(0.0, 0.0, kRadius + 1e-4), Vector3d::Zero());
+  y0(7 + 2) = -0.3;  // falling at 0.3 m/s, 0.1 mm above the flat: one impact in 5 ms
+  SimulationOptions options;
+  options.integrator.method = OdeMethod::kExplicit;
+  options.end_time = 0.01;
+  options.output_interval = 2e-4;
+  options.integrator.relative_tolerance = 1e-10;
+  options.integrator.absolute_tolerance = 1e-13;
+  const auto energy = [&](const VectorXd& y) { return system.KineticEnergy(y) + system.PotentialEnergy(0.0, y); };
+  const double start = energy(y0);
+  double largest = 0.0, deepest = 0.0;
+  Simulate(system, options, y0, [&](double, const VectorXd& y, const VectorXd&) {
+    largest = std::max(largest, std::abs(energy(y) - start));
+    deepest = std::max(deepest, kRadius - y(2));
+  });
+  std::printf("[ numbers  ] deepest %.4e m, energy drift %.3e of %.4e J\n", deepest, largest, start);
+  EXPECT_GT(deepest, 2e-4);  // it went into the layers
+  EXPECT_LT(largest, 2e-7);  // [J], measured 1.9e-8 of 4.8 J (the integration's tolerance)
 }
 
 TEST(PcmContactForce, BadLayersSurfacesAndDepthAreOneLineErrorsNamingTheElement) {
