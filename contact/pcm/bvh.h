@@ -84,7 +84,6 @@ class Bvh {
   const std::vector<int>& faces() const { return faces_; }
   /// The (swept) box of each face, by face index.
   const std::vector<Aabb>& face_boxes() const { return face_boxes_; }
-  double depth() const { return depth_; }
 
  private:
   int Build(int begin, int end, std::vector<Eigen::Vector3d>& centres);
