@@ -10,6 +10,7 @@
 
 #include "app/command_support.h"
 #include "app/commands.h"
+#include "app/gear_results.h"
 #include "core/error.h"
 #include "core/sha256.h"
 #include "mbs/contact_mode_advice.h"
@@ -49,6 +50,7 @@ mbs::ResultsLayout Layout(const mbs::Scene& scene, const mbs::ConsistencyReport&
     const mbs::UnilateralContact& contact = system.unilateral_contact(k);
     layout.contacts.push_back({contact.name(), std::string(contact.type())});
   }
+  layout.element_series = GearSeries(system);
   layout.events = scene.options.event_driven.has_value();
   const mbs::OdeOptions& ode = scene.options.integrator;
   const std::string jacobian = ode.method == mbs::OdeMethod::kImplicit
@@ -97,6 +99,7 @@ mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::Vector
   for (const mbs::ContactStepResult& contact : contacts.contacts) {
     sample.contacts.push_back({contact.g_N, contact.P_N, contact.P_T, contact.active});
   }
+  sample.element_rows = GearRows(system, t, y);
   sample.kinetic_energy = system.KineticEnergy(y);
   sample.potential_energy = system.PotentialEnergy(t, y);
   return sample;

@@ -1,5 +1,6 @@
 #include "mbs/results_file.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <fmt/format.h>
@@ -55,6 +56,8 @@ struct ResultsWriter::Impl {
   std::vector<BodySeries> bodies;
   std::vector<JointSeries> joints;
   std::vector<ContactSeries> contacts;
+  std::vector<std::vector<h5::AppendableDataset>> element_series;  ///< per series, per channel
+  std::vector<std::int64_t> element_widths;  ///< the channels' widths (0: scalar), flattened
   std::optional<EventSeries> events;
   std::chrono::steady_clock::time_point last_flush = std::chrono::steady_clock::now();
   double flush_interval_seconds = 1.0;
@@ -121,6 +124,21 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsLay
                                  group.CreateAppendable("active", {}, "1")});
     }
   }
+  std::map<std::string, h5::Group> folders;
+  for (const ResultsLayout::ElementSeries& series : layout.element_series) {
+    auto folder = folders.find(series.folder);
+    if (folder == folders.end()) folder = folders.emplace(series.folder, root.CreateGroup(series.folder)).first;
+    h5::Group group = folder->second.CreateGroup(series.name);
+    group.SetStringAttribute("type", series.type);
+    std::vector<h5::AppendableDataset> datasets;
+    for (const ResultsLayout::ElementSeries::Channel& channel : series.channels) {
+      std::vector<std::int64_t> row_shape;
+      if (channel.width > 0) row_shape.push_back(channel.width);
+      datasets.push_back(group.CreateAppendable(channel.name, row_shape, channel.unit));
+      impl_->element_widths.push_back(channel.width);
+    }
+    impl_->element_series.push_back(std::move(datasets));
+  }
   if (layout.events) impl_->events = CreateEvents(root);
   std::map<std::string, std::string> provenance = layout.provenance;
   provenance["tool_version"] = std::string(Version());
@@ -175,6 +193,23 @@ void ResultsWriter::Append(const ResultsSample& sample) {
     impl.contacts[c].normal_impulse.AppendRow(contact.normal_impulse);
     impl.contacts[c].tangential_impulse.AppendRow(Eigen::VectorXd(contact.tangential_impulse));
     impl.contacts[c].active.AppendRow(contact.active ? 1.0 : 0.0);
+  }
+  FLEXMBS_CHECK(sample.element_rows.size() == impl.element_series.size(),
+                "a results sample needs every element series of the layout");
+  std::size_t channel = 0;
+  for (std::size_t e = 0; e < impl.element_series.size(); ++e) {
+    FLEXMBS_CHECK(sample.element_rows[e].size() == impl.element_series[e].size(),
+                  "a results sample's element series differ from the layout");
+    for (std::size_t c = 0; c < impl.element_series[e].size(); ++c, ++channel) {
+      const Eigen::VectorXd& row = sample.element_rows[e][c];
+      const std::int64_t width = impl.element_widths[channel];
+      FLEXMBS_CHECK(row.size() == std::max<std::int64_t>(width, 1), "a results sample's channel width differs from the layout");
+      if (width == 0) {
+        impl.element_series[e][c].AppendRow(row(0));
+      } else {
+        impl.element_series[e][c].AppendRow(row);
+      }
+    }
   }
   impl.kinetic->AppendRow(sample.kinetic_energy);
   impl.potential->AppendRow(sample.potential_energy);

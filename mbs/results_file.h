@@ -48,6 +48,21 @@ struct ResultsLayout {
   std::vector<Body> bodies;
   std::vector<Joint> joints;
   std::vector<Contact> contacts;
+  /// A force element's own time series (a spur gear's mesh: app/gear_results.h), written as the
+  /// group <folder>/<name>/ with the attribute `type` and one dataset per channel. The writer
+  /// knows no element types: the caller names the channels and fills their rows.
+  struct ElementSeries {
+    std::string folder;  ///< the group they sit in, e.g. "gears"
+    std::string name;    ///< the force element's name
+    std::string type;    ///< its scene type, e.g. "spur_gear_contact"
+    struct Channel {
+      std::string name;
+      std::int64_t width = 0;  ///< values per row; 0: one value (an N series)
+      std::string unit;
+    };
+    std::vector<Channel> channels;
+  };
+  std::vector<ElementSeries> element_series;
   /// Event-driven runs: the group events/ with one row per contact point at each event
   /// (ResultsWriter::AppendEvent).
   bool events = false;
@@ -79,6 +94,8 @@ struct ResultsSample {
     bool active = false;
   };
   std::vector<ContactSample> contacts;
+  /// Per ResultsLayout::ElementSeries, per channel its row (max(width, 1) values).
+  std::vector<std::vector<Eigen::VectorXd>> element_rows;
 };
 
 /// Writes a results file sample by sample.

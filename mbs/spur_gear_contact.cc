@@ -77,22 +77,47 @@ std::vector<contact::ToothPair> SpurGearContact::ToothPairs(double t, const Mult
   return contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2);
 }
 
+ContactPoint SpurGearContact::Point(const Frame& f, const contact::ToothPair& tp) {
+  ContactPoint point;
+  point.a = f.wheel2;
+  point.b = f.wheel1;
+  point.n_W = tp.n_12.x() * f.x_W + tp.n_12.y() * f.y_W;
+  point.p_Wc_W = f.p_WO_W + tp.p_O1C.x() * f.x_W + tp.p_O1C.y() * f.y_W;
+  point.penetration = -tp.gap;
+  return point;
+}
+
 std::vector<ContactPoint> SpurGearContact::Contacts(double t, const MultibodySystem& system,
                                                     const ConstVectorRef& y) const {
   const Frame f = PairFrame(t, system, y);
   std::vector<ContactPoint> points;
   for (const contact::ToothPair& tp :
        contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
-    if (!(tp.gap < 0.0)) continue;
-    ContactPoint point;
-    point.a = f.wheel2;
-    point.b = f.wheel1;
-    point.n_W = tp.n_12.x() * f.x_W + tp.n_12.y() * f.y_W;
-    point.p_Wc_W = f.p_WO_W + tp.p_O1C.x() * f.x_W + tp.p_O1C.y() * f.y_W;
-    point.penetration = -tp.gap;
-    points.push_back(point);
+    if (tp.gap < 0.0) points.push_back(Point(f, tp));
   }
   return points;
+}
+
+SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& system,
+                                               const ConstVectorRef& y) const {
+  const Frame f = PairFrame(t, system, y);
+  Readout readout;
+  readout.centre_distance = f.centre_distance;
+  readout.phi1 = f.phi1;
+  readout.phi2 = f.phi2;
+  for (const contact::ToothPair& tp :
+       contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
+    double force = 0.0;
+    if (tp.gap < 0.0) {
+      const ContactPoint point = Point(f, tp);
+      force = contact_.NormalForce(point);
+      const Eigen::Vector3d f_W = force * point.n_W;  // on wheel 2; wheel 1 takes -f_W
+      readout.torque1 += (point.p_Wc_W - f.wheel1.p_WM_W).cross(-f_W).dot(f.wheel1.R_WM.col(2));
+      readout.torque2 += (point.p_Wc_W - f.wheel2.p_WM_W).cross(f_W).dot(f.wheel2.R_WM.col(2));
+    }
+    readout.pairs.push_back({tp, force});
+  }
+  return readout;
 }
 
 void SpurGearContact::AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,

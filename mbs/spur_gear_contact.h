@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contact/gears/gear_mesh.h"
+#include "contact/gears/gear_mesh_force.h"
 #include "contact/gears/spur_gear.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/force_element.h"
@@ -52,6 +53,19 @@ class SpurGearContact final : public ForceElement {
   /// The tooth pairs that can mesh at state y (gaps of both signs), with the current a and angles.
   std::vector<contact::ToothPair> ToothPairs(double t, const MultibodySystem& system,
                                              const ConstVectorRef& y) const;
+  /// The mesh at state y as an engineer reads it (the results file's gears/ group,
+  /// app/gear_results.h): every tooth pair that can mesh with its force, the wheels' angles and
+  /// the torques the element puts on them.
+  struct Readout {
+    double centre_distance = 0.0;   ///< a [m], the markers' current one
+    double phi1 = 0.0, phi2 = 0.0;  ///< the wheels' angles [rad] (contact::FlankPoint)
+    /// Every pair of contact::MeshingToothPairs; force [N] the law's, 0 for a pair apart.
+    std::vector<contact::ToothPairLoad> pairs;
+    /// The torques [N m] on wheel 1 and wheel 2 about their axes (the markers' z through the
+    /// markers' origins) from the pairs' loads at their contact points.
+    double torque1 = 0.0, torque2 = 0.0;
+  };
+  Readout Read(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
   /// The pair's geometry (its nominal centre distance; the element uses the markers' one).
   const contact::GearPair& pair() const { return pair_; }
 
@@ -60,6 +74,8 @@ class SpurGearContact final : public ForceElement {
   /// angles. SimulationError if the axes came within the sum of the base radii.
   struct Frame;
   Frame PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// The contact point of tooth pair `tp` (penetration -g) in frame `f`.
+  static ContactPoint Point(const Frame& f, const contact::ToothPair& tp);
   /// The contact points of the tooth pairs in contact (penetration > 0).
   std::vector<ContactPoint> Contacts(double t, const MultibodySystem& system,
                                      const ConstVectorRef& y) const;

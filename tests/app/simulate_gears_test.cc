@@ -1,0 +1,164 @@
+// `flexmbs simulate` with a spur gear pair (docs/results.md, gears/): a pinion driven at constant
+// speed against a load torque on the wheel writes per output time the tooth pairs in contact,
+// the mesh force in total and per pair, the transmission error and the wheels' torques. Read
+// back: the mesh force is T / r_b2, the torques T r_b1 / r_b2 and T, the transmission error the
+// static deflection T / (r_b2 c' b n) of n pairs, and the pairs in contact switch 1 <-> 2 twice
+// per mesh cycle with double contact for epsilon_alpha - 1 of it (closed forms of ISO 21771).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "contact/gears/gear_mesh.h"
+#include "contact/gears/spur_gear.h"
+#include "core/h5_file.h"
+#include "tests/app/flexmbs_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = std::numbers::pi;
+
+constexpr double kSpeed = 2.0;                // pinion [rad/s]
+constexpr double kTorque = 10.0;              // load on the wheel [N m]
+constexpr double kCentre = 0.0505;            // a [m]
+constexpr double kStiffness = 1.4e10 * 0.02;  // c' b [N/m]: the default c' on b = 20 mm
+
+/// The pair of the scene below: module 2 mm, 19 (x = 0.3) and 31 (x = -0.1) teeth, 20 deg.
+flexmbs::contact::GearPair ScenePair() {
+  flexmbs::contact::GearPairSpec spec;
+  spec.gear1 = {2e-3, 19, 20.0 * kPi / 180.0, 0.3, 1.0, 1.25, 0.02};
+  spec.gear2 = {2e-3, 31, 20.0 * kPi / 180.0, -0.1, 1.0, 1.25, 0.02};
+  spec.centre_distance = kCentre;
+  return flexmbs::contact::MakeGearPair(spec);
+}
+
+/// tests/mbs/spur_gear_contact_test.cc's driven pair, the wheel starting at `wheel_angle` [rad].
+std::string SceneText(double wheel_angle) {
+  return "gravity: [0, 0, 0]\n"
+         "bodies:\n"
+         "  pinion:\n"
+         "    rigid: {mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, 3.4e-5]]}\n"
+         "    markers: {axis: {position: [0, 0, 0]}}\n"
+         "    initial: {angular_velocity: [0, 0, 2.0]}\n"
+         "  wheel:\n"
+         "    rigid: {mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, 2.3e-4]]}\n"
+         "    markers: {axis: {position: [0, 0, 0]}}\n"
+         "    initial: {position: [0.0505, 0, 0], rotation: {axis: [0, 0, 1], angle: " +
+         std::to_string(wheel_angle) + "}, angular_velocity: [0, 0, " +
+         std::to_string(-kSpeed * 19.0 / 31.0) +
+         "]}\n"
+         "joints:\n"
+         "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: "
+         "axis}, "
+         "driver: {ramp: {offset: 0, slope: 2.0}}}\n"
+         "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, j: "
+         "{body: wheel, marker: axis}}\n"
+         "forces:\n"
+         "  - {name: load, type: point_load, at: {body: wheel, marker: axis}, torque: [0, 0, "
+         "10.0]}\n"
+         "  - name: mesh\n"
+         "    type: spur_gear_contact\n"
+         "    wheel1: {body: pinion, marker: axis}\n"
+         "    wheel2: {body: wheel, marker: axis}\n"
+         "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+         "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02}\n"
+         "    centre_distance: 0.0505\n"
+         "    damping: 8e3\n"
+         "simulation: {end_time: 1.1, output_interval: 1e-4, method: explicit, relative_tolerance: "
+         "1e-8, "
+         "absolute_tolerance: 1e-11, max_step: 1e-4}\n";
+}
+
+TEST(SimulateGears, ResultsHoldMeshForceTransmissionErrorTorquesAndTheContactPattern) {
+  ASSERT_TRUE(fs::exists(flexmbs::testing::kFlexmbsBinary)) << "flexmbs is not built";
+  const fs::path dir =
+      fs::temp_directory_path() / ("flexmbs_simulate_gears_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const double start_angle = flexmbs::contact::TouchingAngle2(
+      ScenePair(), kCentre, 0.0, 0.0, flexmbs::contact::FlankSide::kPositive);
+  std::ofstream(dir / "scene.yaml") << SceneText(start_angle);
+  const fs::path results = dir / "results.h5";
+  const flexmbs::testing::Outcome run = flexmbs::testing::RunFlexmbs(
+      {"simulate", (dir / "scene.yaml").string(), "-o", results.string()}, dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const flexmbs::h5::File file = flexmbs::h5::File::Open(results);
+  const flexmbs::h5::Group root = file.root();
+  const flexmbs::h5::Group mesh = root.OpenGroup("gears").OpenGroup("mesh");
+  EXPECT_EQ(mesh.GetStringAttribute("type"), "spur_gear_contact");
+  const Eigen::VectorXd time = root.ReadVector("time"), active = mesh.ReadVector("active_pairs"),
+                        force = mesh.ReadVector("mesh_force"),
+                        error = mesh.ReadVector("transmission_error"),
+                        error_length = mesh.ReadVector("transmission_error_length");
+  const Eigen::MatrixXd pair_force = mesh.ReadMatrix("pair_force"),
+                        torque = mesh.ReadMatrix("torque");
+  ASSERT_EQ(time.size(), 11001);
+  ASSERT_EQ(force.size(), time.size());
+  ASSERT_EQ(pair_force.cols(), 4);  // floor(epsilon) + 1 = 2 slots per flank side
+  ASSERT_EQ(torque.cols(), 2);
+  fs::remove_all(dir);
+
+  // Closed forms (ISO 21771): base radii m z cos(alpha) / 2, the working pressure angle from a,
+  // the contact ratio from the tip radii r = m z / 2 + m (1 + x).
+  const double m = 2e-3, alpha = 20.0 * kPi / 180.0;
+  const double r_b1 = m * 19 * std::cos(alpha) / 2, r_b2 = m * 31 * std::cos(alpha) / 2;
+  const double r_a1 = m * 19 / 2 + m * 1.3, r_a2 = m * 31 / 2 + m * 0.9;
+  const double alpha_w = std::acos((r_b1 + r_b2) / kCentre);
+  const double epsilon = (std::sqrt(r_a1 * r_a1 - r_b1 * r_b1) +
+                          std::sqrt(r_a2 * r_a2 - r_b2 * r_b2) - kCentre * std::sin(alpha_w)) /
+                         (kPi * m * std::cos(alpha));
+
+  // From 0.2 s over 5 whole mesh cycles; the samples settled 1 ms after a 1 <-> 2 switch (the
+  // 5 kHz ringing of the mesh stiffness' step, tests/mbs/spur_gear_contact_test.cc).
+  const double mesh_period = 2.0 * kPi / 19.0 / kSpeed;
+  const double t0 = 0.2, t1 = t0 + 5.0 * mesh_period;
+  double last_switch = 0.0, worst_force = 0.0, worst_torque = 0.0, worst_error = 0.0,
+         worst_sum = 0.0;
+  int switches = 0, in_window = 0, double_contact = 0, settled = 0;
+  for (Eigen::Index k = 1; k < time.size(); ++k) {
+    const bool switched = active(k) != active(k - 1);
+    if (switched) last_switch = time(k);
+    if (time(k) < t0 || time(k) >= t1) continue;
+    ++in_window;
+    switches += switched;
+    ASSERT_TRUE(active(k) == 1.0 || active(k) == 2.0) << "t = " << time(k) << ": " << active(k);
+    double_contact += active(k) == 2.0;
+    // Every loaded pair on the driving (positive) flanks, one per slot; the slots sum to the force.
+    EXPECT_EQ(pair_force(k, 2), 0.0);
+    EXPECT_EQ(pair_force(k, 3), 0.0);
+    EXPECT_EQ((pair_force.row(k).array() > 0.0).count(), static_cast<Eigen::Index>(active(k)));
+    worst_sum = std::max(worst_sum, std::abs(pair_force.row(k).sum() - force(k)) / force(k));
+    EXPECT_NEAR(error(k) * r_b2, error_length(k), 1e-15);
+    if (time(k) - last_switch < 1e-3) continue;
+    ++settled;
+    const double load = kTorque / r_b2;
+    worst_force = std::max(worst_force, std::abs(force(k) / load - 1.0));
+    worst_torque = std::max({worst_torque, std::abs(torque(k, 1) / -kTorque - 1.0),
+                             std::abs(torque(k, 0) / (-kTorque * r_b1 / r_b2) - 1.0)});
+    worst_error =
+        std::max(worst_error, std::abs(error_length(k) * kStiffness * active(k) / load - 1.0));
+  }
+  const double share = static_cast<double>(double_contact) / in_window;
+  std::printf(
+      "[measured] %d samples (%d settled): mesh force / (T/r_b2) - 1 <= %.3g, torques %.3g, "
+      "transmission error against T/(r_b2 c' b n) %.3g, slots' sum %.3g; %d switches in 5 mesh "
+      "cycles, double contact %.5f of the time against epsilon - 1 = %.5f\n",
+      in_window, settled, worst_force, worst_torque, worst_error, worst_sum, switches, share,
+      epsilon - 1.0);
+  ASSERT_GT(settled, 5000);
+  EXPECT_LT(worst_force, 1e-5);   // measured 9.9e-7 (the integrator's tolerance)
+  EXPECT_LT(worst_torque, 1e-5);  // measured 9.9e-7
+  EXPECT_LT(worst_error, 5e-6);   // measured 4.6e-7
+  EXPECT_LT(worst_sum, 1e-14);    // measured 0
+  EXPECT_EQ(switches, 10);
+  // Measured 0.47654 against 0.47687: 1e-4 s samples at 10 switches in 0.83 s, and the load's
+  // deflection moving the switches.
+  EXPECT_NEAR(share, epsilon - 1.0, 3e-3);
+}
+
+}  // namespace
