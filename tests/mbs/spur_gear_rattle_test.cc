@@ -51,73 +51,93 @@ struct Sample {
   double t, omega2, gap_positive, gap_negative;
 };
 
-TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
+/// The scene: a held pinion and a free wheel at `angle` [rad] turning at `omega` [rad/s].
+std::string RattleSceneText(double angle, double omega) {
+  return "gravity: [0, 0, 0]\nbodies:\n"
+         "  pinion:\n    rigid: {mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, "
+         "3.4e-5]]}\n"
+         "    markers: {axis: {position: [0, 0, 0]}}\n"
+         "  wheel:\n    rigid: {mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, "
+         "2.3e-4]]}\n"
+         "    markers: {axis: {position: [0, 0, 0]}}\n"
+         "    initial: {position: [0.0505, 0, 0], rotation: {axis: [0, 0, 1], angle: " +
+         std::to_string(angle) + "}, angular_velocity: [0, 0, " + std::to_string(omega) + "]}\n" +
+         "joints:\n"
+         "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: "
+         "axis}, driver: 0}\n"
+         "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, "
+         "j: {body: wheel, marker: axis}}\n"
+         "forces:\n"
+         "  - {name: mesh, type: spur_gear_contact, wheel1: {body: pinion, marker: axis}, "
+         "wheel2: {body: wheel, marker: axis},\n"
+         "     gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02},\n"
+         "     gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02},\n"
+         "     centre_distance: 0.0505, damping: 2e3}\n"
+         "simulation: {end_time: 0.012, output_interval: 1e-6, method: explicit, "
+         "relative_tolerance: 1e-11, "
+         "absolute_tolerance: 1e-14, max_step: 1e-6}\n";
+}
+
+/// The scene with the wheel kStartGap short of touching on the positive flanks, closing at
+/// kApproach (the touching angle found on a probe scene at rest).
+Scene LoadRattleScene() {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("flexmbs_rattle_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const auto scene_text = [&](double angle, double omega) {
-    return "gravity: [0, 0, 0]\nbodies:\n"
-           "  pinion:\n    rigid: {mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, "
-           "3.4e-5]]}\n"
-           "    markers: {axis: {position: [0, 0, 0]}}\n"
-           "  wheel:\n    rigid: {mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, "
-           "2.3e-4]]}\n"
-           "    markers: {axis: {position: [0, 0, 0]}}\n"
-           "    initial: {position: [0.0505, 0, 0], rotation: {axis: [0, 0, 1], angle: " +
-           std::to_string(angle) + "}, angular_velocity: [0, 0, " + std::to_string(omega) + "]}\n" +
-           "joints:\n"
-           "  - {name: pinion_axis, type: revolute, i: {body: ground}, j: {body: pinion, marker: "
-           "axis}, driver: 0}\n"
-           "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, "
-           "j: {body: wheel, marker: axis}}\n"
-           "forces:\n"
-           "  - {name: mesh, type: spur_gear_contact, wheel1: {body: pinion, marker: axis}, "
-           "wheel2: {body: wheel, marker: axis},\n"
-           "     gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02},\n"
-           "     gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02},\n"
-           "     centre_distance: 0.0505, damping: 2e3}\n"
-           "simulation: {end_time: 0.012, output_interval: 1e-6, method: explicit, "
-           "relative_tolerance: 1e-11, "
-           "absolute_tolerance: 1e-14, max_step: 1e-6}\n";
-  };
   const auto load = [&](double angle, double omega) {
-    std::ofstream(dir / "scene.yaml") << scene_text(angle, omega);
+    std::ofstream(dir / "scene.yaml") << RattleSceneText(angle, omega);
     return LoadScene(dir / "scene.yaml");
   };
   const Scene probe = load(0.0, 0.0);
   const contact::GearPair& pair =
       dynamic_cast<const SpurGearContact&>(probe.system->force_element(0)).pair();
   const double r_b2 = pair.gear2.base_radius;
-  // The wheel kStartGap short of touching on the positive flanks, closing at kApproach.
   const double touching =
       contact::TouchingAngle2(pair, 0.0505, 0.0, 0.0, contact::FlankSide::kPositive);
-  const Scene scene = load(touching - kStartGap / r_b2, kApproach / r_b2);
+  Scene scene = load(touching - kStartGap / r_b2, kApproach / r_b2);
   std::filesystem::remove_all(dir);
+  return scene;
+}
+
+/// The run's samples and its tooth pairs on the negative, positive side (at the first sample);
+/// same_pairs: every sample had those counts.
+struct RattleRun {
+  std::vector<Sample> samples;
+  int pairs[2] = {0, 0};
+  bool same_pairs = true;
+};
+
+/// Simulates the scene, sampling the wheel's speed and the smallest gap on either side.
+RattleRun RunRattle(const Scene& scene) {
   MultibodySystem& system = *scene.system;
   const auto& gears = dynamic_cast<const SpurGearContact&>(system.force_element(0));
   const MarkerRef wheel = MarkerRef::OnBody(system.FindBody("wheel"), 0);
-  std::vector<Sample> samples;
-  int pairs[2] = {0, 0};  // tooth pairs on the negative, positive side (constant over the run)
-  bool same_pairs = true;
+  RattleRun run;
   Simulate(system, scene.options, scene.initial_state,
            [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
              const auto tooth_pairs = gears.ToothPairs(t, system, y);
              int count[2] = {0, 0};
              for (const contact::ToothPair& tp : tooth_pairs)
                ++count[tp.side == contact::FlankSide::kPositive];
-             if (samples.empty()) pairs[0] = count[0], pairs[1] = count[1];
-             same_pairs = same_pairs && count[0] == pairs[0] && count[1] == pairs[1];
-             samples.push_back({t, system.MarkerState(wheel, y).w_WM_W.z(),
-                                SmallestGap(tooth_pairs, contact::FlankSide::kPositive),
-                                SmallestGap(tooth_pairs, contact::FlankSide::kNegative)});
+             if (run.samples.empty()) run.pairs[0] = count[0], run.pairs[1] = count[1];
+             run.same_pairs =
+                 run.same_pairs && count[0] == run.pairs[0] && count[1] == run.pairs[1];
+             run.samples.push_back({t, system.MarkerState(wheel, y).w_WM_W.z(),
+                                    SmallestGap(tooth_pairs, contact::FlankSide::kPositive),
+                                    SmallestGap(tooth_pairs, contact::FlankSide::kNegative)});
            });
-  ASSERT_TRUE(same_pairs);
+  return run;
+}
 
-  // Flights: runs of samples with both gaps open; their speed, start (leaving a side) and end
-  // (reaching the other), each crossing interpolated linearly (the gap is linear in free flight).
-  struct Flight {
-    double speed, start, end;
-  };
+/// A free flight across the backlash: its speed [m/s] along the line of action, its start
+/// (leaving a side) and end (reaching the other; -1 if the run ended first) [s].
+struct Flight {
+  double speed, start, end;
+};
+
+/// The flights: runs of samples with both gaps open, each crossing interpolated linearly (the
+/// gap is linear in free flight); r_b2 [m] turns the wheel's speed into the line of action's.
+std::vector<Flight> Flights(const std::vector<Sample>& samples, double r_b2) {
   std::vector<Flight> flights;
   const auto crossing = [](double t0, double g0, double t1, double g1) {
     return t0 + (t1 - t0) * g0 / (g0 - g1);
@@ -141,17 +161,31 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
                                : crossing(s.t, s.gap_positive, n.t, n.gap_positive);
     }
   }
-  ASSERT_GE(flights.size(), 4u);
+  return flights;
+}
+
+/// The worst errors over the impacts: of the restitution (absolute) and of the flight time
+/// against j_bn / v (relative).
+struct RattleErrors {
+  double restitution = 0.0, flight = 0.0;
+};
+
+/// Each impact's restitution against the closed form for its side's tooth pairs (pairs:
+/// negative, positive side) and each flight's time against j_bn / v, printed per impact.
+RattleErrors CompareImpacts(const std::vector<Flight>& flights, const int pairs[2],
+                            const contact::GearPair& pair) {
+  const double r_b2 = pair.gear2.base_radius;
   const double mass = kWheelInertia / (r_b2 * r_b2);
-  double worst_e = 0.0, worst_flight = 0.0;
+  RattleErrors worst;
   for (std::size_t k = 0; k + 1 < flights.size(); ++k) {
     // Flight k ends on the negative side when the wheel turns -z (positive side first).
     const int side = k % 2 == 0 ? 0 : 1;
     const double e = Restitution(mass, pairs[side] * kStiffness, kDamping);
-    worst_e = std::max(worst_e, std::abs(flights[k + 1].speed / flights[k].speed - e));
+    worst.restitution =
+        std::max(worst.restitution, std::abs(flights[k + 1].speed / flights[k].speed - e));
     if (flights[k].end > 0.0) {
-      worst_flight = std::max(
-          worst_flight,
+      worst.flight = std::max(
+          worst.flight,
           std::abs((flights[k].end - flights[k].start) * flights[k].speed / pair.backlash - 1.0));
     }
     std::printf(
@@ -164,10 +198,22 @@ TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
             (flights[k].speed * flights[k].speed - flights[k + 1].speed * flights[k + 1].speed),
         flights[k].end - flights[k].start, pair.backlash / flights[k].speed);
   }
+  return worst;
+}
+
+TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
+  const Scene scene = LoadRattleScene();
+  const contact::GearPair& pair =
+      dynamic_cast<const SpurGearContact&>(scene.system->force_element(0)).pair();
+  const RattleRun run = RunRattle(scene);
+  ASSERT_TRUE(run.same_pairs);
+  const std::vector<Flight> flights = Flights(run.samples, pair.gear2.base_radius);
+  ASSERT_GE(flights.size(), 4u);
+  const RattleErrors worst = CompareImpacts(flights, run.pairs, pair);
   std::printf("[measured] worst restitution error %.3g, worst flight time error %.3g (relative)\n",
-              worst_e, worst_flight);
-  EXPECT_LT(worst_e, 2e-8);       // measured 1.8e-9 (the integrator's tolerance)
-  EXPECT_LT(worst_flight, 1e-6);  // measured 1.05e-7 (the crossings' interpolation at 1e-6 s)
+              worst.restitution, worst.flight);
+  EXPECT_LT(worst.restitution, 2e-8);  // measured 1.8e-9 (the integrator's tolerance)
+  EXPECT_LT(worst.flight, 1e-6);       // measured 1.05e-7 (the crossings' interpolation at 1e-6 s)
 }
 
 }  // namespace
