@@ -162,13 +162,9 @@ TEST(SpurGearContact, DrivenPairKeepsTheRatioAndCarriesTheLoadTorqueOverTheBaseR
   EXPECT_LT(worst_force, 1e-5);  // measured 9.9e-7 (the integrator's tolerance)
 }
 
-// The element's Jacobian against central differences of its forces, two free wheels turning
-// with both tooth pairs in contact 5 um deep: in u exact (the dashpot on the relative velocity at
-// each contact point); in x for the wheels' turns about their axes (the columns the mesh's
-// stiffness lives in: the contact points slide along the line of action, parallel to the force,
-// so the levers add nothing). Left out: the line of action's turning when a centre moves.
-TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
-  MultibodySystem system(Eigen::Vector3d::Zero());
+/// Two free rigid wheels (pinion, wheel) meshing through a spur_gear_contact element: the pair
+/// of SceneText's gears at kCentre, c' = 1.4e10 N/m per m of face width, damping 3e3 N s/m.
+contact::GearPair AddFreeWheelsInMesh(MultibodySystem& system) {
   for (const char* name : {"pinion", "wheel"}) {
     system.AddBody(std::make_unique<RigidBody>(
         name, 0.3, Eigen::Vector3d::Zero(), 1e-4 * Eigen::Matrix3d::Identity(),
@@ -185,6 +181,12 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   system.AddForceElement(std::make_unique<SpurGearContact>(
       "mesh", system.Marker("pinion", "axis"), system.Marker("wheel", "axis"), pair,
       contact::ToothPairLaw({1.4e10, 3e3}, pair)));
+  return pair;
+}
+
+/// The wheels in double contact, 5 um deep on the positive flanks, turning at 3 and -1 rad/s,
+/// the wheel's centre sliding along y at 0.01 m/s (the damping's rate sees it).
+Eigen::VectorXd DoubleContactState(const MultibodySystem& system, const contact::GearPair& pair) {
   const double phi1 = 0.37;  // in double contact
   const double phi2 =
       contact::TouchingAngle2(pair, kCentre, phi1, 0.0, contact::FlankSide::kPositive) +
@@ -199,14 +201,13 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   };
   set(0, 0.0, phi1, 3.0);
   set(1, kCentre, phi2, -1.0);
-  const ForceElement& mesh = system.force_element(0);
-  int penetrating = 0;
-  for (const contact::ToothPair& tp :
-       dynamic_cast<const SpurGearContact&>(mesh).ToothPairs(0.0, system, y)) {
-    penetrating += tp.gap < 0.0;
-  }
-  ASSERT_EQ(penetrating, 2);
-  // Each pair's load on the wheel along its line of action, as ParaView draws them.
+  return y;
+}
+
+/// Each pair's load on the wheel lies along its line of action, as ParaView draws them, and
+/// the two sum to the mesh force.
+void ExpectLoadsAlongTheLinesOfAction(const MultibodySystem& system, const ForceElement& mesh,
+                                      const Eigen::VectorXd& y) {
   const auto loads = mesh.ContactLoads(0.0, system, y);
   ASSERT_EQ(loads.size(), 2u);
   EXPECT_TRUE(mesh.is_contact());
@@ -217,32 +218,67 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   }
   EXPECT_NEAR(total, dynamic_cast<const SpurGearContact&>(mesh).MeshForce(0.0, system, y),
               1e-12 * total);
+}
+
+/// Central differences of the element's forces h in the positions (steps of 1e-8 along the
+/// velocity directions) and in the velocities (steps of 1e-6).
+struct ForceDifferences {
+  Eigen::MatrixXd dh_dx, dh_du;
+};
+
+/// The central differences of `mesh`'s forces at state y.
+ForceDifferences CentralDifferences(const MultibodySystem& system, const ForceElement& mesh,
+                                    const Eigen::VectorXd& y) {
   const Eigen::Index n = system.num_velocities();
   const auto forces = [&](const Eigen::VectorXd& state) {
     Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
     mesh.AddForces(0.0, system, state, h);
     return h;
   };
-  Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx, fd_x(n, n), fd_u(n, n);
-  mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
+  ForceDifferences fd{Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, n)};
   for (Eigen::Index c = 0; c < n; ++c) {
     Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
     step(c) = 1e-8;
     Eigen::VectorXd plus = y, minus = y;
     system.DisplacePositions(step, plus);
     system.DisplacePositions(-step, minus);
-    fd_x.col(c) = (forces(plus) - forces(minus)) / 2e-8;
+    fd.dh_dx.col(c) = (forces(plus) - forces(minus)) / 2e-8;
     plus = y;
     minus = y;
     plus.tail(n)(c) += 1e-6;
     minus.tail(n)(c) -= 1e-6;
-    fd_u.col(c) = (forces(plus) - forces(minus)) / 2e-6;
+    fd.dh_du.col(c) = (forces(plus) - forces(minus)) / 2e-6;
   }
-  const double error_u = (dh_du - fd_u).cwiseAbs().maxCoeff() / fd_u.cwiseAbs().maxCoeff();
+  return fd;
+}
+
+// The element's Jacobian against central differences of its forces, two free wheels turning
+// with both tooth pairs in contact 5 um deep: in u exact (the dashpot on the relative velocity at
+// each contact point); in x for the wheels' turns about their axes (the columns the mesh's
+// stiffness lives in: the contact points slide along the line of action, parallel to the force,
+// so the levers add nothing). Left out: the line of action's turning when a centre moves.
+TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
+  MultibodySystem system(Eigen::Vector3d::Zero());
+  const contact::GearPair pair = AddFreeWheelsInMesh(system);
+  const Eigen::VectorXd y = DoubleContactState(system, pair);
+  const ForceElement& mesh = system.force_element(0);
+  int penetrating = 0;
+  for (const contact::ToothPair& tp :
+       dynamic_cast<const SpurGearContact&>(mesh).ToothPairs(0.0, system, y)) {
+    penetrating += tp.gap < 0.0;
+  }
+  ASSERT_EQ(penetrating, 2);
+  ExpectLoadsAlongTheLinesOfAction(system, mesh, y);
+  const Eigen::Index n = system.num_velocities();
+  Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
+  mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
+  const ForceDifferences fd = CentralDifferences(system, mesh, y);
+  const double error_u =
+      (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
   double error_x = 0.0;
   for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
-    error_x = std::max(error_x, (dh_dx.col(c) - fd_x.col(c)).cwiseAbs().maxCoeff() /
-                                    fd_x.col(c).cwiseAbs().maxCoeff());
+    error_x = std::max(error_x, (dh_dx.col(c) - fd.dh_dx.col(c)).cwiseAbs().maxCoeff() /
+                                    fd.dh_dx.col(c).cwiseAbs().maxCoeff());
   }
   std::printf("[measured] spur gear Jacobian: u %.2g, x (turns) %.2g of the largest entry\n",
               error_u, error_x);
