@@ -334,6 +334,103 @@ void PrintRun(const char* name, const Run& run, const Parts& parts, double peer_
   }
 }
 
+/// The representative state of a chain of `count` links with n modes each: y0 with small random
+/// deformations and velocities, projected onto the constraints.
+VectorXd RepresentativeState(MultibodySystem& system, const VectorXd& y0, int count, int n) {
+  VectorXd y = y0;
+  for (int b = 0; b < count; ++b) {
+    VectorXd x = system.BodyPositions(y, b), u = system.BodyVelocities(y, b);
+    x.tail(n) = 1e-6 * VectorXd::Random(n);
+    u = 1e-2 * VectorXd::Random(6 + n);
+    system.SetBodyState(b, x, u, y);
+  }
+  flexmbs::mbs::ProjectPositions(system, 0.0, y, {});
+  flexmbs::mbs::ProjectVelocities(system, 0.0, y);
+  return y;
+}
+
+/// One line per MultibodySystem part: its time per call [us] and its ratio to the peer's.
+void PrintParts(const Parts& parts, const Parts& peer) {
+  std::printf(
+      "  per call [us] (x peer): mass matrices %.3g (%.3g), forces %.3g (%.3g), constraints "
+      "%.3g (%.3g), "
+      "accelerations %.3g (%.3g), rhs %.3g (%.3g), projection %.3g (%.3g)",
+      1e6 * parts.mass_matrices, parts.mass_matrices / peer.mass_matrices, 1e6 * parts.forces,
+      parts.forces / peer.forces, 1e6 * parts.constraints, parts.constraints / peer.constraints,
+      1e6 * parts.accelerations, parts.accelerations / peer.accelerations, 1e6 * parts.rhs,
+      parts.rhs / peer.rhs, 1e6 * parts.projection, parts.projection / peer.projection);
+  if (parts.jacobian > 0) {
+    std::printf(", DQ Jacobian %.3g (%.3g), model Jacobian %.3g (%.3g), LU %.3g (%.3g)", 1e6 * parts.jacobian,
+                parts.jacobian / peer.jacobian, 1e6 * parts.model_jacobian,
+                parts.model_jacobian / peer.model_jacobian, 1e6 * parts.lu, parts.lu / peer.lu);
+  }
+  std::printf("\n");
+}
+
+/// The Newton systems' costs: a setup with a fresh Jacobian, a refactorisation (gamma changed),
+/// one solve; dense = model Jacobian + LU, LU, LU solve.
+void PrintNewtonCosts(const Parts& parts, const MultibodySystem& system) {
+  std::printf("  Newton [us]: sparse evaluate %.3g, factorize %.3g, solve %.3g (augmented %ld x %ld)",
+              1e6 * parts.sparse_evaluate, 1e6 * parts.sparse_factorize, 1e6 * parts.sparse_solve,
+              static_cast<long>(system.num_velocities() + system.num_constraints()),
+              static_cast<long>(system.num_velocities() + system.num_constraints()));
+  if (parts.lu > 0) {
+    std::printf("; dense (ARKODE) model Jacobian %.3g, setup %.3g, solve %.3g; dense / sparse: Jacobian + setup "
+                "%.3g, setup %.3g, solve %.3g",
+                1e6 * parts.model_jacobian, 1e6 * parts.dense_setup, 1e6 * parts.dense_solve,
+                (parts.model_jacobian + parts.dense_setup) / (parts.sparse_evaluate + parts.sparse_factorize),
+                parts.dense_setup / parts.sparse_factorize, parts.dense_solve / parts.sparse_solve);
+  }
+  std::printf("\n");
+}
+
+/// The first case's steps per second of each integrator run (0 until measured).
+struct PeerRates {
+  double explicit_run = 0, dense = 0, sparse = 0;
+};
+
+/// A run's steps per second.
+double StepsPerSecond(const Run& run) { return static_cast<double>(run.statistics.steps) / run.wall; }
+
+/// The sparse Newton's run against the dense one's steps per second (0: none), measured and
+/// modelled at the sparse run's counts (where the dense parts were measured).
+void PrintSparseAgainstDense(const Run& sparse_run, double dense_rate, const Parts& parts) {
+  if (dense_rate > 0.0 && !sparse_run.failed && sparse_run.statistics.steps > 0) {
+    std::printf("  sparse / dense Newton: %.3g x the steps per second\n", StepsPerSecond(sparse_run) / dense_rate);
+  }
+  if (parts.lu > 0 && !sparse_run.failed && sparse_run.statistics.steps > 0) {
+    const double sparse_model = 1.0 / ModelledSecondsPerStep(sparse_run.statistics, parts, true);
+    const double dense_model = 1.0 / ModelledSecondsPerStep(sparse_run.statistics, parts, false);
+    std::printf("  modelled at the sparse run's counts: sparse %.3g, dense %.3g steps/s: sparse / dense %.3g\n",
+                sparse_model, dense_model, sparse_model / dense_model);
+  }
+}
+
+/// The integrator runs from y0 (explicit; implicit with the dense Newton where the state is small
+/// enough; implicit with the sparse Newton), printed; the first case (!have_peer) sets `peer`.
+void RunIntegrators(MultibodySystem& system, const VectorXd& y0, const Parts& parts,
+                    const Settings& settings, bool have_peer, PeerRates* peer) {
+  using flexmbs::mbs::OdeMethod;
+  using flexmbs::mbs::OdeNewton;
+  const Run explicit_run = Integrate(system, y0, OdeMethod::kExplicit, OdeNewton::kDense, settings);
+  if (!have_peer && !explicit_run.failed) peer->explicit_run = StepsPerSecond(explicit_run);
+  PrintRun("explicit", explicit_run, parts, peer->explicit_run);
+  double dense_rate = 0.0;
+  if (system.state_size() <= settings.implicit_max_state) {
+    const Run implicit_run = Integrate(system, y0, OdeMethod::kImplicit, OdeNewton::kDense, settings);
+    if (!have_peer && !implicit_run.failed) peer->dense = StepsPerSecond(implicit_run);
+    PrintRun("dense", implicit_run, parts, peer->dense);
+    if (!implicit_run.failed) dense_rate = StepsPerSecond(implicit_run);
+  } else {
+    std::printf("  dense Newton skipped (state > %ld: a dense LU of the state per setup)\n",
+                static_cast<long>(settings.implicit_max_state));
+  }
+  const Run sparse_run = Integrate(system, y0, OdeMethod::kImplicit, OdeNewton::kSparse, settings);
+  if (!have_peer && !sparse_run.failed) peer->sparse = StepsPerSecond(sparse_run);
+  PrintRun("sparse", sparse_run, parts, peer->sparse);
+  PrintSparseAgainstDense(sparse_run, dense_rate, parts);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -344,24 +441,15 @@ int main(int argc, char** argv) {
               static_cast<long>(link.basis.frequency_hz.size()), link.basis.frequency_hz(0),
               link.basis.frequency_hz(link.basis.frequency_hz.size() - 1));
   Parts peer;
-  double peer_explicit = 0, peer_implicit = 0, peer_sparse = 0;
+  PeerRates peer_rates;
   bool have_peer = false;
   for (const int n : settings.modes) {
     const flexmbs::sid::ReducedBody body = flexmbs::validation::FirstModes(link.body, n);
     for (const int count : settings.bodies) {
       VectorXd y0;
       auto system = Chain(body, count, link.geometry.length, &y0);
-      // The representative state: small random deformations and velocities, projected.
-      VectorXd y = y0;
-      for (int b = 0; b < count; ++b) {
-        VectorXd x = system->BodyPositions(y, b), u = system->BodyVelocities(y, b);
-        x.tail(n) = 1e-6 * VectorXd::Random(n);
-        u = 1e-2 * VectorXd::Random(6 + n);
-        system->SetBodyState(b, x, u, y);
-      }
       system->set_constraint_settings({1e3, 1e-10});
-      flexmbs::mbs::ProjectPositions(*system, 0.0, y, {});
-      flexmbs::mbs::ProjectVelocities(*system, 0.0, y);
+      const VectorXd y = RepresentativeState(*system, y0, count, n);
       const Parts parts = MeasureParts(*system, y, settings.implicit_max_state);
       if (!have_peer) peer = parts;
       std::printf(
@@ -369,66 +457,9 @@ int main(int argc, char** argv) {
           count, static_cast<long>(system->state_size()),
           static_cast<long>(system->num_constraints()),
           body.num_modes() > 0 ? link.basis.frequency_hz(n - 1) : 0.0);
-      std::printf(
-          "  per call [us] (x peer): mass matrices %.3g (%.3g), forces %.3g (%.3g), constraints "
-          "%.3g (%.3g), "
-          "accelerations %.3g (%.3g), rhs %.3g (%.3g), projection %.3g (%.3g)",
-          1e6 * parts.mass_matrices, parts.mass_matrices / peer.mass_matrices, 1e6 * parts.forces,
-          parts.forces / peer.forces, 1e6 * parts.constraints, parts.constraints / peer.constraints,
-          1e6 * parts.accelerations, parts.accelerations / peer.accelerations, 1e6 * parts.rhs,
-          parts.rhs / peer.rhs, 1e6 * parts.projection, parts.projection / peer.projection);
-      if (parts.jacobian > 0) {
-        std::printf(", DQ Jacobian %.3g (%.3g), model Jacobian %.3g (%.3g), LU %.3g (%.3g)", 1e6 * parts.jacobian,
-                    parts.jacobian / peer.jacobian, 1e6 * parts.model_jacobian,
-                    parts.model_jacobian / peer.model_jacobian, 1e6 * parts.lu, parts.lu / peer.lu);
-      }
-      std::printf("\n");
-      // The Newton systems' costs: a setup with a fresh Jacobian, a refactorisation (gamma
-      // changed), one solve; dense = model Jacobian + LU, LU, LU solve.
-      std::printf("  Newton [us]: sparse evaluate %.3g, factorize %.3g, solve %.3g (augmented %ld x %ld)",
-                  1e6 * parts.sparse_evaluate, 1e6 * parts.sparse_factorize, 1e6 * parts.sparse_solve,
-                  static_cast<long>(system->num_velocities() + system->num_constraints()),
-                  static_cast<long>(system->num_velocities() + system->num_constraints()));
-      if (parts.lu > 0) {
-        std::printf("; dense (ARKODE) model Jacobian %.3g, setup %.3g, solve %.3g; dense / sparse: Jacobian + setup "
-                    "%.3g, setup %.3g, solve %.3g",
-                    1e6 * parts.model_jacobian, 1e6 * parts.dense_setup, 1e6 * parts.dense_solve,
-                    (parts.model_jacobian + parts.dense_setup) / (parts.sparse_evaluate + parts.sparse_factorize),
-                    parts.dense_setup / parts.sparse_factorize, parts.dense_solve / parts.sparse_solve);
-      }
-      std::printf("\n");
-      const Run explicit_run =
-          Integrate(*system, y0, flexmbs::mbs::OdeMethod::kExplicit, flexmbs::mbs::OdeNewton::kDense, settings);
-      if (!have_peer && !explicit_run.failed)
-        peer_explicit = static_cast<double>(explicit_run.statistics.steps) / explicit_run.wall;
-      PrintRun("explicit", explicit_run, parts, peer_explicit);
-      double dense_rate = 0.0;
-      if (system->state_size() <= settings.implicit_max_state) {
-        const Run implicit_run = Integrate(*system, y0, flexmbs::mbs::OdeMethod::kImplicit,
-                                           flexmbs::mbs::OdeNewton::kDense, settings);
-        if (!have_peer && !implicit_run.failed)
-          peer_implicit = static_cast<double>(implicit_run.statistics.steps) / implicit_run.wall;
-        PrintRun("dense", implicit_run, parts, peer_implicit);
-        if (!implicit_run.failed) dense_rate = static_cast<double>(implicit_run.statistics.steps) / implicit_run.wall;
-      } else {
-        std::printf("  dense Newton skipped (state > %ld: a dense LU of the state per setup)\n",
-                    static_cast<long>(settings.implicit_max_state));
-      }
-      const Run sparse_run = Integrate(*system, y0, flexmbs::mbs::OdeMethod::kImplicit,
-                                       flexmbs::mbs::OdeNewton::kSparse, settings);
-      if (!have_peer && !sparse_run.failed)
-        peer_sparse = static_cast<double>(sparse_run.statistics.steps) / sparse_run.wall;
-      PrintRun("sparse", sparse_run, parts, peer_sparse);
-      if (dense_rate > 0.0 && !sparse_run.failed && sparse_run.statistics.steps > 0) {
-        std::printf("  sparse / dense Newton: %.3g x the steps per second\n",
-                    static_cast<double>(sparse_run.statistics.steps) / sparse_run.wall / dense_rate);
-      }
-      if (parts.lu > 0 && !sparse_run.failed && sparse_run.statistics.steps > 0) {
-        const double sparse_model = 1.0 / ModelledSecondsPerStep(sparse_run.statistics, parts, true);
-        const double dense_model = 1.0 / ModelledSecondsPerStep(sparse_run.statistics, parts, false);
-        std::printf("  modelled at the sparse run's counts: sparse %.3g, dense %.3g steps/s: sparse / dense %.3g\n",
-                    sparse_model, dense_model, sparse_model / dense_model);
-      }
+      PrintParts(parts, peer);
+      PrintNewtonCosts(parts, *system);
+      RunIntegrators(*system, y0, parts, settings, have_peer, &peer_rates);
       have_peer = true;
       std::fflush(stdout);
     }
