@@ -1,0 +1,139 @@
+"""The bouncing ball of this case against its closed form, event-driven against Moreau-Jean.
+
+A ball dropped from h0 = 1 m (its lowest point) with Newton's restitution e = 0.9 hits the ground
+at t_1 = sqrt(2 h0 / g) with v_1 = sqrt(2 g h0), then at t_k+1 = t_k + 2 e^k v_1 / g, and comes to
+rest at the accumulation time t_inf = t_1 + 2 e v_1 / (g (1 - e)) (Zeno: infinitely many impacts
+before it). Reads only the documented results (docs/results.md): time, bodies/ball/position and
+velocity, energy/total, contacts/floor/normal_impulse and active, and the event-driven run's events/.
+
+Usage: /usr/bin/python3 compare.py event_driven.h5 moreau_jean.h5 [--plot out.png]
+Prints the measured errors; exits 1 if one exceeds its limit in LIMITS.
+"""
+import argparse
+import math
+import sys
+
+import h5py
+import numpy as np
+
+H0, G, E, RADIUS, MASS = 1.0, 9.81, 0.9, 0.1, 1.0
+V1, T1 = math.sqrt(2.0 * G * H0), math.sqrt(2.0 * H0 / G)
+T_INF = T1 + 2.0 * E * V1 / (G * (1.0 - E))
+STEP = 1e-3  # Moreau-Jean's step [s] (scene_moreau_jean.yaml)
+
+# What README.md promises, each about ten times the measured value beside it.
+LIMITS = {
+    "event-driven impact times [s]": 3e-10,           # measured 3.0e-11 (102 impacts, rtol 1e-10)
+    "event-driven closing time [s]": 5e-10,           # measured 5.5e-11
+    "event-driven energy gain per output [J]": 2.5e-11,  # measured 2.5e-12
+    "Moreau-Jean impact times to 3.5 s [s]": 0.04,    # measured 4.0e-3 (4 h: first order)
+    "Moreau-Jean rest time [s]": 0.16,                # measured 0.016
+    "Moreau-Jean energy gain per step [J]": 1.4e-6,   # measured 1.4e-7 (while settling, < m (g h)^2 / 8)
+    "resting speed [m/s]": 7e-17,                     # measured 6.9e-18
+}
+
+
+def closed_form_impacts(until, slowest=1e-6):
+    """The impact times t_k up to `until` whose impact speed is above `slowest` [m/s] (the series
+    accumulates at T_INF: it never passes a later `until`)."""
+    times, t, speed = [], T1, V1
+    while t <= until and speed > slowest:
+        times.append(t)
+        speed *= E
+        t += 2.0 * speed / G
+    return np.array(times)
+
+
+def read(results):
+    with h5py.File(results, "r") as f:
+        run = {
+            "t": f["time"][:],
+            "z": f["bodies/ball/position"][:, 2] - RADIUS,
+            "vz": f["bodies/ball/velocity"][:, 2],
+            "energy": f["energy/total"][:],
+            "impulse": f["contacts/floor/normal_impulse"][:],
+            "active": f["contacts/floor/active"][:],
+        }
+        if "events" in f:
+            run["event_time"] = f["events/time"][:]
+            run["event_kind"] = f["events/kind"][:]
+            run["u_before"] = f["events/normal_velocity_before"][:]
+    return run
+
+
+def event_driven_errors(run):
+    impacts = run["event_time"][run["event_kind"] == 1]
+    exact = closed_form_impacts(impacts[-1] + 1e-6)
+    count = min(len(exact), len(impacts))
+    # The closing impact ends the series early by the flights it leaves out.
+    u_close = -run["u_before"][run["event_kind"] == 1][-1]
+    closing = T_INF - 2.0 * E * u_close / (G * (1.0 - E))
+    return {
+        "event-driven impact times [s]": float(np.max(np.abs(impacts[:count] - exact[:count]))),
+        "event-driven closing time [s]": abs(float(impacts[-1]) - closing),
+        "event-driven energy gain per output [J]": max(0.0, float(np.max(np.diff(run["energy"])))),
+    }, len(impacts)
+
+
+def moreau_jean_errors(run):
+    t, impulse = run["t"], run["impulse"]
+    starts = [k for k in range(1, len(t)) if impulse[k] > 0.0 and not impulse[k - 1] > 0.0]
+    stepped = t[starts] - 0.5 * STEP  # the impact falls inside the step that ends at the output
+    exact = closed_form_impacts(3.5)
+    count = min(len(exact), len(stepped))
+    rest = max(k for k in range(len(t)) if run["active"][k] == 0.0)
+    return {
+        "Moreau-Jean impact times to 3.5 s [s]": float(np.max(np.abs(stepped[:count] - exact[:count]))),
+        "Moreau-Jean rest time [s]": abs(float(t[rest]) - T_INF),
+        "Moreau-Jean energy gain per step [J]": max(0.0, float(np.max(np.diff(run["energy"])))),
+    }
+
+
+def plot(event_driven, moreau_jean, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, (height, energy) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+    height.plot(moreau_jean["t"], moreau_jean["z"], label="Moreau-Jean, h = 1 ms", lw=2.5, alpha=0.5)
+    height.plot(event_driven["t"], event_driven["z"], "k", label="event-driven", lw=0.8)
+    for t in closed_form_impacts(T_INF, slowest=0.05):
+        height.axvline(t, color="tab:red", lw=0.3, alpha=0.4)
+    height.axvline(T_INF, color="tab:red", lw=1.2, label=f"accumulation time {T_INF:.4f} s")
+    height.set_ylabel("height of the lowest point [m]")
+    height.legend(loc="upper right")
+    energy.plot(moreau_jean["t"], moreau_jean["energy"], lw=2.5, alpha=0.5, label="Moreau-Jean")
+    energy.plot(event_driven["t"], event_driven["energy"], "k", lw=0.8, label="event-driven")
+    energy.set_xlabel("time [s]")
+    energy.set_ylabel("kinetic + potential [J]")
+    energy.legend(loc="upper right")
+    figure.suptitle("Ball dropped from 1 m, e = 0.9: impacts at the closed-form times (red)")
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("event_driven")
+    parser.add_argument("moreau_jean")
+    parser.add_argument("--plot")
+    args = parser.parse_args()
+    event_driven, moreau_jean = read(args.event_driven), read(args.moreau_jean)
+    errors, impacts = event_driven_errors(event_driven)
+    errors.update(moreau_jean_errors(moreau_jean))
+    errors["resting speed [m/s]"] = max(abs(event_driven["vz"][-1]), abs(moreau_jean["vz"][-1]))
+    print(f"closed form: first impact {T1:.6f} s, accumulation time {T_INF:.6f} s; event-driven saw {impacts} impacts")
+    failed = False
+    for name, value in errors.items():
+        ok = value <= LIMITS[name]
+        failed |= not ok
+        print(f"{name:42s} {value:10.3e}   limit {LIMITS[name]:.0e}   {'ok' if ok else 'EXCEEDED'}")
+    if args.plot:
+        plot(event_driven, moreau_jean, args.plot)
+        print(f"wrote {args.plot}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
