@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -11,6 +12,7 @@
 #include "contact/pcm/contact_element.h"
 #include "contact/pcm/surface_checks.h"
 #include "core/error.h"
+#include "core/skew.h"
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
@@ -76,6 +78,43 @@ void PcmContactForce::AddForces(double, const MultibodySystem& system, const Con
 
 double PcmContactForce::PotentialEnergy(double, const MultibodySystem& system, const ConstVectorRef& y) const {
   return contact::ElasticEnergy(law_, Evaluate(system, y).elements);
+}
+
+void PcmContactForce::AddForceJacobian(double, const MultibodySystem& system, const ConstVectorRef& y,
+                                       Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  const Evaluation e = Evaluate(system, y);
+  const std::array<std::pair<const MarkerRef*, const MarkerKinematics*>, 2> ends{
+      std::pair{&A_.marker, &e.marker_A}, std::pair{&B_.marker, &e.marker_B}};
+  const std::array<double, 2> signs{1.0, -1.0};
+  for (const contact::PcmElement& element : e.elements) {
+    const contact::ElementLoad load = contact::Evaluate(
+        law_, element, contact::RelativeVelocity(element, e.A.mesh, e.A.velocities_W, e.B.mesh, e.B.velocities_W));
+    if (!(load.normal_force > 0.0)) continue;
+    // The load acts at the pressure centre (rows); the relative velocity is that of A's point
+    // under it against B's point at it (columns).
+    Eigen::Vector3d p_WA_W = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      p_WA_W += element.weights_A(k) * e.A.mesh.vertices_W.col(e.A.mesh.face_vertices[3 * element.face_A + k]);
+    }
+    const std::array<Eigen::Vector3d, 2> moving_points{p_WA_W, load.point_W};
+    std::array<Eigen::MatrixXd, 2> J, J_moving;
+    for (int i = 0; i < 2; ++i) {
+      const MarkerKinematics& M = *ends[i].second;
+      J[i] = M.jacobian.topRows<3>() - Skew(load.point_W - M.p_WM_W) * M.jacobian.bottomRows<3>();
+      J_moving[i] = M.jacobian.topRows<3>() - Skew(moving_points[i] - M.p_WM_W) * M.jacobian.bottomRows<3>();
+    }
+    for (int i = 0; i < 2; ++i) {
+      if (ends[i].first->is_ground()) continue;
+      for (int j = 0; j < 2; ++j) {
+        if (ends[j].first->is_ground()) continue;
+        const Eigen::Index row = system.velocity_offset(ends[i].first->body);
+        const Eigen::Index column = system.velocity_offset(ends[j].first->body);
+        const double sign = signs[i] * signs[j];
+        dh_dx.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_displacement * J_moving[j];
+        dh_du.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_velocity * J_moving[j];
+      }
+    }
+  }
 }
 
 }  // namespace flexmbs::mbs

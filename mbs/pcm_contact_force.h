@@ -29,7 +29,7 @@ struct PcmSurface {
 /// to max_depth, and the elements and their loads follow contact/pcm (ContactElements, SumLoads):
 /// A takes the resultant force F and its moment about A's marker origin, B the opposites. Each
 /// vertex moves with its marker: v = v_WM + w_WM x (p - p_WM). Potential energy: the layers'
-/// contact::ElasticEnergy. No Jacobian yet (explicit integration).
+/// contact::ElasticEnergy.
 class PcmContactForce final : public ForceElement {
  public:
   /// Checks both surfaces (contact::RequirePcmSurface), the layers, d_A and friction
@@ -41,6 +41,14 @@ class PcmContactForce final : public ForceElement {
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
   double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  /// Per element, sum_ij s_i s_j J_i^T K J'_j over the two bodies (s_A = 1, s_B = -1; J the
+  /// jacobian of the body's material point at the pressure centre, J' at the point whose velocity
+  /// enters: A's point under the pressure centre, B's at it) with K the element's
+  /// d_displacement (dh/dx) and d_velocity (dh/du) (contact::ElementLoad). Exact in u; in x with
+  /// the patches' areas and pressure centres held and without the levers' rotation (the load
+  /// times the rotation, as the other contact elements).
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
 
  private:
   /// Both meshes placed in W, with their vertices' velocities, and the elements between them.

@@ -38,26 +38,39 @@ ElementLoad Evaluate(const ElasticFoundation& law, const PcmElement& element, co
   load.point_W = element.pressure_centre_W;
   load.normal_force = std::max(0.0, law.stiffness * element.volume - law.areal_damping * element.area * v_N);
   load.force_W = load.normal_force * n;
+  if (!(load.normal_force > 0.0)) return load;
+  Eigen::Vector3d d_normal = n;  // dF/dF_N
   if (law.friction.coefficient > 0.0) {
-    load.force_W += contact::Evaluate(law.friction, v_AB_W - v_N * n, load.normal_force).force;
+    const TangentialForce friction = contact::Evaluate(law.friction, v_AB_W - v_N * n, load.normal_force);
+    load.force_W += friction.force;
+    d_normal += friction.d_normal_force;
+    load.d_velocity = friction.d_slip * (Eigen::Matrix3d::Identity() - n * n.transpose());
   }
+  load.d_velocity -= law.areal_damping * element.area * d_normal * n.transpose();
+  load.d_displacement = -law.stiffness * element.area * d_normal * n.transpose();
   return load;
 }
 
-PairLoad SumLoads(const ElasticFoundation& law, const std::vector<PcmElement>& elements, const PolygonMesh& A,
-                  const Eigen::Matrix3Xd& vertex_velocities_A_W, const PolygonMesh& B,
-                  const Eigen::Matrix3Xd& vertex_velocities_B_W, const Eigen::Vector3d& p_W) {
+Eigen::Vector3d RelativeVelocity(const PcmElement& element, const PolygonMesh& A,
+                                 const Eigen::Matrix3Xd& vertex_velocities_A_W, const PolygonMesh& B,
+                                 const Eigen::Matrix3Xd& vertex_velocities_B_W) {
   const auto velocity = [](const PolygonMesh& mesh, const Eigen::Matrix3Xd& velocities, int face,
                            const Eigen::Vector3d& weights) {
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) v += weights(k) * velocities.col(mesh.face_vertices[3 * face + k]);
     return v;
   };
+  return velocity(A, vertex_velocities_A_W, element.face_A, element.weights_A) -
+         velocity(B, vertex_velocities_B_W, element.face_B, element.weights_B);
+}
+
+PairLoad SumLoads(const ElasticFoundation& law, const std::vector<PcmElement>& elements, const PolygonMesh& A,
+                  const Eigen::Matrix3Xd& vertex_velocities_A_W, const PolygonMesh& B,
+                  const Eigen::Matrix3Xd& vertex_velocities_B_W, const Eigen::Vector3d& p_W) {
   PairLoad pair;
   for (const PcmElement& element : elements) {
-    const Eigen::Vector3d v_AB_W = velocity(A, vertex_velocities_A_W, element.face_A, element.weights_A) -
-                                   velocity(B, vertex_velocities_B_W, element.face_B, element.weights_B);
-    const ElementLoad load = Evaluate(law, element, v_AB_W);
+    const ElementLoad load =
+        Evaluate(law, element, RelativeVelocity(element, A, vertex_velocities_A_W, B, vertex_velocities_B_W));
     pair.force_W += load.force_W;
     pair.moment_W += (load.point_W - p_W).cross(load.force_W);
     pair.normal_force += load.normal_force;

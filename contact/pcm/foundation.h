@@ -42,12 +42,20 @@ struct ElementLoad {
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();  ///< normal and friction force on A [N]
   Eigen::Vector3d point_W = Eigen::Vector3d::Zero();  ///< where it acts: the pressure centre [m]
   double normal_force = 0.0;                          ///< F_N >= 0 [N]
+  /// dF/dv [N s/m] by the relative velocity v = v_A - v_B: -(n + dF_T/dF_N) d_A A n^T +
+  /// dF_T/dv_T (I - n n^T); 0 where F_N is clipped.
+  Eigen::Matrix3d d_velocity = Eigen::Matrix3d::Zero();
+  /// dF/du [N/m] by a displacement u of A against B at the pressure centre, the patch's area
+  /// held: -(n + dF_T/dF_N) c A n^T (dV = -A n . u; exact for the sum over a flat B's elements
+  /// without damping; the damping's d_A v_N dA/du is left out); 0 where F_N is clipped.
+  Eigen::Matrix3d d_displacement = Eigen::Matrix3d::Zero();
 };
 
 /// The element's load at relative velocity v = v_A - v_B [m/s] of A's point against B's at the
 /// pressure centre: F_N = max(0, c V - d_A A n . v) (the depth grows at -n . v), F = F_N n +
 /// F_T(v - n n . v, F_N) (contact/laws/friction.h). The pressure c delta, linear over the patch,
-/// integrates to c V at the pressure centre; damping and friction act there too.
+/// integrates to c V at the pressure centre; damping and friction act there too. With the
+/// derivatives the implicit method needs.
 ElementLoad Evaluate(const ElasticFoundation& law, const PcmElement& element, const Eigen::Vector3d& v_AB_W);
 
 /// The resultant on A of a pair's elements: force and moment about a point (B takes their
@@ -57,6 +65,12 @@ struct PairLoad {
   Eigen::Vector3d moment_W = Eigen::Vector3d::Zero();  ///< about the given point [N m]
   double normal_force = 0.0;                           ///< sum of F_N [N]
 };
+
+/// The velocity of A's point under the element's pressure centre against B's there,
+/// v_A - v_B [m/s], from the vertex velocities of A and B (3 x V each) through the faces' weights.
+Eigen::Vector3d RelativeVelocity(const PcmElement& element, const PolygonMesh& A,
+                                 const Eigen::Matrix3Xd& vertex_velocities_A_W, const PolygonMesh& B,
+                                 const Eigen::Matrix3Xd& vertex_velocities_B_W);
 
 /// Sums the elements' loads on A about p_W; each element's relative velocity from the vertex
 /// velocities of A and B (3 x V each [m/s], rigid or deformed) through its faces' weights.

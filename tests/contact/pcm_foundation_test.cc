@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -145,6 +146,50 @@ TEST(PcmFoundation, SphereOnFlatDampingAndFrictionFollowTheirClosedForms) {
   const double lever = resting.moment_W.norm() / resting.normal_force;  // the pressure centre's offset
   EXPECT_LT(lever, 1e-14 * kRadius);
   EXPECT_NEAR(sliding.moment_W.y(), (kRadius - depth) * friction, 1e-14 * kRadius * friction);
+}
+
+TEST(PcmFoundation, LoadDerivativesAreCentralDifferencesOfTheLoads) {
+  const ElasticFoundation law = Law(2e5, 0.4);
+  const Eigen::Vector3d v(0.002, -0.001, -0.01);  // slip of the order of eps: friction far from linear
+  const double h = 1e-7;                          // [m/s], [m]
+  SphereOnFlat pair(4, 1e-3);
+  // By the velocity, element by element.
+  double worst_velocity = 0.0;
+  Eigen::Matrix3d d_displacement = Eigen::Matrix3d::Zero();
+  for (const PcmElement& element : pair.elements) {
+    const ElementLoad load = Evaluate(law, element, v);
+    d_displacement += load.d_displacement;
+    Eigen::Matrix3d central;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d step = h * Eigen::Vector3d::Unit(k);
+      central.col(k) = (Evaluate(law, element, v + step).force_W - Evaluate(law, element, v - step).force_W) / (2.0 * h);
+    }
+    worst_velocity = std::max(worst_velocity, (load.d_velocity - central).norm() / central.norm());
+  }
+  // By moving the sphere (the patches' areas change too: summed over the elements of a flat B,
+  // c A n^T is the exact derivative of c V).
+  // Undamped: the area held is the damping's only approximation (its d_A v_N dA/du term).
+  const ElasticFoundation undamped = Law(0.0, 0.4);
+  d_displacement.setZero();
+  for (const PcmElement& element : pair.elements) d_displacement += Evaluate(undamped, element, v).d_displacement;
+  const auto total_force = [&](const Eigen::Vector3d& shift) {
+    SphereOnFlat moved(4, 1e-3);
+    moved.sphere.vertices_W.colwise() += shift;
+    moved.elements = ContactElements(moved.sphere, moved.flat, CandidatePairs(Bvh(moved.sphere), Bvh(moved.flat, kMaxDepth)),
+                                     kMaxDepth);
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    for (const PcmElement& element : moved.elements) force += Evaluate(undamped, element, v).force_W;
+    return force;
+  };
+  Eigen::Matrix3d central;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d step = h * Eigen::Vector3d::Unit(k);
+    central.col(k) = (total_force(step) - total_force(-step)) / (2.0 * h);
+  }
+  const double worst_displacement = (d_displacement - central).norm() / central.norm();
+  std::printf("[ numbers  ] d_velocity %.3e, d_displacement %.3e (relative)\n", worst_velocity, worst_displacement);
+  EXPECT_LT(worst_velocity, 9e-9);      // measured 8.8e-10 (the differences' round-off)
+  EXPECT_LT(worst_displacement, 5e-9);  // measured 4.5e-10
 }
 
 TEST(PcmFoundation, NonPositiveLayerModulusOrThicknessIsAOneLineErrorNamingTheSurface) {
