@@ -123,6 +123,44 @@ std::vector<double> Frequencies(const std::string& json_text, const std::string&
   return f;
 }
 
+// Writes the cantilever's body file (the mesh cantilever.msh beside it, clamped on "clamp",
+// kModes fixed-interface modes) to `file` and returns its path.
+fs::path WriteBodyYaml(const fs::path& file) {
+  std::ofstream out(file);
+  out << "name: cantilever_peer\n"
+      << "geometry: {file: cantilever.msh}\n"
+      << "materials:\n  steel: {youngs_modulus: " << kYoungsModulus
+      << ", poisson_ratio: " << kPoissonRatio << ", density: " << kDensity << "}\n"
+      << "material: steel\nnode_sets: [clamp]\n"
+      << "reduction: {method: fixed_interface, supports: [clamp], modes: " << kModes << "}\n";
+  return file;
+}
+
+// ccx_modal.py's material options (17 digits).
+std::string MaterialOptions() {
+  std::ostringstream material;
+  material.precision(17);
+  material << " --youngs-modulus " << kYoungsModulus << " --poisson-ratio " << kPoissonRatio
+           << " --density " << kDensity;
+  return material.str();
+}
+
+// SciPy's modes from our matrices are eigenpairs to the round-off floor, M-orthonormal.
+void ExpectScipyModesAccurate(const std::string& json_text) {
+  const nlohmann::json ours_json = nlohmann::json::parse(json_text);
+  EXPECT_LT(ours_json.at("max_relative_residual").get<double>(), kResidualTolerance);
+  EXPECT_LT(ours_json.at("max_m_orthonormality_error").get<double>(), kOrthonormalityTolerance);
+}
+
+// The Euler-Bernoulli frequency [Hz] of bending mode n (0-based) of the clamped-free beam.
+double EulerBernoulliFrequency(int n) {
+  const double area = kSide * kSide;
+  const double second_moment = kSide * kSide * kSide * kSide / 12.0;
+  const double scale = std::sqrt(kYoungsModulus * second_moment /
+                                 (kDensity * area * std::pow(kLength, 4))) / (2.0 * std::numbers::pi);
+  return kBetaL[n] * kBetaL[n] * scale;
+}
+
 class PeerFrequency : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -146,66 +184,85 @@ class PeerFrequency : public ::testing::Test {
     if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
     else if (!dir_.empty()) std::fprintf(stderr, "peer test files kept in %s\n", dir_.c_str());
   }
+
+  // Runs the helper script `script` beside this file with `arguments`, its stderr in dir_/err.
+  RunResult RunScript(const std::string& script, const std::string& arguments, const char* err) const {
+    const fs::path peers = fs::path(FLEXMBS_SOURCE_DIR) / "tests" / "peers";
+    return RunCommand(std::string(kPython) + " " + Quote((peers / script).string()) + " " + arguments,
+                      dir_ / err);
+  }
+
+  // Runs the flexmbs command line with `arguments`, its stderr in dir_/err.
+  RunResult RunFlexmbs(const std::string& arguments, const char* err) const {
+    return RunCommand(Quote(FLEXMBS_EXECUTABLE) + " " + arguments, dir_ / err);
+  }
+
+  // Each mode k against Euler-Bernoulli (ours by SciPy) and CalculiX against ours by SciPy and
+  // by our eigensolver, printed and recorded as test properties.
+  void CompareModes(const std::vector<double>& f_ours, const std::vector<double>& f_ccx,
+                    const std::vector<double>& f_solver) {
+    for (int n = 0; n < kBendingFrequencies; ++n) {
+      const double f_theory = EulerBernoulliFrequency(n);
+      for (int k = 2 * n; k < 2 * n + 2; ++k) {
+        SCOPED_TRACE("mode " + std::to_string(k + 1) + " (bending " + std::to_string(n + 1) + ")");
+        EXPECT_NEAR(f_ours[k] / f_theory, 1.0, kEulerBernoulliTolerance)
+            << "ours " << f_ours[k] << " Hz, Euler-Bernoulli " << f_theory << " Hz";
+        EXPECT_NEAR(f_ccx[k] / f_ours[k], 1.0, kPeerFrequencyTolerance)
+            << "ours (SciPy) " << f_ours[k] << " Hz, CalculiX " << f_ccx[k] << " Hz";
+        EXPECT_NEAR(f_ccx[k] / f_solver[k], 1.0, kPeerFrequencyTolerance)
+            << "ours (flexmbs::eigensolvers) " << f_solver[k] << " Hz, CalculiX " << f_ccx[k] << " Hz";
+        std::printf("mode %d: CalculiX %.7g Hz; relative difference of ours by SciPy %.2e, by our eigensolver %.2e\n",
+                    k + 1, f_ccx[k], f_ccx[k] / f_ours[k] - 1.0, f_ccx[k] / f_solver[k] - 1.0);
+        RecordProperty("mode" + std::to_string(k + 1) + "_relative_difference",
+                       Scientific(f_ccx[k] / f_ours[k] - 1.0));
+        RecordProperty("mode" + std::to_string(k + 1) + "_solver_relative_difference",
+                       Scientific(f_ccx[k] / f_solver[k] - 1.0));
+      }
+    }
+  }
+
   fs::path dir_;
 };
 
 TEST_F(PeerFrequency, CantileverLowestBendingFrequenciesMatchCalculix) {
-  const fs::path source = FLEXMBS_SOURCE_DIR;
-  const fs::path peers = source / "tests" / "peers";
   const fs::path msh = dir_ / "cantilever.msh";
 
   // 1. One tet10 mesh for both programs.
-  const RunResult mesh = RunCommand(std::string(kPython) + " " + Quote((peers / "make_msh.py").string()) +
-                                 " " + Quote((source / "meshes" / "cantilever_beam.geo").string()) +
-                                 " " + Quote(msh.string()) + " --mesh-size " + std::to_string(kMeshSize) +
-                                 " --order 2",
-                             dir_ / "make_msh.err");
+  const fs::path geo = fs::path(FLEXMBS_SOURCE_DIR) / "meshes" / "cantilever_beam.geo";
+  const RunResult mesh = RunScript("make_msh.py",
+                                   Quote(geo.string()) + " " + Quote(msh.string()) + " --mesh-size " +
+                                       std::to_string(kMeshSize) + " --order 2",
+                                   "make_msh.err");
   ASSERT_EQ(mesh.exit_code, 0) << mesh.err;
 
   // 2. Our K and M.
-  const fs::path body = dir_ / "body.yaml";
-  {
-    std::ofstream out(body);
-    out << "name: cantilever_peer\n"
-        << "geometry: {file: cantilever.msh}\n"
-        << "materials:\n  steel: {youngs_modulus: " << kYoungsModulus
-        << ", poisson_ratio: " << kPoissonRatio << ", density: " << kDensity << "}\n"
-        << "material: steel\nnode_sets: [clamp]\n"
-        << "reduction: {method: fixed_interface, supports: [clamp], modes: " << kModes << "}\n";
-  }
+  const fs::path body = WriteBodyYaml(dir_ / "body.yaml");
   const fs::path prefix = dir_ / "ours";
-  const RunResult ours_matrices = RunCommand(Quote(FLEXMBS_EXECUTABLE) + " mesh " + Quote(body.string()) +
-                                          " --json --matrix-market " + Quote(prefix.string()),
-                                      dir_ / "flexmbs.err");
+  const RunResult ours_matrices = RunFlexmbs(
+      "mesh " + Quote(body.string()) + " --json --matrix-market " + Quote(prefix.string()), "flexmbs.err");
   ASSERT_EQ(ours_matrices.exit_code, 0) << ours_matrices.err;
 
   // 3. Our frequencies from our matrices.
-  const RunResult ours = RunCommand(std::string(kPython) + " " + Quote((peers / "scipy_modal.py").string()) +
-                                 " " + Quote(prefix.string()) + " --mesh " + Quote(msh.string()) +
-                                 " --clamp clamp --modes " + std::to_string(kModes),
-                             dir_ / "scipy.err");
+  const RunResult ours = RunScript("scipy_modal.py",
+                                   Quote(prefix.string()) + " --mesh " + Quote(msh.string()) +
+                                       " --clamp clamp --modes " + std::to_string(kModes),
+                                   "scipy.err");
   ASSERT_EQ(ours.exit_code, 0) << ours.err;
 
   // 4. Our eigensolver's frequencies (the clamped body's normal modes) from the same model.
-  const RunResult reduced = RunCommand(Quote(FLEXMBS_EXECUTABLE) + " reduce " + Quote(body.string()) + " -o " +
-                                           Quote((dir_ / "ours.sid.h5").string()) + " --json",
-                                       dir_ / "reduce.err");
+  const RunResult reduced = RunFlexmbs(
+      "reduce " + Quote(body.string()) + " -o " + Quote((dir_ / "ours.sid.h5").string()) + " --json",
+      "reduce.err");
   ASSERT_EQ(reduced.exit_code, 0) << reduced.err;
 
   // 5. CalculiX's frequencies from the same mesh.
-  std::ostringstream material;
-  material.precision(17);
-  material << " --youngs-modulus " << kYoungsModulus << " --poisson-ratio " << kPoissonRatio
-           << " --density " << kDensity;
-  const RunResult peer = RunCommand(std::string(kPython) + " " + Quote((peers / "ccx_modal.py").string()) +
-                                 " " + Quote(msh.string()) + " --clamp clamp" + material.str() +
-                                 " --modes " + std::to_string(kModes),
-                             dir_ / "ccx.err");
+  const RunResult peer = RunScript(
+      "ccx_modal.py",
+      Quote(msh.string()) + " --clamp clamp" + MaterialOptions() + " --modes " + std::to_string(kModes),
+      "ccx.err");
   ASSERT_EQ(peer.exit_code, 0) << peer.err;
 
-  const nlohmann::json ours_json = nlohmann::json::parse(ours.out);
-  EXPECT_LT(ours_json.at("max_relative_residual").get<double>(), kResidualTolerance);
-  EXPECT_LT(ours_json.at("max_m_orthonormality_error").get<double>(), kOrthonormalityTolerance);
+  ExpectScipyModesAccurate(ours.out);
   const std::vector<double> f_ours = Frequencies(ours.out, "scipy_modal.py");
   const std::vector<double> f_ccx = Frequencies(peer.out, "ccx_modal.py");
   const nlohmann::json reduced_json = nlohmann::json::parse(reduced.out);
@@ -216,29 +273,7 @@ TEST_F(PeerFrequency, CantileverLowestBendingFrequenciesMatchCalculix) {
   for (const double residual : reduced_json.at("relative_residuals").get<std::vector<double>>()) {
     EXPECT_LT(residual, kSolverResidualTolerance);
   }
-
-  const double area = kSide * kSide;
-  const double second_moment = kSide * kSide * kSide * kSide / 12.0;
-  const double scale = std::sqrt(kYoungsModulus * second_moment /
-                                 (kDensity * area * std::pow(kLength, 4))) / (2.0 * std::numbers::pi);
-  for (int n = 0; n < kBendingFrequencies; ++n) {
-    const double f_theory = kBetaL[n] * kBetaL[n] * scale;
-    for (int k = 2 * n; k < 2 * n + 2; ++k) {
-      SCOPED_TRACE("mode " + std::to_string(k + 1) + " (bending " + std::to_string(n + 1) + ")");
-      EXPECT_NEAR(f_ours[k] / f_theory, 1.0, kEulerBernoulliTolerance)
-          << "ours " << f_ours[k] << " Hz, Euler-Bernoulli " << f_theory << " Hz";
-      EXPECT_NEAR(f_ccx[k] / f_ours[k], 1.0, kPeerFrequencyTolerance)
-          << "ours (SciPy) " << f_ours[k] << " Hz, CalculiX " << f_ccx[k] << " Hz";
-      EXPECT_NEAR(f_ccx[k] / f_solver[k], 1.0, kPeerFrequencyTolerance)
-          << "ours (flexmbs::eigensolvers) " << f_solver[k] << " Hz, CalculiX " << f_ccx[k] << " Hz";
-      std::printf("mode %d: CalculiX %.7g Hz; relative difference of ours by SciPy %.2e, by our eigensolver %.2e\n",
-                  k + 1, f_ccx[k], f_ccx[k] / f_ours[k] - 1.0, f_ccx[k] / f_solver[k] - 1.0);
-      RecordProperty("mode" + std::to_string(k + 1) + "_relative_difference",
-                     Scientific(f_ccx[k] / f_ours[k] - 1.0));
-      RecordProperty("mode" + std::to_string(k + 1) + "_solver_relative_difference",
-                     Scientific(f_ccx[k] / f_solver[k] - 1.0));
-    }
-  }
+  CompareModes(f_ours, f_ccx, f_solver);
 }
 
 }  // namespace
