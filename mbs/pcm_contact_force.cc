@@ -80,6 +80,28 @@ double PcmContactForce::PotentialEnergy(double, const MultibodySystem& system, c
   return contact::ElasticEnergy(law_, Evaluate(system, y).elements);
 }
 
+PcmContactForce::ElementState PcmContactForce::StateOf(const Evaluation& e, const contact::PcmElement& element) const {
+  ElementState state{contact::Evaluate(law_, element,
+                                       contact::RelativeVelocity(element, e.A.mesh, e.A.velocities_W, e.B.mesh,
+                                                                 e.B.velocities_W)),
+                     Eigen::Vector3d::Zero()};
+  for (int k = 0; k < 3; ++k) {
+    state.p_WA_W += element.weights_A(k) * e.A.mesh.vertices_W.col(e.A.mesh.face_vertices[3 * element.face_A + k]);
+  }
+  return state;
+}
+
+std::vector<ContactLoad> PcmContactForce::ContactLoads(double, const MultibodySystem& system,
+                                                       const ConstVectorRef& y) const {
+  const Evaluation e = Evaluate(system, y);
+  std::vector<ContactLoad> loads;
+  for (const contact::PcmElement& element : e.elements) {
+    const auto [load, p_WA_W] = StateOf(e, element);
+    if (load.normal_force > 0.0) loads.push_back({0, p_WA_W, element.normal_W, load.force_W});
+  }
+  return loads;
+}
+
 void PcmContactForce::AddForceJacobian(double, const MultibodySystem& system, const ConstVectorRef& y,
                                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
   const Evaluation e = Evaluate(system, y);
@@ -87,15 +109,10 @@ void PcmContactForce::AddForceJacobian(double, const MultibodySystem& system, co
       std::pair{&A_.marker, &e.marker_A}, std::pair{&B_.marker, &e.marker_B}};
   const std::array<double, 2> signs{1.0, -1.0};
   for (const contact::PcmElement& element : e.elements) {
-    const contact::ElementLoad load = contact::Evaluate(
-        law_, element, contact::RelativeVelocity(element, e.A.mesh, e.A.velocities_W, e.B.mesh, e.B.velocities_W));
+    const auto [load, p_WA_W] = StateOf(e, element);
     if (!(load.normal_force > 0.0)) continue;
     // The load acts at the pressure centre (rows); the relative velocity is that of A's point
     // under it against B's point at it (columns).
-    Eigen::Vector3d p_WA_W = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      p_WA_W += element.weights_A(k) * e.A.mesh.vertices_W.col(e.A.mesh.face_vertices[3 * element.face_A + k]);
-    }
     const std::array<Eigen::Vector3d, 2> moving_points{p_WA_W, load.point_W};
     std::array<Eigen::MatrixXd, 2> J, J_moving;
     for (int i = 0; i < 2; ++i) {

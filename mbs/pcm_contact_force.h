@@ -4,6 +4,7 @@
 // a triangle mesh fixed in its marker's frame on an elastic layer.
 
 #include <string>
+#include <vector>
 
 #include "contact/geometry/sphere_surface.h"
 #include "contact/laws/friction.h"
@@ -49,11 +50,21 @@ class PcmContactForce final : public ForceElement {
   /// times the rotation, as the other contact elements).
   void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
+  bool is_contact() const override { return true; }
+  /// One load per element carrying load: at A's point under the pressure centre, B's normal, the
+  /// element's force on A.
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
 
  private:
   /// Both meshes placed in W, with their vertices' velocities, and the elements between them.
   struct Evaluation;
   Evaluation Evaluate(const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// Each element's load, and A's point under its pressure centre [m].
+  struct ElementState {
+    contact::ElementLoad load;
+    Eigen::Vector3d p_WA_W;
+  };
+  ElementState StateOf(const Evaluation& e, const contact::PcmElement& element) const;
 
   std::string name_;
   PcmSurface A_, B_;

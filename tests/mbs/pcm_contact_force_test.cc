@@ -72,6 +72,19 @@ TEST(PcmContactForce, ABallPressedIntoTheGroundTakesTheFoundationForceAndItsMome
   // mass) is (kMarkerOffset - (R - d) z) x F.
   const Vector3d moment = (kMarkerOffset - (kRadius - kDepth) * Vector3d::UnitZ()).cross(Vector3d(0.0, 0.0, h(2)));
   EXPECT_LT((h.segment<3>(3) - moment).norm(), 1e-12 * exact * kRadius);
+  // The ParaView loads: one per element, on the sphere under the flat, summing to the force.
+  const std::vector<ContactLoad> loads = system.force_element(0).ContactLoads(0.0, system, State(system, p_ball, Vector3d::Zero()));
+  ASSERT_GT(loads.size(), 1000u);
+  Vector3d total = Vector3d::Zero();
+  for (const ContactLoad& load : loads) {
+    total += load.f_W;
+    EXPECT_EQ(load.n_W, Vector3d::UnitZ());
+    EXPECT_LE(load.p_W.z(), 0.0);
+    EXPECT_GE(load.p_W.z(), -kDepth);
+    const Vector3d centre = p_ball + kMarkerOffset;
+    EXPECT_NEAR((load.p_W - centre).norm(), kRadius, 1e-5);  // on a facet: within its sag, measured 1.4e-6 m
+  }
+  EXPECT_LT((total - h.head<3>()).norm(), 1e-12 * exact);
 }
 
 TEST(PcmContactForce, OnTwoFreeBodiesTheLoadsAreEqualAndOpposite) {
