@@ -128,57 +128,63 @@ nlohmann::json AdviceJson(const std::vector<mbs::ContactModeAdvice>& advice) {
   return list;
 }
 
-void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::SimulationStatistics& stats,
-            const std::vector<mbs::ContactModeAdvice>& advice, double energy_start, double energy_end) {
-  const double simulated = scene.options.end_time - scene.options.start_time;
-  const double real_time_factor = stats.wall_seconds / simulated;
-  const bool implicit = scene.options.integrator.method == mbs::OdeMethod::kImplicit;
-  if (options.json) {
-    nlohmann::json j;
-    j["output"] = options.output;
-    j["bodies"] = scene.system->num_bodies();
-    j["joints"] = scene.system->num_joints();
-    j["end_time"] = scene.options.end_time;
-    j["outputs"] = stats.outputs;
-    j["steps"] = stats.integrator.steps;
-    j["rhs_evaluations"] = stats.integrator.rhs_evaluations;
-    j["error_test_failures"] = stats.integrator.error_test_failures;
-    if (scene.options.moreau_jean) {
-      j["contact_solves"] = stats.moreau_jean.contact_solves;
-      j["max_active_contacts"] = stats.moreau_jean.max_active_contacts;
-      j["contact_solver_iterations"] = stats.moreau_jean.solver_iterations;
-      j["max_contact_solver_error"] = stats.moreau_jean.max_solver_error;
-    }
-    if (scene.options.event_driven) {
-      const mbs::EventDrivenStatistics& events = stats.event_driven;
-      j["events"] = events.events;
-      j["impacts"] = events.impacts;
-      j["separations"] = events.separations;
-      j["closings"] = events.closings;
-      j["max_impact_points"] = events.max_impact_points;
-      j["max_lcp_error"] = events.max_lcp_error;
-    }
-    if (implicit) {
-      j["newton"] = NewtonUsed(stats.integrator);
-      j["newton_iterations"] = stats.integrator.newton_iterations;
-      j["newton_setups"] = stats.integrator.newton_setups;
-    }
-    j["mode_advice"] = AdviceJson(advice);
-    j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
-    nlohmann::json dropped = nlohmann::json::array();
-    const mbs::ConstraintRedundancy& redundancy = stats.initial_conditions.redundancy;
-    for (std::size_t k = 0; k < redundancy.dropped_rows.size(); ++k) {
-      dropped.push_back(redundancy.DescribeRow(*scene.system, k));
-    }
-    j["redundant_constraints"] = dropped;
-    j["dropped_row_violation"] = stats.dropped_row_violation;
-    j["dropped_row_limit_share"] = stats.dropped_row_limit_share;
-    j["energy_j"] = {{"start", energy_start}, {"end", energy_end}};
-    j["wall_seconds"] = stats.wall_seconds;
-    j["real_time_factor"] = real_time_factor;
-    fmt::print("{}\n", j.dump(2));
-    return;
+/// The report as JSON (keys documented in docs/cli.md).
+nlohmann::json ReportJson(const SimulateOptions& options, const mbs::Scene& scene,
+                          const mbs::SimulationStatistics& stats,
+                          const std::vector<mbs::ContactModeAdvice>& advice, double energy_start,
+                          double energy_end) {
+  nlohmann::json j;
+  j["output"] = options.output;
+  j["bodies"] = scene.system->num_bodies();
+  j["joints"] = scene.system->num_joints();
+  j["end_time"] = scene.options.end_time;
+  j["outputs"] = stats.outputs;
+  j["steps"] = stats.integrator.steps;
+  j["rhs_evaluations"] = stats.integrator.rhs_evaluations;
+  j["error_test_failures"] = stats.integrator.error_test_failures;
+  if (scene.options.moreau_jean) {
+    j["contact_solves"] = stats.moreau_jean.contact_solves;
+    j["max_active_contacts"] = stats.moreau_jean.max_active_contacts;
+    j["contact_solver_iterations"] = stats.moreau_jean.solver_iterations;
+    j["max_contact_solver_error"] = stats.moreau_jean.max_solver_error;
   }
+  if (scene.options.event_driven) {
+    const mbs::EventDrivenStatistics& events = stats.event_driven;
+    j["events"] = events.events;
+    j["impacts"] = events.impacts;
+    j["separations"] = events.separations;
+    j["closings"] = events.closings;
+    j["max_impact_points"] = events.max_impact_points;
+    j["max_lcp_error"] = events.max_lcp_error;
+  }
+  if (scene.options.integrator.method == mbs::OdeMethod::kImplicit) {
+    j["newton"] = NewtonUsed(stats.integrator);
+    j["newton_iterations"] = stats.integrator.newton_iterations;
+    j["newton_setups"] = stats.integrator.newton_setups;
+  }
+  j["mode_advice"] = AdviceJson(advice);
+  j["initial_conditions"] = stats.initial_conditions.Describe(*scene.system);
+  nlohmann::json dropped = nlohmann::json::array();
+  const mbs::ConstraintRedundancy& redundancy = stats.initial_conditions.redundancy;
+  for (std::size_t k = 0; k < redundancy.dropped_rows.size(); ++k) {
+    dropped.push_back(redundancy.DescribeRow(*scene.system, k));
+  }
+  j["redundant_constraints"] = dropped;
+  j["dropped_row_violation"] = stats.dropped_row_violation;
+  j["dropped_row_limit_share"] = stats.dropped_row_limit_share;
+  j["energy_j"] = {{"start", energy_start}, {"end", energy_end}};
+  j["wall_seconds"] = stats.wall_seconds;
+  j["real_time_factor"] = stats.wall_seconds / (scene.options.end_time - scene.options.start_time);
+  return j;
+}
+
+/// The report as text lines: the scene, its initial state, the integration and its contacts,
+/// events and Newton solves, the mode advice, the energy and the time.
+void PrintReportText(const SimulateOptions& options, const mbs::Scene& scene,
+                     const mbs::SimulationStatistics& stats,
+                     const std::vector<mbs::ContactModeAdvice>& advice, double energy_start,
+                     double energy_end) {
+  const double simulated = scene.options.end_time - scene.options.start_time;
   fmt::print("wrote           {}\n", options.output);
   fmt::print("scene           {} bodies, {} joints, {} force elements\n", scene.system->num_bodies(),
              scene.system->num_joints(), scene.system->num_force_elements());
@@ -203,14 +209,24 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
                stats.event_driven.events, stats.event_driven.impacts, stats.event_driven.max_impact_points,
                stats.event_driven.closings, stats.event_driven.separations, stats.event_driven.max_lcp_error);
   }
-  if (implicit) {
+  if (scene.options.integrator.method == mbs::OdeMethod::kImplicit) {
     fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,
                stats.integrator.newton_setups, NewtonUsed(stats.integrator));
   }
   for (const mbs::ContactModeAdvice& a : advice) fmt::print("modes           {}\n", a.Describe());
   fmt::print("energy          {:.9g} J -> {:.9g} J\n", energy_start, energy_end);
   fmt::print("time            {:.3f} s for {:g} s simulated (real-time factor {:.3g})\n", stats.wall_seconds, simulated,
-             real_time_factor);
+             stats.wall_seconds / simulated);
+}
+
+/// The run's report on stdout, as JSON (--json) or as text.
+void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::SimulationStatistics& stats,
+            const std::vector<mbs::ContactModeAdvice>& advice, double energy_start, double energy_end) {
+  if (options.json) {
+    fmt::print("{}\n", ReportJson(options, scene, stats, advice, energy_start, energy_end).dump(2));
+  } else {
+    PrintReportText(options, scene, stats, advice, energy_start, energy_end);
+  }
 }
 
 void RunSimulate(const SimulateOptions& options) {
