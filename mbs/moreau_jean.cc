@@ -15,6 +15,7 @@
 #include "contact/complementarity/lcp_solver.h"
 #include "contact/complementarity/friction_solver.h"
 #include "core/error.h"
+#include "mbs/kkt_factor.h"
 #include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
@@ -27,7 +28,7 @@ using Eigen::VectorXd;
 /// The smooth part of a step: the factorised KKT matrix [A G^T; G 0] over the kept joint rows and
 /// the free velocity increment with its joint impulses.
 struct SmoothStep {
-  Eigen::FullPivLU<MatrixXd> kkt;
+  KktFactor kkt;
   std::vector<Index> kept;
   VectorXd dv_free;       ///< v_free - v_k
   VectorXd impulse_free;  ///< Lambda of the free step (kept rows) [N s]
@@ -36,7 +37,7 @@ struct SmoothStep {
 /// Solves the KKT system for right-hand sides [rhs_v; rhs_c]: the velocity parts and Lambda (the
 /// second block of the solution with its sign turned: A dv = rhs_v + G^T Lambda).
 void SolveKkt(const SmoothStep& step, Index nu, const MatrixXd& rhs, MatrixXd* dv, MatrixXd* impulse) {
-  const MatrixXd solution = step.kkt.solve(rhs);
+  const MatrixXd solution = step.kkt.Solve(rhs);
   *dv = solution.topRows(nu);
   *impulse = -solution.bottomRows(solution.rows() - nu);
 }
@@ -71,11 +72,11 @@ SmoothStep SolveSmoothStep(const MultibodySystem& system, double t, double h, do
     kkt.block(0, nu + r, nu, 1) = c.G.row(row).transpose();
     rhs(nu + r) = -c.g_t(row) - c.G.row(row).dot(v_k);
   }
-  step.kkt.compute(kkt);
-  if (!step.kkt.isInvertible()) {
+  if (!step.kkt.Compute(kkt)) {
+    const Eigen::Index rank = step.kkt.rank();
     throw SimulationError(t, fmt::format("t = {:.9g} s: Moreau-Jean step: the KKT matrix of the masses and the {} kept "
-                                         "joint rows is singular (rank {} of {})",
-                                         t, m, step.kkt.rank(), nu + m));
+                                         "joint rows is singular ({} of {})",
+                                         t, m, rank >= 0 ? fmt::format("rank {}", rank) : "sparse LU", nu + m));
   }
   MatrixXd dv, impulse;
   SolveKkt(step, nu, rhs, &dv, &impulse);

@@ -94,8 +94,8 @@ struct MoreauJeanStatistics {
 ///   (velocity level; on position level g_N(x_k) + h U_N,k+1 >= 0, theta = 1) and
 ///   Coulomb's law on (U_T,k+1, P_T) (De Saxce's form; FrictionContactProblem),
 ///   x_k+1 = x_k + h (theta v_k+1 + (1 - theta) v_k)   (MultibodySystem::DisplacePositions),
-/// the Euler parameters normalised. The KKT system [A G^T; G 0] is solved densely (full-pivot
-/// LU); the contacts see the Delassus operator W = H A_c^-1 H^T (A_c^-1 the velocity block of the
+/// the Euler parameters normalised. The KKT system [A G^T; G 0] is solved by KktFactor (dense
+/// full-pivot LU, sparse LU for many bodies); the contacts see the Delassus operator W = H A_c^-1 H^T (A_c^-1 the velocity block of the
 /// KKT inverse) and the free local velocity q = H v_free + (e U_N,k, 0, 0) (position level:
 /// (g_N(x_k) / h, 0, 0), and the index set g_N(x_k) + h W_N v_free <= 0). Frictionless steps
 /// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), and where Lemke misses the tolerance (a
