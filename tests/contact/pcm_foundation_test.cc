@@ -230,6 +230,8 @@ TEST(PcmSurface, AFlippedTriangleAHoleAndAQuadAreOneLineErrorsNamingThem) {
   EXPECT_NE(hole.find("surface 'ball': edge "), std::string::npos) << hole;
   EXPECT_NE(hole.find("has no neighbour: a hole in a surface that must be closed"), std::string::npos) << hole;
   EXPECT_EQ(InputErrorMessage([&] { RequirePcmSurface(holed, "ball", false); }), "no error");
+  EXPECT_EQ(InputErrorMessage([&] { RequirePcmSurface(testing::Box(Eigen::Vector3d(1.0, 2.0, 3.0)), "block", true); }),
+            "no error");
   const PolygonMesh flat = FlatGrid(1.0, 3, 0.0);
   EXPECT_EQ(InputErrorMessage([&] { RequirePcmSurface(flat, "floor", false); }), "no error");
   EXPECT_NE(InputErrorMessage([&] { RequirePcmSurface(flat, "floor", true); }).find("a hole"), std::string::npos);

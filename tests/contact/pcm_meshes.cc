@@ -1,5 +1,6 @@
 #include "tests/contact/pcm_meshes.h"
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <map>
@@ -73,6 +74,27 @@ PolygonMesh FlatGrid(double half_width, int n, double height) {
     }
   }
   return TriangleMesh(points, triangles);
+}
+
+PolygonMesh Box(const Eigen::Vector3d& half_extents) {
+  std::vector<Eigen::Vector3d> corners;
+  for (int k = 0; k < 8; ++k) {
+    corners.push_back(Eigen::Vector3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1).cwiseProduct(half_extents));
+  }
+  std::vector<std::array<int, 3>> triangles;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const int side : {0, 1}) {
+      // The face's corners in cyclic order around it: the two other axes' bits as 00, 10, 11, 01.
+      const int u = 1 << ((axis + 1) % 3), v = 1 << ((axis + 2) % 3), base = side << axis;
+      std::array<int, 4> quad{base, base | u, base | u | v, base | v};
+      const Eigen::Vector3d outward = (side ? 1.0 : -1.0) * Eigen::Vector3d::Unit(axis);
+      const Eigen::Vector3d &a = corners[quad[0]], &b = corners[quad[1]], &c = corners[quad[2]];
+      if ((b - a).cross(c - a).dot(outward) < 0.0) std::swap(quad[1], quad[3]);
+      triangles.push_back({quad[0], quad[1], quad[2]});
+      triangles.push_back({quad[0], quad[2], quad[3]});
+    }
+  }
+  return TriangleMesh(corners, triangles);
 }
 
 PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t seed) {

@@ -18,6 +18,10 @@ PolygonMesh Icosphere(const Eigen::Vector3d& centre, double radius, int level);
 /// into two triangles counter-clockwise seen from +z (its outward normal): 2 n^2 triangles, open.
 PolygonMesh FlatGrid(double half_width, int n, double height);
 
+/// The box [-h, h] (half extents h [m]) as 12 triangles, counter-clockwise seen from outside,
+/// closed.
+PolygonMesh Box(const Eigen::Vector3d& half_extents);
+
 /// `count` triangles with vertices uniform in the cube [0, size]^3, edges up to `edge` [m]
 /// (each triangle a random point and two offsets), no shared vertices.
 PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t seed);

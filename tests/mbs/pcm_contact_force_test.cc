@@ -2,7 +2,8 @@
 // body with the foundation law's force c pi d^2 (R - d/3) and the moment of that force about the
 // body's origin; on two free bodies the loads are equal and opposite; a damped ball dropped on
 // the ground settles at the closed form's rest depth under explicit and implicit integration,
-// an undamped one keeps its energy through an impact; the Jacobian against central
+// an undamped one keeps its energy through an impact; a tilted block rocks and settles on its
+// footprint, carrying its weight under its centre of mass; the Jacobian against central
 // differences; bad surfaces and layers are one-line errors naming the element.
 #include "mbs/pcm_contact_force.h"
 
@@ -204,6 +205,68 @@ TEST(PcmContactForce, ADampedBallDroppedOnTheGroundSettlesWhereTheFoundationCarr
     EXPECT_NEAR(depth / rest, 1.0, 0.03);
     EXPECT_LT(std::abs(last(7 + 2)), 1e-7);
   }
+}
+
+TEST(PcmContactForce, ATiltedBlockDroppedOnTheGroundRocksAndSettlesOnItsFootprint) {
+  constexpr double kMass = 2.0, kG = 9.81, kTilt = 0.05;  // [kg], [m/s^2], [rad] about x
+  const Vector3d half(0.05, 0.04, 0.02);                   // [m]
+  const contact::ElasticLayer soft{1e5, 2e-3};             // c = 1 / (2 h / E) = 2.5e7 N/m^3
+  const double c = 1.0 / (2.0 * soft.thickness / soft.modulus), footprint = 4.0 * half.x() * half.y();
+  MultibodySystem system(Vector3d(0.0, 0.0, -kG));
+  const Eigen::Matrix3d inertia =
+      (kMass / 3.0 * Vector3d(half.y() * half.y() + half.z() * half.z(), half.x() * half.x() + half.z() * half.z(),
+                              half.x() * half.x() + half.y() * half.y()))
+          .asDiagonal();
+  system.AddBody(std::make_unique<RigidBody>("block", kMass, Vector3d::Zero(), inertia,
+                                             std::vector<RigidBodyMarker>{{"surface", Vector3d::Zero(), Eigen::Matrix3d::Identity()}}));
+  // Critical damping of the block's bounce on its footprint (k = c A).
+  const double areal_damping = 2.0 * std::sqrt(c * footprint * kMass) / footprint;
+  system.AddForceElement(std::make_unique<PcmContactForce>(
+      "rest", PcmSurface{"block", system.Marker("block", "surface"), contact::testing::Box(half), soft, true},
+      PcmSurface{"ground", MarkerRef::Ground(Vector3d::Zero()), contact::testing::FlatGrid(0.2, 4, 0.0), soft, false},
+      areal_damping, contact::RegularisedCoulomb{0.0, 1e-3}, 0.01));
+  // Tilted about x with its lowest edge on the ground, at rest.
+  VectorXd y = system.NeutralState(), x(7);
+  x << 0.01, -0.02, half.y() * std::sin(kTilt) + half.z() * std::cos(kTilt), std::cos(kTilt / 2.0), std::sin(kTilt / 2.0),
+      0.0, 0.0;
+  system.SetBodyState(0, x, VectorXd::Zero(6), y);
+  SimulationOptions options;
+  options.integrator.method = OdeMethod::kExplicit;
+  options.end_time = 0.5;
+  options.output_interval = 0.01;
+  options.integrator.relative_tolerance = 1e-8;
+  options.integrator.absolute_tolerance = 1e-11;
+  VectorXd last;
+  double tilt_seen = 0.0;
+  Simulate(system, options, y, [&](double, const VectorXd& state, const VectorXd&) {
+    last = state;
+    tilt_seen = std::max(tilt_seen, 2.0 * std::abs(state(4)));
+  });
+  // At rest flat on its footprint, sunk by m g / (c A) (flat faces: no discretisation error).
+  const double depth = half.z() - last(2), rest = kMass * kG / (c * footprint);
+  // The angle between the block's z axis and W's (R_zz = 1 - 2 (e1^2 + e2^2)), and its yaw.
+  const double tilt = 2.0 * last.segment<2>(4).norm(), yaw = 2.0 * std::abs(last(6));
+  const std::vector<ContactLoad> loads = system.force_element(0).ContactLoads(0.0, system, last);
+  double normal_force = 0.0;
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  for (const ContactLoad& load : loads) {
+    normal_force += load.f_W.z();
+    moment += load.f_W.z() * load.p_W.head<2>();
+  }
+  const Eigen::Vector2d pressure_centre = moment / normal_force;
+  std::printf("[ numbers  ] depth %.6e m (m g / c A %.6e, %.2e), tilt %.2e rad (yaw %.2e), N - m g %.2e N, "
+              "pressure centre off the centre of mass %.2e m, x drift %.2e m\n",
+              depth, rest, depth / rest - 1.0, tilt, yaw, normal_force - kMass * kG,
+              (pressure_centre - last.head<2>()).norm(), last(0) - 0.01);
+  EXPECT_GT(tilt_seen, 0.04);  // it started tilted
+  // Measured: depth -2.8e-10 relative, tilt 3.4e-16 rad, N - m g 5.6e-9 N, pressure centre
+  // 4.3e-15 m off (the yaw, 1.8e-6 rad, independent of the tolerances, is not explained yet:
+  // docs/contact.md).
+  EXPECT_NEAR(depth / rest, 1.0, 3e-9);
+  EXPECT_LT(tilt, 3e-15);
+  EXPECT_NEAR(normal_force, kMass * kG, 5e-8);
+  EXPECT_LT((pressure_centre - last.head<2>()).norm(), 4e-14);
+  EXPECT_EQ(last(0), 0.01) << "no friction: no horizontal force";
 }
 
 TEST(PcmContactForce, AnUndampedBallBouncesOnTheGroundWithoutGainingEnergy) {
