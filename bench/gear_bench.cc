@@ -4,20 +4,22 @@
 // every tooth pair of the two wheels tried by a generic flank search: sampled flanks' boxes,
 // then for the boxes that meet the deepest point of wheel 1's flank in wheel 2's tooth by
 // nested golden-section searches (the search tests/contact/gear_mesh_test.cc takes as the
-// reference of the gap). The scene is tests/mbs/spur_gear_contact_test.cc's: 19/31 teeth, the
-// pinion driven at 2 rad/s against 10 N m on the wheel, explicit, max_step 1e-4 s. Both runs
-// cover the same simulated time from the same state; printed: steps, right-hand sides, CPU
-// seconds of this process, the ratio of steps per second, the peer's largest gap error against
-// the closed form, the angles where the two count different pairs in contact, and both runs'
+// reference of the gap), polished by Newton's method. The scene is
+// tests/mbs/spur_gear_contact_test.cc's: 19/31 teeth, the pinion driven at 2 rad/s against 10 N m
+// on the wheel, explicit, max_step 1e-4 s. Both runs cover the same simulated time from the same
+// state; printed: steps, right-hand sides, CPU seconds of this process, the ratio of steps per
+// second, the peer's largest gap error against the closed form and its contact points' distance
+// from the closed form's, the angles where the two count different pairs in contact, and both runs'
 // mean mesh force against T / r_b2. With --corners 1 the peer also lets wheel 1's tip corner
 // touch wheel 2's flank beyond the path of contact, which the closed form leaves out.
 //
-//   bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0]
+//   bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] [--polish 1]
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -50,6 +52,7 @@ struct Settings {
   int samples = 32;        // points per flank of the peer's grid
   int repeat = 5;          // runs of the closed-form mesh (the fastest kept)
   bool corners = false;    // the peer also takes wheel 1's tip corner on wheel 2's flank
+  bool polish = true;      // the peer polishes its deepest points by Newton's method
 };
 
 /// The flank search's result for one tooth pair: the signed distance of wheel 1's flank point
@@ -81,12 +84,13 @@ double Golden(F f, double lo, double hi) {
 class BruteForceMesh final : public mbs::ForceElement {
  public:
   BruteForceMesh(mbs::MarkerRef wheel1, mbs::MarkerRef wheel2, contact::GearPair pair,
-                 contact::NormalLaw law, int samples, bool corners)
+                 contact::NormalLaw law, int samples, bool corners, bool polish)
       : wheel1_(wheel1),
         wheel2_(wheel2),
         pair_(std::move(pair)),
         samples_(samples),
         corners_(corners),
+        polish_(polish),
         contact_(mbs::CompliantContactLaw{law, {}}, wheel2, wheel1) {}
   const std::string& name() const override { return name_; }
 
@@ -124,6 +128,34 @@ class BruteForceMesh final : public mbs::ForceElement {
       points.push_back(point);
     }
     return points;
+  }
+
+  /// Newton's method (3 steps, difference quotients of 1e-7 rad) on the two conditions of the
+  /// deepest point, from the golden sections' rolls: p1 - p2 normal to wheel 2's flank and the
+  /// flanks' tangents parallel. Golden sections find a flat minimum's place to sqrt(eps) only;
+  /// these conditions cross zero, so their roots are found to round-off. Ends at the rolls'
+  /// bounds are left to the caller's checks.
+  void Polish(int k1, int k2, contact::FlankSide side, double phi1, double phi2,
+              const Eigen::Vector2d& o2, double* t1, double* t2) const {
+    const auto perp = [](const Eigen::Vector2d& n) { return Eigen::Vector2d(-n.y(), n.x()); };
+    const auto conditions = [&](double a, double b) {
+      const Eigen::Vector2d n1 = contact::FlankNormal(pair_.gear1, k1, side, a, phi1),
+                            n2 = contact::FlankNormal(pair_.gear2, k2, side, b, phi2);
+      const Eigen::Vector2d d = contact::FlankPoint(pair_.gear1, k1, side, a, phi1) - o2 -
+                                contact::FlankPoint(pair_.gear2, k2, side, b, phi2);
+      return Eigen::Vector2d(d.dot(perp(n2)), perp(n1).dot(n2));
+    };
+    constexpr double kStep = 1e-7;
+    for (int it = 0; it < 3; ++it) {
+      const Eigen::Vector2d f = conditions(*t1, *t2);
+      Eigen::Matrix2d jacobian;
+      jacobian.col(0) = (conditions(*t1 + kStep, *t2) - f) / kStep;
+      jacobian.col(1) = (conditions(*t1, *t2 + kStep) - f) / kStep;
+      const Eigen::Vector2d step = jacobian.partialPivLu().solve(f);
+      if (!step.allFinite() || step.cwiseAbs().maxCoeff() > 1e-3) return;  // keep golden's
+      *t1 = std::clamp(*t1 - step(0), 0.0, pair_.gear1.tip_roll);
+      *t2 = std::clamp(*t2 - step(1), 0.0, pair_.gear2.tip_roll);
+    }
   }
 
   /// Every tooth pair (z1 z2 per side) whose sampled flanks' boxes, grown by 5e-4 m, meet: the
@@ -186,9 +218,10 @@ class BruteForceMesh final : public mbs::ForceElement {
             const double t2 = nearest2(t1);
             return (p1(t1) - p2(t2)).dot(contact::FlankNormal(g2, k2, side, t2, phi2));
           };
-          const double t1 = Golden(signed_distance, std::max(0.0, roll(g1, i1) - w1),
-                                   std::min(g1.tip_roll, roll(g1, i1) + w1));
-          const double t2 = nearest2(t1);
+          double t1 = Golden(signed_distance, std::max(0.0, roll(g1, i1) - w1),
+                             std::min(g1.tip_roll, roll(g1, i1) + w1));
+          double t2 = nearest2(t1);
+          if (polish_) Polish(k1, k2, side, phi1, phi2, o2, &t1, &t2);
           // A nearest point at wheel 2's base or tip: wheel 1's point lies beyond its flank.
           // The deepest point at wheel 1's base or tip: a corner, not involute on involute.
           const auto at_end = [](double t, const contact::SpurGear& g) {
@@ -213,6 +246,7 @@ class BruteForceMesh final : public mbs::ForceElement {
   contact::GearPair pair_;
   int samples_;
   bool corners_;  ///< whether wheel 1's tip corner may touch wheel 2's flank
+  bool polish_;   ///< whether Polish refines golden's rolls
   mbs::CompliantContact contact_;
 };
 
@@ -313,7 +347,7 @@ int Main(const Settings& settings) {
   // gap of each pair in contact, and the states where the two count different pairs in contact.
   const BruteForceMesh peer_probe(exact.system->Marker("pinion", "axis"),
                                   exact.system->Marker("wheel", "axis"), pair, law,
-                                  settings.samples, settings.corners);
+                                  settings.samples, settings.corners, settings.polish);
   constexpr int kAngles = 1000;
   double gap_error = 0.0, point_offset = 0.0;
   int compared = 0, count_differs = 0;
@@ -364,7 +398,7 @@ int Main(const Settings& settings) {
   mbs::Scene brute = Load(SceneText(start, settings.end_time, false));
   brute.system->AddForceElement(std::make_unique<BruteForceMesh>(
       brute.system->Marker("pinion", "axis"), brute.system->Marker("wheel", "axis"), pair, law,
-      settings.samples, settings.corners));
+      settings.samples, settings.corners, settings.polish));
   const auto& peer = dynamic_cast<const BruteForceMesh&>(brute.system->force_element(1));
   const Run slow = Time(
       brute, [&](double, const Eigen::VectorXd& y) { return peer.MeshForce(*brute.system, y); });
@@ -400,13 +434,16 @@ int main(int argc, char** argv) {
       settings.end_time = std::atof(argv[i + 1]);
     } else if (key == "--samples") {
       settings.samples = std::atoi(argv[i + 1]);
+    } else if (key == "--polish") {
+      settings.polish = std::atoi(argv[i + 1]) != 0;
     } else if (key == "--corners") {
       settings.corners = std::atoi(argv[i + 1]) != 0;
     } else if (key == "--repeat") {
       settings.repeat = std::atoi(argv[i + 1]);
     } else {
       fmt::print(stderr,
-                 "usage: bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0]\n");
+                 "usage: bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] "
+                 "[--polish 0]\n");
       return 2;
     }
   }
