@@ -97,6 +97,97 @@ sid::Node CentrelineNode(const std::string& name, int fe_node, double xi,
   return node;
 }
 
+// The rod's rigid data (mass, centre of mass at L/2, inertia), its modes' names and kinds, and
+// the pinned rod's frequencies of the two sines (NaN for the axial constraint modes).
+void SetRodRigidData(const RodIntegrals& r, sid::ReducedBody* body) {
+  const double m = r.mass;
+  const Vector3d c = 0.5 * r.length * Vector3d::UnitX();
+  body->name = "rod";
+  body->mass = m;
+  body->center_of_mass = c;
+  body->inertia_about_center_of_mass =
+      r.inertia_Bo - m * (c.squaredNorm() * Matrix3d::Identity() - c * c.transpose());
+  body->mode_names = {"lateral_1", "lateral_2", "axial_mid", "axial_end"};
+  body->mode_kinds = {"normal", "normal", "constraint", "constraint"};
+  body->frequency_hz = VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  for (int k = 0; k < 2; ++k) {  // the sines are the modes of the rod pinned at both ends
+    body->frequency_hz(k) =
+        std::sqrt(r.stiffness(k, k) / Product(r, k, k).trace()) / (2.0 * std::numbers::pi);
+  }
+  body->relative_residuals = VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  body->damping = "none";
+}
+
+// docs/sid.md's integrals of order 0 and 1 in q with r = x e1: int r dm = m c, int x Phi_j dm =
+// s_j (and Ge's, Me's order 0 sized here for the order-2 terms).
+void SetRodFirstOrderIntegrals(const RodIntegrals& r, sid::ReducedBody* body) {
+  const Vector3d e1 = Vector3d::UnitX(), c = 0.5 * r.length * e1;
+  const Matrix3d I3 = Matrix3d::Identity();
+  const std::array<Matrix3d, 6>& W = CentrifugalBasis();
+  body->mdCM.m0 = r.mass * c;
+  body->J.m0 = r.inertia_Bo;
+  body->Ct.m0 = MatrixXd::Zero(n, 3);
+  body->Cr.m0 = MatrixXd::Zero(n, 3);
+  body->Me.m0 = MatrixXd::Zero(n, n);
+  body->Gr.m0 = MatrixXd::Zero(3, 3 * n);
+  body->Ge.m0 = MatrixXd::Zero(n, 3 * n);
+  body->Oe.m0 = MatrixXd::Zero(n, 6);
+  for (int j = 0; j < n; ++j) {
+    const Vector3d& s = r.moment[static_cast<std::size_t>(j)];
+    body->mdCM.m1.emplace_back(r.first[static_cast<std::size_t>(j)]);
+    // int (r~ Phi_j~^T + Phi_j~ r~^T) dm = 2 (r . Phi_j) I - Phi_j r^T - r Phi_j^T, integrated.
+    body->J.m1.emplace_back(2.0 * s.x() * I3 - s * e1.transpose() - e1 * s.transpose());
+    body->Ct.m0.row(j) = r.first[static_cast<std::size_t>(j)].transpose();
+    body->Cr.m0.row(j) = e1.cross(s).transpose();  // int r x Phi_j dm
+    // 2 int r~^T Phi_j~ dm = 2 ((r . Phi_j) I - Phi_j r^T), integrated.
+    body->Gr.m0.middleCols<3>(3 * j) = 2.0 * (s.x() * I3 - s * e1.transpose());
+    for (int l = 0; l < 6; ++l) {  // int Phi_j^T W_l r dm
+      body->Oe.m0(j, l) = (W[static_cast<std::size_t>(l)] * e1).dot(s);
+    }
+  }
+}
+
+// The integrals of the modes' products int Phi_j Phi_k^T dm = P_jk: J's order 2, Me, Cr's and
+// Gr's and Oe's order 1, Ge.
+void SetRodProductIntegrals(const RodIntegrals& r, sid::ReducedBody* body) {
+  const Matrix3d I3 = Matrix3d::Identity();
+  const std::array<Matrix3d, 6>& W = CentrifugalBasis();
+  body->Cr.m1.assign(n, MatrixXd::Zero(n, 3));
+  body->Gr.m1.assign(n, MatrixXd::Zero(3, 3 * n));
+  body->Oe.m1.assign(n, MatrixXd::Zero(n, 6));
+  for (int j = 0; j < n; ++j) {
+    for (int k = 0; k < n; ++k) {
+      const Matrix3d& P = Product(r, j, k);
+      // 1/2 int (Phi_j~ Phi_k~^T + Phi_k~ Phi_j~^T) dm
+      //   = int (Phi_j . Phi_k) I - 1/2 (Phi_j Phi_k^T + Phi_k Phi_j^T) dm.
+      body->J.m2.emplace_back(P.trace() * I3 - 0.5 * (P + Product(r, k, j)));
+      body->Me.m0(j, k) = P.trace();
+      // Row k of Cr's m1[j]: int Phi_j x Phi_k dm; of Ge's block j: twice that.
+      body->Cr.m1[static_cast<std::size_t>(j)].row(k) = CrossOfProduct(P).transpose();
+      body->Ge.m0.block<1, 3>(k, 3 * j) = 2.0 * CrossOfProduct(P).transpose();
+      // block j of Gr's m1[k]: 2 int Phi_k~^T Phi_j~ dm = 2 ((Phi_k . Phi_j) I - Phi_j Phi_k^T).
+      body->Gr.m1[static_cast<std::size_t>(k)].middleCols<3>(3 * j) = 2.0 * (P.trace() * I3 - P);
+      for (int l = 0; l < 6; ++l) {
+        body->Oe.m1[static_cast<std::size_t>(k)](j, l) =
+            W[static_cast<std::size_t>(l)].cwiseProduct(P).sum();
+      }
+    }
+  }
+}
+
+// The ends: A (Bo, where every mode vanishes) and B, which moves along B x by q4 alone.
+void SetRodEnds(double length, const SimeonCrankData& data, sid::ReducedBody* body) {
+  Eigen::Matrix<double, 3, n> Phi_tip = Eigen::Matrix<double, 3, n>::Zero();
+  Phi_tip(0, 3) = 1.0;
+  body->node_positions = Eigen::Matrix3Xd::Zero(3, 2);
+  body->node_positions(0, 1) = length;
+  body->phi = MatrixXd::Zero(6, n);
+  body->phi.bottomRows<3>() = Phi_tip;
+  body->node_sets = {{"root", {0}}, {"tip", {1}}};
+  body->nodes = {CentrelineNode("root", 0, 0.0, Eigen::Matrix<double, 3, n>::Zero(), data),
+                 CentrelineNode("tip", 1, 1.0, Phi_tip, data)};
+}
+
 }  // namespace
 
 SimeonState SimeonInitialValues() {
@@ -188,83 +279,14 @@ RodIntegrals QuadratureRodIntegrals(const SimeonCrankData& data, int points) {
 }
 
 sid::ReducedBody RodBody(const RodIntegrals& r, const SimeonCrankData& data) {
-  const double m = r.mass, L = r.length;
-  const Vector3d e1 = Vector3d::UnitX(), c = 0.5 * L * e1;
-  const Matrix3d I3 = Matrix3d::Identity();
-  const std::array<Matrix3d, 6>& W = CentrifugalBasis();
   sid::ReducedBody body;
-  body.name = "rod";
-  body.mass = m;
-  body.center_of_mass = c;
-  body.inertia_about_center_of_mass = r.inertia_Bo - m * (c.squaredNorm() * I3 - c * c.transpose());
-  body.mode_names = {"lateral_1", "lateral_2", "axial_mid", "axial_end"};
-  body.mode_kinds = {"normal", "normal", "constraint", "constraint"};
-  body.frequency_hz = VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
-  for (int k = 0; k < 2; ++k) {  // the sines are the modes of the rod pinned at both ends
-    body.frequency_hz(k) =
-        std::sqrt(r.stiffness(k, k) / Product(r, k, k).trace()) / (2.0 * std::numbers::pi);
-  }
-  body.relative_residuals = VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
-  body.damping = "none";
-
-  // docs/sid.md's integrals with r = x e1: int r dm = m c, int x Phi_j dm = s_j and
-  // int Phi_j Phi_k^T dm = P_jk.
-  body.mdCM.m0 = m * c;
-  body.J.m0 = r.inertia_Bo;
-  body.Ct.m0 = MatrixXd::Zero(n, 3);
-  body.Cr.m0 = MatrixXd::Zero(n, 3);
-  body.Me.m0 = MatrixXd::Zero(n, n);
-  body.Gr.m0 = MatrixXd::Zero(3, 3 * n);
-  body.Ge.m0 = MatrixXd::Zero(n, 3 * n);
-  body.Oe.m0 = MatrixXd::Zero(n, 6);
-  for (int j = 0; j < n; ++j) {
-    const Vector3d& s = r.moment[static_cast<std::size_t>(j)];
-    body.mdCM.m1.emplace_back(r.first[static_cast<std::size_t>(j)]);
-    // int (r~ Phi_j~^T + Phi_j~ r~^T) dm = 2 (r . Phi_j) I - Phi_j r^T - r Phi_j^T, integrated.
-    body.J.m1.emplace_back(2.0 * s.x() * I3 - s * e1.transpose() - e1 * s.transpose());
-    body.Ct.m0.row(j) = r.first[static_cast<std::size_t>(j)].transpose();
-    body.Cr.m0.row(j) = e1.cross(s).transpose();  // int r x Phi_j dm
-    // 2 int r~^T Phi_j~ dm = 2 ((r . Phi_j) I - Phi_j r^T), integrated.
-    body.Gr.m0.middleCols<3>(3 * j) = 2.0 * (s.x() * I3 - s * e1.transpose());
-    for (int l = 0; l < 6; ++l) {  // int Phi_j^T W_l r dm
-      body.Oe.m0(j, l) = (W[static_cast<std::size_t>(l)] * e1).dot(s);
-    }
-  }
-  body.Cr.m1.assign(n, MatrixXd::Zero(n, 3));
-  body.Gr.m1.assign(n, MatrixXd::Zero(3, 3 * n));
-  body.Oe.m1.assign(n, MatrixXd::Zero(n, 6));
-  for (int j = 0; j < n; ++j) {
-    for (int k = 0; k < n; ++k) {
-      const Matrix3d& P = Product(r, j, k);
-      // 1/2 int (Phi_j~ Phi_k~^T + Phi_k~ Phi_j~^T) dm
-      //   = int (Phi_j . Phi_k) I - 1/2 (Phi_j Phi_k^T + Phi_k Phi_j^T) dm.
-      body.J.m2.emplace_back(P.trace() * I3 - 0.5 * (P + Product(r, k, j)));
-      body.Me.m0(j, k) = P.trace();
-      // Row k of Cr's m1[j]: int Phi_j x Phi_k dm; of Ge's block j: twice that.
-      body.Cr.m1[static_cast<std::size_t>(j)].row(k) = CrossOfProduct(P).transpose();
-      body.Ge.m0.block<1, 3>(k, 3 * j) = 2.0 * CrossOfProduct(P).transpose();
-      // block j of Gr's m1[k]: 2 int Phi_k~^T Phi_j~ dm = 2 ((Phi_k . Phi_j) I - Phi_j Phi_k^T).
-      body.Gr.m1[static_cast<std::size_t>(k)].middleCols<3>(3 * j) = 2.0 * (P.trace() * I3 - P);
-      for (int l = 0; l < 6; ++l) {
-        body.Oe.m1[static_cast<std::size_t>(k)](j, l) =
-            W[static_cast<std::size_t>(l)].cwiseProduct(P).sum();
-      }
-    }
-  }
+  SetRodRigidData(r, &body);
+  SetRodFirstOrderIntegrals(r, &body);
+  SetRodProductIntegrals(r, &body);
   body.Ke.m0 = r.stiffness;
   body.De.m0 = MatrixXd::Zero(n, n);
   body.ksigma.m0 = MatrixXd::Zero(n, 1);
-
-  // The ends: A (Bo, where every mode vanishes) and B, which moves along B x by q4 alone.
-  Eigen::Matrix<double, 3, n> Phi_tip = Eigen::Matrix<double, 3, n>::Zero();
-  Phi_tip(0, 3) = 1.0;
-  body.node_positions = Eigen::Matrix3Xd::Zero(3, 2);
-  body.node_positions(0, 1) = L;
-  body.phi = MatrixXd::Zero(6, n);
-  body.phi.bottomRows<3>() = Phi_tip;
-  body.node_sets = {{"root", {0}}, {"tip", {1}}};
-  body.nodes = {CentrelineNode("root", 0, 0.0, Eigen::Matrix<double, 3, n>::Zero(), data),
-                CentrelineNode("tip", 1, 1.0, Phi_tip, data)};
+  SetRodEnds(r.length, data, &body);
   body.provenance = {
       {"source", "IVP Test Set crank.f (B. Simeon): the rod's integrals in closed form"},
       {"built_by", "tests/validation/simeon_crank_model.cc"}};
