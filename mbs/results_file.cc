@@ -163,6 +163,17 @@ void ResultsWriter::Append(const ResultsSample& sample) {
                     sample.joint_forces.size() == impl.joints.size() &&
                     sample.joint_torques.size() == impl.joints.size() && sample.contacts.size() == impl.contacts.size(),
                 "a results sample needs every body, joint and contact of the layout");
+  // The element rows checked before anything is appended: a refused sample leaves no rows.
+  FLEXMBS_CHECK(sample.element_rows.size() == impl.element_series.size(),
+                "a results sample needs every element series of the layout");
+  for (std::size_t e = 0, channel = 0; e < impl.element_series.size(); ++e) {
+    FLEXMBS_CHECK(sample.element_rows[e].size() == impl.element_series[e].size(),
+                  "a results sample's element series differ from the layout");
+    for (const Eigen::VectorXd& row : sample.element_rows[e]) {
+      FLEXMBS_CHECK(row.size() == std::max<std::int64_t>(impl.element_widths[channel++], 1),
+                    "a results sample's channel width differs from the layout");
+    }
+  }
   for (std::size_t b = 0; b < impl.bodies.size(); ++b) {
     BodySeries& series = impl.bodies[b];
     const Eigen::VectorXd& x = sample.positions[b];
@@ -194,17 +205,11 @@ void ResultsWriter::Append(const ResultsSample& sample) {
     impl.contacts[c].tangential_impulse.AppendRow(Eigen::VectorXd(contact.tangential_impulse));
     impl.contacts[c].active.AppendRow(contact.active ? 1.0 : 0.0);
   }
-  FLEXMBS_CHECK(sample.element_rows.size() == impl.element_series.size(),
-                "a results sample needs every element series of the layout");
   std::size_t channel = 0;
   for (std::size_t e = 0; e < impl.element_series.size(); ++e) {
-    FLEXMBS_CHECK(sample.element_rows[e].size() == impl.element_series[e].size(),
-                  "a results sample's element series differ from the layout");
     for (std::size_t c = 0; c < impl.element_series[e].size(); ++c, ++channel) {
       const Eigen::VectorXd& row = sample.element_rows[e][c];
-      const std::int64_t width = impl.element_widths[channel];
-      FLEXMBS_CHECK(row.size() == std::max<std::int64_t>(width, 1), "a results sample's channel width differs from the layout");
-      if (width == 0) {
+      if (impl.element_widths[channel] == 0) {
         impl.element_series[e][c].AppendRow(row(0));
       } else {
         impl.element_series[e][c].AppendRow(row);

@@ -83,6 +83,43 @@ TEST(ResultsFile, EverySeriesRoundTripsWithUnits) {
   EXPECT_EQ(root.OpenGroup("energy").ReadVector("total")(2), 0.2);
 }
 
+// Element series (ResultsLayout::ElementSeries): two elements in one folder, a scalar and a
+// row channel each, written as <folder>/<name>/ with type and units; a row of the wrong width is
+// refused.
+TEST(ResultsFile, ElementSeriesRoundTripUnderTheirFolder) {
+  const fs::path path = TempPath("elements.h5");
+  ResultsLayout layout = Layout();
+  for (const char* name : {"mesh_a", "mesh_b"}) {
+    layout.element_series.push_back({"gears", name, "spur_gear_contact", {{"force", 0, "N"}, {"torque", 2, "N m"}}});
+  }
+  const auto with_rows = [](double t, Eigen::Index torque_width) {
+    ResultsSample sample = Sample(t);
+    for (double scale : {1.0, -1.0}) {
+      sample.element_rows.push_back(
+          {Eigen::VectorXd::Constant(1, scale * t), Eigen::VectorXd::LinSpaced(torque_width, scale * t, 2 * scale * t)});
+    }
+    return sample;
+  };
+  {
+    ResultsWriter writer(path, layout);
+    for (int k = 0; k < 3; ++k) writer.Append(with_rows(0.1 * k, 2));
+    EXPECT_THROW(writer.Append(with_rows(0.3, 3)), InternalError);
+    writer.Finish("end time reached");
+  }
+  const h5::File file = h5::File::Open(path);
+  const h5::Group gears = file.root().OpenGroup("gears");
+  const h5::Group b = gears.OpenGroup("mesh_b");
+  EXPECT_EQ(b.GetStringAttribute("type"), "spur_gear_contact");
+  EXPECT_EQ(b.ReadUnits("torque"), "N m");
+  EXPECT_EQ(gears.OpenGroup("mesh_a").ReadVector("force"), Eigen::Vector3d(0.0, 0.1, 0.2));
+  const Eigen::MatrixXd torque = b.ReadMatrix("torque");
+  ASSERT_EQ(torque.rows(), 3);
+  EXPECT_EQ(torque.row(2), Eigen::RowVector2d(-0.2, -0.4));
+  // The refused sample left no rows, in the bodies' series either.
+  EXPECT_EQ(file.root().OpenGroup("bodies").OpenGroup("crank").ReadMatrix("position").rows(), 3);
+  EXPECT_GT(VerifyResultsFile(path).datasets, 0);
+}
+
 TEST(ResultsFile, KilledWriterLeavesEveryFlushedSampleReadable) {
   const fs::path path = TempPath("killed.h5");
   constexpr int kFlushedSamples = 10;
