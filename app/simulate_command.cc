@@ -97,7 +97,7 @@ mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::Vector
     sample.joint_torques.push_back(load.tau_W);
   }
   for (const mbs::ContactStepResult& contact : contacts.contacts) {
-    sample.contacts.push_back({contact.g_N, contact.P_N, contact.P_T, contact.active});
+    sample.contacts.push_back({contact.g_N, contact.P_N, contact.P_T, contact.active, contact.sliding});
   }
   sample.element_rows = GearRows(system, t, y);
   sample.kinetic_energy = system.KineticEnergy(y);

@@ -25,6 +25,11 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
+/// A pressed point with friction slides where its tangential velocity at the end of the step
+/// exceeds this [m/s] (sticking points keep round-off: 1.4e-13 m/s on the incline of
+/// tests/mbs/moreau_jean_friction_test.cc).
+constexpr double kSlipSpeed = 1e-9;
+
 /// The smooth part of a step: the factorised KKT matrix [A G^T; G 0] over the kept joint rows and
 /// the free velocity increment with its joint impulses.
 struct SmoothStep {
@@ -172,6 +177,8 @@ std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, 
     ++results[k].active_points;
     results[k].P_N += P(i3);
     results[k].P_T += P.segment<2>(i3 + 1);
+    const double slip = (active.H.middleRows(i3 + 1, 2) * v_next).norm();
+    results[k].sliding = results[k].sliding || (active.mu(static_cast<Index>(i)) > 0.0 && P(i3) > 0.0 && slip > kSlipSpeed);
     if (P.segment<3>(i3).isZero(0.0)) continue;
     const UnilateralContactKinematics& c = points.kinematics[static_cast<std::size_t>(active.index[i])];
     results[k].loads.push_back(

@@ -46,6 +46,9 @@ int FirstContactOutsideImpactLevel(const MultibodySystem& system, ImpactLevel le
 /// One contact's outcome of a step [t_k, t_k+1], over its points (UnilateralContact::num_points).
 struct ContactStepResult {
   bool active = false;    ///< a point in the step's index set: g_N(x_k) + h/2 U_N,k <= 0
+  /// A point with friction sliding: pressed (P_N > 0) and slipping at the end of the step,
+  /// |W_T v_k+1| > 1e-9 m/s.
+  bool sliding = false;
   int active_points = 0;  ///< how many of its points were
   double g_N = 0.0;       ///< the smallest gap at the end of the step, g_N(x_k+1) [m]
   double U_N = 0.0;       ///< normal relative velocity at the end at that point, W_N(x_k) v_k+1 [m/s]

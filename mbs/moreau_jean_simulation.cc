@@ -12,13 +12,16 @@ namespace flexmbs::mbs {
 namespace {
 
 /// Adds `step` (the next step) to the report of an output interval: its impulses add up, a
-/// contact counts as active if it was in any step's index set (with the most points any step had
-/// in it), and the gaps, velocities, joint forces and solver figures are the last step's.
+/// contact counts as active (sliding) if it was in any step's index set (slid in any step), with
+/// the most points any step had in it, and the gaps, velocities, point loads, joint forces and
+/// solver figures are the last step's.
 void AccumulateStep(const MoreauJeanStepReport& step, MoreauJeanStepReport* interval) {
   for (std::size_t k = 0; k < step.contacts.size(); ++k) {
     ContactStepResult& sum = interval->contacts[k];
     const ContactStepResult& next = step.contacts[k];
     sum.active = sum.active || next.active;
+    sum.sliding = sum.sliding || next.sliding;
+    sum.loads = next.loads;
     sum.active_points = std::max(sum.active_points, next.active_points);
     sum.g_N = next.g_N;
     sum.U_N = next.U_N;

@@ -24,7 +24,7 @@ struct JointSeries {
 };
 
 struct ContactSeries {
-  h5::AppendableDataset gap, normal_impulse, tangential_impulse, active;
+  h5::AppendableDataset gap, normal_impulse, tangential_impulse, active, sliding;
 };
 
 /// The datasets of events/, one row per contact point and event.
@@ -121,7 +121,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsLay
       group.SetStringAttribute("type", contact.type);
       impl_->contacts.push_back({group.CreateAppendable("gap", {}, "m"), group.CreateAppendable("normal_impulse", {}, "N s"),
                                  group.CreateAppendable("tangential_impulse", {2}, "N s"),
-                                 group.CreateAppendable("active", {}, "1")});
+                                 group.CreateAppendable("active", {}, "1"),
+                                 group.CreateAppendable("sliding", {}, "1")});
     }
   }
   std::map<std::string, h5::Group> folders;
@@ -204,6 +205,7 @@ void ResultsWriter::Append(const ResultsSample& sample) {
     impl.contacts[c].normal_impulse.AppendRow(contact.normal_impulse);
     impl.contacts[c].tangential_impulse.AppendRow(Eigen::VectorXd(contact.tangential_impulse));
     impl.contacts[c].active.AppendRow(contact.active ? 1.0 : 0.0);
+    impl.contacts[c].sliding.AppendRow(contact.sliding ? 1.0 : 0.0);
   }
   std::size_t channel = 0;
   for (std::size_t e = 0; e < impl.element_series.size(); ++e) {

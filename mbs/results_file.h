@@ -92,6 +92,7 @@ struct ResultsSample {
     double normal_impulse = 0.0;
     Eigen::Vector2d tangential_impulse = Eigen::Vector2d::Zero();  ///< along t1_W, t2_W
     bool active = false;
+    bool sliding = false;  ///< a point slid in any of those steps (ContactStepResult::sliding)
   };
   std::vector<ContactSample> contacts;
   /// Per ResultsLayout::ElementSeries, per channel its row (max(width, 1) values).

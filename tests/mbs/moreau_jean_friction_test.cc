@@ -30,6 +30,7 @@ TEST(MoreauJeanFriction, BlockSticksBelowTheFrictionAngle) {
     fastest = std::max(fastest, BlockVelocity(history.y[k]).norm());
     drift = std::max(drift, (history.y[k].head<3>() - history.y[0].head<3>()).norm());
     EXPECT_EQ(history.steps[k].active_contacts, k == 0 ? 0 : 4) << "t = " << history.t[k];
+    for (const ContactStepResult& corner : history.steps[k].contacts) EXPECT_FALSE(corner.sliding) << history.t[k];
   }
   std::printf("sticking at a = %.2f rad, mu = %.2f: largest speed %.3e m/s, largest displacement %.3e m\n", angle, mu,
               fastest, drift);
@@ -49,6 +50,8 @@ TEST(MoreauJeanFriction, BlockSlidesWithTheAnalyticAccelerationAboveTheFrictionA
     const Eigen::Vector3d v = BlockVelocity(history.y[k]);
     worst = std::max(worst, std::abs(v.dot(down_slope) - acceleration * history.t[k]));
     off_slope = std::max(off_slope, (v - v.dot(down_slope) * down_slope).norm());
+    // Every corner slides from the first step on (the results' `sliding`).
+    for (const ContactStepResult& corner : history.steps[k].contacts) EXPECT_EQ(corner.sliding, k > 0) << history.t[k];
   }
   const double measured = BlockVelocity(history.y.back()).dot(down_slope) / history.t.back();
   std::printf("sliding at a = %.2f rad, mu = %.2f: acceleration %.12f m/s^2 against %.12f (relative error %.2e), "

@@ -17,6 +17,7 @@
 
 #include "mbs/moreau_jean.h"
 #include "mbs/rigid_body.h"
+#include "mbs/simulation.h"
 #include "mbs/unilateral_contact.h"
 #include "tests/mbs/moreau_jean_support.h"
 
@@ -162,6 +163,26 @@ TEST(MoreauJean, PerfectlyPlasticImpactSticksAtTheFirstImpact) {
     EXPECT_TRUE(history.steps[k].contacts[0].active) << "t = " << history.t[k];
     EXPECT_EQ(history.y[k](9), 0.0) << "t = " << history.t[k];
   }
+}
+
+TEST(MoreauJean, AnOutputIntervalReportsItsLastStepsPointLoads) {
+  // A ball 1 mm above the floor (e = 0) lands at 14.3 ms; with outputs every 10 steps of 1 ms the
+  // interval [10, 20] ms starts in flight and ends at rest: its report's point loads (what the
+  // ParaView files draw) are the last step's, the weight m g at the ball's lowest point.
+  testing::ContactScene scene = BallOnFloor(kMass, kRadius, 1e-3, kG, 0.0, 0.0);
+  SimulationOptions options;
+  options.end_time = 0.03;
+  options.output_interval = 0.01;
+  options.moreau_jean = MoreauJeanOptions{1e-3};
+  std::vector<MoreauJeanStepReport> intervals;
+  Simulate(*scene.system, options, scene.y0, [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {},
+           [&](double, const MoreauJeanStepReport& report) { intervals.push_back(report); });
+  ASSERT_EQ(intervals.size(), 4u);  // the initial report and three intervals
+  EXPECT_TRUE(intervals[1].contacts[0].loads.empty());
+  const std::vector<ContactLoad>& loads = intervals[2].contacts[0].loads;
+  ASSERT_EQ(loads.size(), 1u);
+  EXPECT_NEAR(loads[0].f_W.z(), kMass * kG, 1e-12);  // Lemke's one pivot: round-off
+  EXPECT_NEAR(loads[0].p_W.z(), intervals[2].contacts[0].g_N, 1e-15);  // the lowest point, at the gap
 }
 
 TEST(MoreauJean, TwoSpheresCollideWithNewtonsRestitution) {
