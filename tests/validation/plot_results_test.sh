@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# scripts/plot_results.py on two runs made here: the bouncing ball event-driven
+# (cases/03_bouncing_ball) and the spur gear pair (tests/data/spur_gear_pair.yaml). Checks the
+# summary's lines against closed forms and that every picture is a non-empty PNG.
+# Usage: plot_results_test.sh path/to/flexmbs out_dir
+set -euo pipefail
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+flexmbs="$1"
+out="$2"
+mkdir -p "$out"
+failures=0
+
+# The summary line starting with $1 must contain $2.
+expect() {
+  local line
+  line="$(grep -F -- "$1" "$summary" || true)"
+  if [[ "$line" != *"$2"* ]]; then
+    echo "FAIL: expected a line '$1 ... $2 ...', got '${line}'"
+    failures=$((failures + 1))
+  fi
+}
+
+# The number after $2 on the summary line starting with $1 lies within relative $4 of $3.
+near() {
+  local value
+  value="$(grep -F -- "$1" "$summary" | sed -n "s/.*$2 \([-0-9.e+]*\).*/\1/p")"
+  if ! awk -v v="$value" -v x="$3" -v tol="$4" 'BEGIN { d = v - x; if (d < 0) d = -d; exit !(v != "" && d <= tol * x) }'; then
+    echo "FAIL: $1 $2 $value, expected $3 within relative $4"
+    failures=$((failures + 1))
+  else
+    echo "ok: $1 $2 $value (expected $3, relative $4)"
+  fi
+}
+
+# Each named file exists, is non-empty and starts with the PNG signature.
+expect_png() {
+  for png in "$@"; do
+    if [[ ! -s "$png" ]] || [[ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" != 89504e470d0a1a0a ]]; then
+      echo "FAIL: $png is not a non-empty PNG"
+      failures=$((failures + 1))
+    fi
+  done
+}
+
+# The ball: 1 kg, centre dropped from 1.1 m (r = 0.1 m), e = 0.9, at rest from 8.58 s to 9.5 s.
+(cd "$root/cases/03_bouncing_ball" && "$flexmbs" simulate scene_event_driven.yaml -o "$out/event_driven.h5" >/dev/null)
+summary="$out/event_driven.txt"
+/usr/bin/python3 "$root/scripts/plot_results.py" "$out/event_driven.h5" | tee "$summary"
+expect "termination:" "end time reached (complete 1)"
+expect "duration:" "0 .. 9.5 s, 9501 samples"
+expect "events:" "102 (impact 102, separation 0)"  # the 102 impacts of cases/03's README
+expect "contact floor" "sliding in 0,"             # frictionless
+near "energy total:" start 10.791 1e-9             # m g h = 10.791 J at rest, 1.1 m up
+near "energy total:" end 0.981 1e-8                # m g r at rest on the floor (measured 0.981)
+# Starting and ending at rest, the floor's impulse over [0, T] balances gravity's: m g T.
+near "contact floor" "normal impulse" 93.195 1e-5  # measured 93.1950953 (1.0e-6)
+expect_png "$out/event_driven_energy.png" "$out/event_driven_contact_floor.png"
+
+# The gears: 10 N m on the wheel held by the mesh force along the line of action, T / r_b2 with
+# r_b2 = m z2 cos(20 deg) / 2 = 0.0291305 m, one or two pairs in contact (contact ratio 1.5).
+"$flexmbs" simulate "$root/tests/data/spur_gear_pair.yaml" -o "$out/gears.h5" >/dev/null
+summary="$out/gears.txt"
+/usr/bin/python3 "$root/scripts/plot_results.py" "$out/gears.h5" --out "$out/gear_plots" | tee "$summary"
+expect "gear mesh" "pairs in contact 1 .. 2"
+r_b2="$(awk 'BEGIN { print 2e-3 * 31 * cos(20 * atan2(0, -1) / 180) / 2 }')"
+near "gear mesh" "mean mesh force" "$(awk -v r="$r_b2" 'BEGIN { printf "%.9g", 10 / r }')" 3.5e-3  # measured 3.4e-4 (the start's ringing)
+expect "joint wheel_axis" "largest |force|"
+expect_png "$out/gear_plots/gears_energy.png" "$out/gear_plots/gears_gear_mesh.png"
+
+if ((failures > 0)); then
+  echo "$failures check(s) failed"
+  exit 1
+fi
+echo "all checks passed"
