@@ -13,7 +13,8 @@ the transmission error's range. Writes PNG files named after the results file:
 
 Usage: /usr/bin/python3 scripts/plot_results.py results.h5 [--out DIR]
   --out DIR   where the PNG files go (default: the results file's folder)
-Prints each written file as `wrote <path>`; exits 1 if the file is not a flexmbs results file.
+Prints each written file as `wrote <path>`; exits 1 with one line if the file is not HDF5 or not a
+flexmbs results file.
 """
 import argparse
 import os
@@ -210,7 +211,12 @@ def main():
     out = args.out or os.path.dirname(os.path.abspath(args.results))
     os.makedirs(out, exist_ok=True)
     stem = os.path.join(out, os.path.splitext(os.path.basename(args.results))[0])
-    with h5py.File(args.results, "r") as f:
+    try:
+        f = h5py.File(args.results, "r")
+    except OSError as error:
+        print(f"{args.results}: cannot open as HDF5 ({error})", file=sys.stderr)
+        return 1
+    with f:
         if text(f.attrs.get("format", "")) != "flexmbs-results":
             print(f"{args.results}: not a flexmbs results file (attribute format)", file=sys.stderr)
             return 1

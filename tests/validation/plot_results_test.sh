@@ -67,6 +67,19 @@ near "gear mesh" "mean mesh force" "$(awk -v r="$r_b2" 'BEGIN { printf "%.9g", 1
 expect "joint wheel_axis" "largest |force|"
 expect_png "$out/gear_plots/gears_energy.png" "$out/gear_plots/gears_gear_mesh.png"
 
+# Not a results file: one line naming it and why, exit 1.
+refused() {
+  local message
+  if message="$(/usr/bin/python3 "$root/scripts/plot_results.py" "$1" 2>&1)" \
+      || [[ "$message" != "$1: $2"* ]] || [[ "$message" == *$'\n'* ]]; then
+    echo "FAIL: $1 accepted or refused with '$message'"
+    failures=$((failures + 1))
+  fi
+}
+refused "$root/tests/data/cube.yaml" "cannot open as HDF5"
+/usr/bin/python3 -c "import h5py, sys; h5py.File(sys.argv[1], 'w').attrs['format'] = 'other'" "$out/other.h5"
+refused "$out/other.h5" "not a flexmbs results file (attribute format)"
+
 if ((failures > 0)); then
   echo "$failures check(s) failed"
   exit 1
