@@ -41,6 +41,7 @@
 #include "mbs/scene.h"
 #include "mbs/simulation.h"
 #include "mbs/spur_gear_contact.h"
+#include "tests/support/driven_gear_pair.h"
 
 namespace flexmbs::bench {
 namespace {
@@ -250,51 +251,7 @@ class BruteForceMesh final : public mbs::ForceElement {
   mbs::CompliantContact contact_;
 };
 
-/// tests/mbs/spur_gear_contact_test.cc's scene, the wheel at `wheel_angle` [rad]; without the
-/// spur_gear_contact entry if `mesh` is false.
-std::string SceneText(double wheel_angle, double end_time, bool mesh) {
-  std::string text = fmt::format(
-      "gravity: [0, 0, 0]\n"
-      "bodies:\n"
-      "  pinion:\n"
-      "    rigid: {{mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, 3.4e-5]]}}\n"
-      "    markers: {{axis: {{position: [0, 0, 0]}}}}\n"
-      "    initial: {{angular_velocity: [0, 0, 2.0]}}\n"
-      "  wheel:\n"
-      "    rigid: {{mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, 2.3e-4]]}}\n"
-      "    markers: {{axis: {{position: [0, 0, 0]}}}}\n"
-      "    initial: {{position: [0.0505, 0, 0], rotation: {{axis: [0, 0, 1], angle: {:.17g}}}, "
-      "angular_velocity: [0, 0, {:.17g}]}}\n"
-      "joints:\n"
-      "  - {{name: pinion_axis, type: revolute, i: {{body: ground}}, j: {{body: pinion, marker: "
-      "axis}}, "
-      "driver: {{ramp: {{offset: 0, slope: 2.0}}}}}}\n"
-      "  - {{name: wheel_axis, type: revolute, i: {{body: ground, position: [0.0505, 0, 0]}}, "
-      "j: {{body: wheel, marker: axis}}}}\n"
-      "forces:\n"
-      "  - {{name: load, type: point_load, at: {{body: wheel, marker: axis}}, torque: [0, 0, "
-      "{}]}}\n",
-      wheel_angle, -2.0 * 19.0 / 31.0, kTorque);
-  if (mesh) {
-    text +=
-        "  - name: mesh\n"
-        "    type: spur_gear_contact\n"
-        "    wheel1: {body: pinion, marker: axis}\n"
-        "    wheel2: {body: wheel, marker: axis}\n"
-        "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
-        "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02}\n"
-        "    centre_distance: 0.0505\n"
-        "    damping: 8e3\n";
-  }
-  text += fmt::format(
-      "simulation: {{end_time: {}, output_interval: 1e-4, method: explicit, relative_tolerance: "
-      "1e-8, "
-      "absolute_tolerance: 1e-11, max_step: 1e-4}}\n",
-      end_time);
-  return text;
-}
-
-/// The scene of SceneText, through a file in the temporary folder.
+/// The scene of `text`, through a file in the temporary folder.
 mbs::Scene Load(const std::string& text) {
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() /
@@ -335,7 +292,7 @@ Run Time(mbs::Scene& scene, Force force) {
 }
 
 int Main(const Settings& settings) {
-  mbs::Scene exact = Load(SceneText(0.0, settings.end_time, true));
+  mbs::Scene exact = Load(flexmbs::testing::DrivenGearPairScene(0.0, flexmbs::testing::kDrivenPairGearKeys, settings.end_time));
   const auto* mesh = dynamic_cast<const mbs::SpurGearContact*>(&exact.system->force_element(1));
   const contact::GearPair pair = mesh->pair();
   const double start =
@@ -388,14 +345,14 @@ int Main(const Settings& settings) {
 
   Run best;
   for (int r = 0; r < settings.repeat; ++r) {
-    mbs::Scene scene = Load(SceneText(start, settings.end_time, true));
+    mbs::Scene scene = Load(flexmbs::testing::DrivenGearPairScene(start, flexmbs::testing::kDrivenPairGearKeys, settings.end_time));
     const auto& element = dynamic_cast<const mbs::SpurGearContact&>(scene.system->force_element(1));
     const Run run = Time(scene, [&](double t, const Eigen::VectorXd& y) {
       return element.MeshForce(t, *scene.system, y);
     });
     if (r == 0 || run.cpu < best.cpu) best = run;
   }
-  mbs::Scene brute = Load(SceneText(start, settings.end_time, false));
+  mbs::Scene brute = Load(flexmbs::testing::DrivenGearPairScene(start, "", settings.end_time));
   brute.system->AddForceElement(std::make_unique<BruteForceMesh>(
       brute.system->Marker("pinion", "axis"), brute.system->Marker("wheel", "axis"), pair, law,
       settings.samples, settings.corners, settings.polish));

@@ -1,0 +1,56 @@
+#pragma once
+// The driven spur gear pair that the gear tests (tests/mbs/spur_gear_contact_test.cc,
+// tests/app/simulate_gears_test.cc) and bench_gears share, as scene text (docs/scene.md).
+
+#include <fmt/format.h>
+
+#include <string>
+
+namespace flexmbs::testing {
+
+/// The keys of the pair's spur_gear_contact element after wheel1 and wheel2: module 2 mm, 19
+/// (x = 0.3) and 31 (x = -0.1) teeth of 20 mm face width at the centre distance 50.5 mm (1.0e-4 m
+/// of normal backlash), damping 8e3 N s/m.
+inline constexpr const char* kDrivenPairGearKeys =
+    "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+    "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02}\n"
+    "    centre_distance: 0.0505\n"
+    "    damping: 8e3\n";
+
+/// Pinion (19 teeth) at the origin, wheel (31 teeth) at (0.0505, 0, 0), both steel discs of
+/// 20 mm on revolute joints about z; the pinion driven at 2 rad/s, the wheel loaded by 10 N m
+/// about +z (the mesh turns it about -z) and starting at `wheel_angle` [rad] with the kinematic
+/// speed; the spur_gear_contact element "mesh" with `gear_keys` (none where empty); explicit,
+/// rtol 1e-8, atol 1e-11, outputs every 0.1 ms to end_time [s].
+inline std::string DrivenGearPairScene(double wheel_angle, const std::string& gear_keys, double end_time = 1.1) {
+  std::string text = fmt::format(
+      "gravity: [0, 0, 0]\n"
+      "bodies:\n"
+      "  pinion:\n"
+      "    rigid: {{mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, 3.4e-5]]}}\n"
+      "    markers: {{axis: {{position: [0, 0, 0]}}}}\n"
+      "    initial: {{angular_velocity: [0, 0, 2.0]}}\n"
+      "  wheel:\n"
+      "    rigid: {{mass: 0.47, inertia: [[1.2e-4, 0, 0], [0, 1.2e-4, 0], [0, 0, 2.3e-4]]}}\n"
+      "    markers: {{axis: {{position: [0, 0, 0]}}}}\n"
+      "    initial: {{position: [0.0505, 0, 0], rotation: {{axis: [0, 0, 1], angle: {:.17g}}}, "
+      "angular_velocity: [0, 0, {:.17g}]}}\n"
+      "joints:\n"
+      "  - {{name: pinion_axis, type: revolute, i: {{body: ground}}, j: {{body: pinion, marker: axis}}, "
+      "driver: {{ramp: {{offset: 0, slope: 2.0}}}}}}\n"
+      "  - {{name: wheel_axis, type: revolute, i: {{body: ground, position: [0.0505, 0, 0]}}, "
+      "j: {{body: wheel, marker: axis}}}}\n"
+      "forces:\n"
+      "  - {{name: load, type: point_load, at: {{body: wheel, marker: axis}}, torque: [0, 0, 10.0]}}\n",
+      wheel_angle, -2.0 * 19.0 / 31.0);
+  if (!gear_keys.empty()) {
+    text += "  - name: mesh\n    type: spur_gear_contact\n    wheel1: {body: pinion, marker: axis}\n"
+            "    wheel2: {body: wheel, marker: axis}\n" +
+            gear_keys;
+  }
+  return text + fmt::format("simulation: {{end_time: {}, output_interval: 1e-4, method: explicit, "
+                            "relative_tolerance: 1e-8, absolute_tolerance: 1e-11, max_step: 1e-4}}\n",
+                            end_time);
+}
+
+}  // namespace flexmbs::testing
