@@ -291,29 +291,25 @@ Run Time(mbs::Scene& scene, Force force) {
   return run;
 }
 
-int Main(const Settings& settings) {
-  mbs::Scene exact = Load(flexmbs::testing::DrivenGearPairScene(0.0, flexmbs::testing::kDrivenPairGearKeys, settings.end_time));
-  const auto* mesh = dynamic_cast<const mbs::SpurGearContact*>(&exact.system->force_element(1));
-  const contact::GearPair pair = mesh->pair();
-  const double start =
-      contact::TouchingAngle2(pair, 0.0505, 0.0, 0.0, contact::FlankSide::kPositive);
-  const contact::NormalLaw law = contact::ToothPairLaw({1.4e10, 8e3}, pair);
-  const double load = kTorque / pair.gear2.base_radius;
-
-  // The peer against the closed form over one mesh cycle, 2 um into the driving flanks: the
-  // gap of each pair in contact, and the states where the two count different pairs in contact.
-  const BruteForceMesh peer_probe(exact.system->Marker("pinion", "axis"),
-                                  exact.system->Marker("wheel", "axis"), pair, law,
-                                  settings.samples, settings.corners, settings.polish);
-  constexpr int kAngles = 1000;
+/// How the peer's search agrees with the closed form over one mesh cycle, 2 um into the driving
+/// flanks: the largest gap difference and contact-point offset over the pairs in contact [m], how
+/// many pairs were compared, and at how many angles the two count different pairs in contact.
+struct SearchAgreement {
+  static constexpr int kAngles = 1000;
   double gap_error = 0.0, point_offset = 0.0;
   int compared = 0, count_differs = 0;
-  for (int k = 0; k < kAngles; ++k) {
-    const double phi1 = 2.0 * std::numbers::pi / 19.0 * k / kAngles;
+};
+
+/// SearchAgreement of `peer` for `pair`, the wheel touching at `start` [rad] when the pinion is at
+/// 0 (BENCH_GEARS_DEBUG set: the angles where the counts differ, printed to stderr).
+SearchAgreement CompareSearches(const BruteForceMesh& peer, const contact::GearPair& pair, double start) {
+  SearchAgreement agreement;
+  for (int k = 0; k < SearchAgreement::kAngles; ++k) {
+    const double phi1 = 2.0 * std::numbers::pi / 19.0 * k / SearchAgreement::kAngles;
     const double phi2 = contact::TouchingAngle2(pair, 0.0505, phi1, start - 19.0 / 31.0 * phi1,
                                                 contact::FlankSide::kPositive) +
                         2e-6 / pair.gear2.base_radius;
-    const std::vector<FlankContact> found = peer_probe.Search(0.0505, phi1, phi2);
+    const std::vector<FlankContact> found = peer.Search(0.0505, phi1, phi2);
     int exact_count = 0, peer_count = 0;
     for (const FlankContact& c : found) peer_count += c.gap < 0.0;
     for (const contact::ToothPair& tp : contact::MeshingToothPairs(pair, 0.0505, phi1, phi2)) {
@@ -325,12 +321,12 @@ int Main(const Settings& settings) {
         if ((c.p_O1C - tp.p_O1C).norm() < nearest)
           nearest = (c.p_O1C - tp.p_O1C).norm(), gap = c.gap;
       }
-      gap_error = std::max(gap_error, std::abs(gap - tp.gap));
-      point_offset = std::max(point_offset, nearest);
-      ++compared;
+      agreement.gap_error = std::max(agreement.gap_error, std::abs(gap - tp.gap));
+      agreement.point_offset = std::max(agreement.point_offset, nearest);
+      ++agreement.compared;
     }
     if (exact_count != peer_count) {
-      ++count_differs;
+      ++agreement.count_differs;
       if (std::getenv("BENCH_GEARS_DEBUG")) {
         fmt::print(stderr, "phi1 {:.6f}: exact {} pairs, peer {}\n", phi1, exact_count, peer_count);
         for (const FlankContact& c : found)
@@ -342,17 +338,34 @@ int Main(const Settings& settings) {
       }
     }
   }
+  return agreement;
+}
+
+int Main(const Settings& settings) {
+  using flexmbs::testing::DrivenGearPairScene, flexmbs::testing::kDrivenPairGearKeys;
+  mbs::Scene exact = Load(DrivenGearPairScene(0.0, kDrivenPairGearKeys, settings.end_time));
+  const auto* mesh = dynamic_cast<const mbs::SpurGearContact*>(&exact.system->force_element(1));
+  const contact::GearPair pair = mesh->pair();
+  const double start =
+      contact::TouchingAngle2(pair, 0.0505, 0.0, 0.0, contact::FlankSide::kPositive);
+  const contact::NormalLaw law = contact::ToothPairLaw({1.4e10, 8e3}, pair);
+  const double load = kTorque / pair.gear2.base_radius;
+
+  const BruteForceMesh peer_probe(exact.system->Marker("pinion", "axis"),
+                                  exact.system->Marker("wheel", "axis"), pair, law,
+                                  settings.samples, settings.corners, settings.polish);
+  const SearchAgreement agreement = CompareSearches(peer_probe, pair, start);
 
   Run best;
   for (int r = 0; r < settings.repeat; ++r) {
-    mbs::Scene scene = Load(flexmbs::testing::DrivenGearPairScene(start, flexmbs::testing::kDrivenPairGearKeys, settings.end_time));
+    mbs::Scene scene = Load(DrivenGearPairScene(start, kDrivenPairGearKeys, settings.end_time));
     const auto& element = dynamic_cast<const mbs::SpurGearContact&>(scene.system->force_element(1));
     const Run run = Time(scene, [&](double t, const Eigen::VectorXd& y) {
       return element.MeshForce(t, *scene.system, y);
     });
     if (r == 0 || run.cpu < best.cpu) best = run;
   }
-  mbs::Scene brute = Load(flexmbs::testing::DrivenGearPairScene(start, "", settings.end_time));
+  mbs::Scene brute = Load(DrivenGearPairScene(start, "", settings.end_time));
   brute.system->AddForceElement(std::make_unique<BruteForceMesh>(
       brute.system->Marker("pinion", "axis"), brute.system->Marker("wheel", "axis"), pair, law,
       settings.samples, settings.corners, settings.polish));
@@ -376,7 +389,8 @@ int Main(const Settings& settings) {
       "brute force over one mesh cycle 2 um deep ({} angles, {} pairs in contact): largest gap "
       "error {:.3g} m, contact point offset {:.3g} m; pairs in contact counted differently at {} "
       "angles\n",
-      kAngles, compared, gap_error, point_offset, count_differs);
+      SearchAgreement::kAngles, agreement.compared, agreement.gap_error, agreement.point_offset,
+      agreement.count_differs);
   return 0;
 }
 

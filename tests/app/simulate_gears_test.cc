@@ -39,43 +39,66 @@ flexmbs::contact::GearPair ScenePair() {
   return flexmbs::contact::MakeGearPair(spec);
 }
 
+/// The gears/mesh series of the driven pair's results file (docs/results.md).
+struct GearSeries {
+  Eigen::VectorXd time, active, force, error, error_length;
+  Eigen::MatrixXd pair_force, torque;
+};
+
+/// Runs the shared driven pair (the wheel starting where the positive flanks touch) through
+/// `flexmbs simulate` and reads its gears/mesh series back.
+GearSeries RunDrivenPair() {
+  const fs::path dir = fs::temp_directory_path() / ("flexmbs_simulate_gears_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const double start_angle =
+      flexmbs::contact::TouchingAngle2(ScenePair(), kCentre, 0.0, 0.0, flexmbs::contact::FlankSide::kPositive);
+  std::ofstream(dir / "scene.yaml") << flexmbs::testing::DrivenGearPairScene(start_angle,
+                                                                             flexmbs::testing::kDrivenPairGearKeys);
+  const fs::path results = dir / "results.h5";
+  const flexmbs::testing::Outcome run =
+      flexmbs::testing::RunFlexmbs({"simulate", (dir / "scene.yaml").string(), "-o", results.string()}, dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  GearSeries series;
+  if (run.exit_code == 0) {
+    const flexmbs::h5::File file = flexmbs::h5::File::Open(results);
+    const flexmbs::h5::Group root = file.root();
+    const flexmbs::h5::Group mesh = root.OpenGroup("gears").OpenGroup("mesh");
+    EXPECT_EQ(mesh.GetStringAttribute("type"), "spur_gear_contact");
+    series = {root.ReadVector("time"),          mesh.ReadVector("active_pairs"),
+              mesh.ReadVector("mesh_force"),    mesh.ReadVector("transmission_error"),
+              mesh.ReadVector("transmission_error_length"), mesh.ReadMatrix("pair_force"),
+              mesh.ReadMatrix("torque")};
+  }
+  fs::remove_all(dir);
+  return series;
+}
+
+/// The base radius m z cos(alpha) / 2 [m] of the pair's wheel of `teeth` teeth (ISO 21771).
+double BaseRadius(int teeth) { return 2e-3 * teeth * std::cos(20.0 * kPi / 180.0) / 2; }
+
+/// The pair's contact ratio in closed form (ISO 21771): the working pressure angle from the
+/// centre distance, the tip radii m z / 2 + m (1 + x).
+double ContactRatio() {
+  const double m = 2e-3, alpha = 20.0 * kPi / 180.0;
+  const double r_b1 = BaseRadius(19), r_b2 = BaseRadius(31);
+  const double r_a1 = m * 19 / 2 + m * 1.3, r_a2 = m * 31 / 2 + m * 0.9;
+  const double alpha_w = std::acos((r_b1 + r_b2) / kCentre);
+  return (std::sqrt(r_a1 * r_a1 - r_b1 * r_b1) + std::sqrt(r_a2 * r_a2 - r_b2 * r_b2) - kCentre * std::sin(alpha_w)) /
+         (kPi * m * std::cos(alpha));
+}
+
 TEST(SimulateGears, ResultsHoldMeshForceTransmissionErrorTorquesAndTheContactPattern) {
   ASSERT_TRUE(fs::exists(flexmbs::testing::kFlexmbsBinary)) << "flexmbs is not built";
-  const fs::path dir =
-      fs::temp_directory_path() / ("flexmbs_simulate_gears_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const double start_angle = flexmbs::contact::TouchingAngle2(
-      ScenePair(), kCentre, 0.0, 0.0, flexmbs::contact::FlankSide::kPositive);
-  std::ofstream(dir / "scene.yaml") << flexmbs::testing::DrivenGearPairScene(start_angle, flexmbs::testing::kDrivenPairGearKeys);
-  const fs::path results = dir / "results.h5";
-  const flexmbs::testing::Outcome run = flexmbs::testing::RunFlexmbs(
-      {"simulate", (dir / "scene.yaml").string(), "-o", results.string()}, dir);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const flexmbs::h5::File file = flexmbs::h5::File::Open(results);
-  const flexmbs::h5::Group root = file.root();
-  const flexmbs::h5::Group mesh = root.OpenGroup("gears").OpenGroup("mesh");
-  EXPECT_EQ(mesh.GetStringAttribute("type"), "spur_gear_contact");
-  const Eigen::VectorXd time = root.ReadVector("time"), active = mesh.ReadVector("active_pairs"),
-                        force = mesh.ReadVector("mesh_force"),
-                        error = mesh.ReadVector("transmission_error"),
-                        error_length = mesh.ReadVector("transmission_error_length");
-  const Eigen::MatrixXd pair_force = mesh.ReadMatrix("pair_force"),
-                        torque = mesh.ReadMatrix("torque");
+  const GearSeries series = RunDrivenPair();
+  const Eigen::VectorXd &time = series.time, &active = series.active, &force = series.force;
+  const Eigen::VectorXd &error = series.error, &error_length = series.error_length;
+  const Eigen::MatrixXd &pair_force = series.pair_force, &torque = series.torque;
   ASSERT_EQ(time.size(), 11001);
   ASSERT_EQ(force.size(), time.size());
   ASSERT_EQ(pair_force.cols(), 4);  // floor(epsilon) + 1 = 2 slots per flank side
   ASSERT_EQ(torque.cols(), 2);
-  fs::remove_all(dir);
-
-  // Closed forms (ISO 21771): base radii m z cos(alpha) / 2, the working pressure angle from a,
-  // the contact ratio from the tip radii r = m z / 2 + m (1 + x).
-  const double m = 2e-3, alpha = 20.0 * kPi / 180.0;
-  const double r_b1 = m * 19 * std::cos(alpha) / 2, r_b2 = m * 31 * std::cos(alpha) / 2;
-  const double r_a1 = m * 19 / 2 + m * 1.3, r_a2 = m * 31 / 2 + m * 0.9;
-  const double alpha_w = std::acos((r_b1 + r_b2) / kCentre);
-  const double epsilon = (std::sqrt(r_a1 * r_a1 - r_b1 * r_b1) +
-                          std::sqrt(r_a2 * r_a2 - r_b2 * r_b2) - kCentre * std::sin(alpha_w)) /
-                         (kPi * m * std::cos(alpha));
+  const double epsilon = ContactRatio();
+  const double r_b1 = BaseRadius(19), r_b2 = BaseRadius(31);
 
   // From 0.2 s over 5 whole mesh cycles; the samples settled 1 ms after a 1 <-> 2 switch (the
   // 5 kHz ringing of the mesh stiffness' step, tests/mbs/spur_gear_contact_test.cc).
