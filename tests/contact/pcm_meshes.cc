@@ -1,6 +1,7 @@
 #include "tests/contact/pcm_meshes.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -20,6 +21,21 @@ PolygonMesh TriangleMesh(const std::vector<Eigen::Vector3d>& points, const std::
     mesh.face_vertices.insert(mesh.face_vertices.end(), t.begin(), t.end());
   }
   return mesh;
+}
+
+/// Appends the counter-clockwise quad q of `points` as triangles: by its diagonal q0-q2, or about
+/// its centre (appended to points), which keeps every mirror symmetry of the quad.
+void SplitQuad(const std::array<int, 4>& q, QuadSplit split, std::vector<Eigen::Vector3d>& points,
+               std::vector<std::array<int, 3>>& triangles) {
+  if (split == QuadSplit::kDiagonal) {
+    triangles.push_back({q[0], q[1], q[2]});
+    triangles.push_back({q[0], q[2], q[3]});
+    return;
+  }
+  const Eigen::Vector3d p_centre = 0.25 * (points[q[0]] + points[q[1]] + points[q[2]] + points[q[3]]);
+  const int centre = static_cast<int>(points.size());
+  points.push_back(p_centre);
+  for (int k = 0; k < 4; ++k) triangles.push_back({q[k], q[(k + 1) % 4], centre});
 }
 
 }  // namespace
@@ -58,7 +74,7 @@ PolygonMesh Icosphere(const Eigen::Vector3d& centre, double radius, int level) {
   return TriangleMesh(unit, triangles);
 }
 
-PolygonMesh FlatGrid(double half_width, int n, double height) {
+PolygonMesh FlatGrid(double half_width, int n, double height, QuadSplit split) {
   std::vector<Eigen::Vector3d> points;
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= n; ++i) {
@@ -69,14 +85,13 @@ PolygonMesh FlatGrid(double half_width, int n, double height) {
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const int v = j * (n + 1) + i;
-      triangles.push_back({v, v + 1, v + n + 2});
-      triangles.push_back({v, v + n + 2, v + n + 1});
+      SplitQuad({v, v + 1, v + n + 2, v + n + 1}, split, points, triangles);
     }
   }
   return TriangleMesh(points, triangles);
 }
 
-PolygonMesh Box(const Eigen::Vector3d& half_extents) {
+PolygonMesh Box(const Eigen::Vector3d& half_extents, QuadSplit split) {
   std::vector<Eigen::Vector3d> corners;
   for (int k = 0; k < 8; ++k) {
     corners.push_back(Eigen::Vector3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1).cwiseProduct(half_extents));
@@ -90,8 +105,7 @@ PolygonMesh Box(const Eigen::Vector3d& half_extents) {
       const Eigen::Vector3d outward = (side ? 1.0 : -1.0) * Eigen::Vector3d::Unit(axis);
       const Eigen::Vector3d &a = corners[quad[0]], &b = corners[quad[1]], &c = corners[quad[2]];
       if ((b - a).cross(c - a).dot(outward) < 0.0) std::swap(quad[1], quad[3]);
-      triangles.push_back({quad[0], quad[1], quad[2]});
-      triangles.push_back({quad[0], quad[2], quad[3]});
+      SplitQuad(quad, split, corners, triangles);
     }
   }
   return TriangleMesh(corners, triangles);
@@ -110,6 +124,16 @@ PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t s
     triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
   }
   return TriangleMesh(points, triangles);
+}
+
+PolygonMesh MirroredInX(PolygonMesh mesh) {
+  mesh.vertices_W.row(0) *= -1.0;
+  auto face = mesh.face_vertices.begin();
+  for (const int size : mesh.face_sizes) {
+    std::reverse(face, face + size);
+    face += size;
+  }
+  return mesh;
 }
 
 void Wave(PolygonMesh& mesh, double amplitude, double wave_number, double phase) {

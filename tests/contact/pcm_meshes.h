@@ -14,13 +14,20 @@ namespace flexmbs::contact::testing {
 /// counter-clockwise seen from outside, closed.
 PolygonMesh Icosphere(const Eigen::Vector3d& centre, double radius, int level);
 
-/// The square [-half_width, half_width]^2 in the plane z = height [m], n x n squares each split
-/// into two triangles counter-clockwise seen from +z (its outward normal): 2 n^2 triangles, open.
-PolygonMesh FlatGrid(double half_width, int n, double height);
+/// How a quad becomes triangles: two by the diagonal from its first corner, or four about its
+/// centre (which keeps the quad's mirror symmetries).
+enum class QuadSplit { kDiagonal, kFan };
 
-/// The box [-h, h] (half extents h [m]) as 12 triangles, counter-clockwise seen from outside,
-/// closed.
-PolygonMesh Box(const Eigen::Vector3d& half_extents);
+/// The square [-half_width, half_width]^2 in the plane z = height [m], n x n squares each split
+/// into two triangles (four as kFan) counter-clockwise seen from +z (its outward normal): 2 n^2
+/// (4 n^2) triangles, open.
+PolygonMesh FlatGrid(double half_width, int n, double height, QuadSplit split = QuadSplit::kDiagonal);
+
+/// The box [-h, h] (half extents h [m]) as 12 triangles (24 split as kFan), counter-clockwise
+/// seen from outside, closed.
+PolygonMesh Box(const Eigen::Vector3d& half_extents, QuadSplit split = QuadSplit::kDiagonal);
+/// The mesh's mirror image in the plane x = 0, its faces reordered to stay counter-clockwise.
+PolygonMesh MirroredInX(PolygonMesh mesh);
 
 /// `count` triangles with vertices uniform in the cube [0, size]^3, edges up to `edge` [m]
 /// (each triangle a random point and two offsets), no shared vertices.
