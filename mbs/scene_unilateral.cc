@@ -124,6 +124,19 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                        surface.num_modes, law);
     });
   }
+  if (kind == "box_plane") {
+    node.RejectUnknownKeys({"name", "type", "box", "size", "plane", "law", "restitution", "friction"});
+    const MarkerRef box = read_marker(node.Required("box"));
+    const YamlNode size_node = node.Required("size");
+    const Eigen::Vector3d size = ReadVector3(size_node);
+    if (!(size.minCoeff() > 0.0)) {
+      size_node.Fail(fmt::format("contact '{}': the box's edges [m] must be > 0, not ({:g}, {:g}, {:g})", name,
+                                 size.x(), size.y(), size.z()));
+    }
+    const MarkerRef plane = read_marker(node.Required("plane"));
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] { return std::make_unique<BoxPlaneUnilateral>(name, box, 0.5 * size, plane, law); });
+  }
   if (kind == "surface_surface") {
     node.RejectUnknownKeys({"name", "type", "surface1", "surface2", "law", "restitution", "friction"});
     const std::string owner = fmt::format("contact '{}'", name);
@@ -135,8 +148,8 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                         b.num_modes, law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, surface_plane, sphere_surface, "
-                        "surface_surface",
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, box_plane, surface_plane, "
+                        "sphere_surface, surface_surface",
                         name, kind));
 }
 

@@ -35,21 +35,18 @@ std::vector<UnilateralContactKinematics> SurfacePlaneUnilateral::EvaluatePoints(
                                                                                 const ConstVectorRef& y) const {
   const SurfaceState body(system, marker_a(), surface_, num_modes_, y);
   const MarkerKinematics plane = system.MarkerState(marker_b(), y);
-  UnilateralContactKinematics k;
-  k.n_W = plane.R_WM.col(2);
-  contact::TangentBasis(k.n_W, &k.t1_W, &k.t2_W);
   std::vector<UnilateralContactKinematics> points;
   points.reserve(static_cast<std::size_t>(num_points()));
   for (int v = 0; v < num_points(); ++v) {
-    k.p_WA_W = body.mesh().vertices_W.col(v);
-    k.g_N = k.n_W.dot(k.p_WA_W - plane.p_WM_W);
-    k.p_WB_W = k.p_WA_W - k.g_N * k.n_W;
+    UnilateralContactKinematics k;
+    static_cast<contact::PointContactKinematics&>(k) =
+        contact::PointPlane(body.mesh().vertices_W.col(v), {plane.p_WM_W, plane.R_WM.col(2)});
     k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
     k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
     AddPointJacobian(system, marker_a(), body.frame(), k.p_WA_W, 1.0, &k);
     AddModalJacobian(body.modal_column(), body.ModalJacobian(v), 1.0, &k);
     AddPointJacobian(system, marker_b(), plane, k.p_WB_W, -1.0, &k);
-    points.push_back(k);
+    points.push_back(std::move(k));
   }
   return points;
 }

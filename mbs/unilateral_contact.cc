@@ -105,4 +105,32 @@ UnilateralContactKinematics SphereSphereUnilateral::Geometry(const MarkerKinemat
   return FromPointContact(contact::SphereSphere({a.p_WM_W, radius1_}, {b.p_WM_W, radius2_}));
 }
 
+BoxPlaneUnilateral::BoxPlaneUnilateral(std::string name, MarkerRef box, const Eigen::Vector3d& half_extents,
+                                       MarkerRef plane, UnilateralLaw law)
+    : UnilateralContact(std::move(name), std::move(box), std::move(plane), law) {
+  if (!(half_extents.minCoeff() > 0.0) || !half_extents.allFinite()) {
+    throw InputError(fmt::format("contact '{}': the box's half extents [m] ({:g}, {:g}, {:g}) must be finite and > 0",
+                                 this->name(), half_extents.x(), half_extents.y(), half_extents.z()));
+  }
+  corners_C_ = contact::BoxCorners(half_extents);
+}
+
+std::vector<UnilateralContactKinematics> BoxPlaneUnilateral::EvaluatePoints(const MultibodySystem& system,
+                                                                            const ConstVectorRef& y) const {
+  const MarkerKinematics box = system.MarkerState(marker_a(), y), plane = system.MarkerState(marker_b(), y);
+  std::vector<UnilateralContactKinematics> points;
+  points.reserve(corners_C_.size());
+  for (const Eigen::Vector3d& corner_C : corners_C_) {
+    UnilateralContactKinematics k;
+    static_cast<contact::PointContactKinematics&>(k) =
+        contact::PointPlane(box.p_WM_W + box.R_WM * corner_C, {plane.p_WM_W, plane.R_WM.col(2)});
+    k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
+    k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
+    AddPointJacobian(system, marker_a(), box, k.p_WA_W, 1.0, &k);
+    AddPointJacobian(system, marker_b(), plane, k.p_WB_W, -1.0, &k);
+    points.push_back(std::move(k));
+  }
+  return points;
+}
+
 }  // namespace flexmbs::mbs

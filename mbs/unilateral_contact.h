@@ -6,6 +6,7 @@
 // velocity, never through a shape.
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -130,6 +131,25 @@ class SphereSphereUnilateral final : public ShapePairUnilateral {
  private:
   UnilateralContactKinematics Geometry(const MarkerKinematics& a, const MarkerKinematics& b) const override;
   double radius1_, radius2_;
+};
+
+/// A box of half extents h [m] about the origin of marker C (body A; the box's axes C's) against
+/// the plane through the origin of marker P (body B) with outward normal P's z axis: its 8 corners,
+/// each a point with g_N = n . (p_corner - p_P) (contact::PointPlane) and W_N the corner's velocity
+/// (moving with C) less the plane's at its foot. Edges and faces touch through their corners.
+class BoxPlaneUnilateral final : public UnilateralContact {
+ public:
+  /// half_extents > 0 and finite [m]; InputError naming the contact otherwise (and as
+  /// UnilateralContact).
+  BoxPlaneUnilateral(std::string name, MarkerRef box, const Eigen::Vector3d& half_extents, MarkerRef plane,
+                     UnilateralLaw law);
+  std::string_view type() const override { return "box_plane"; }
+  int num_points() const override { return 8; }
+
+ private:
+  std::vector<UnilateralContactKinematics> EvaluatePoints(const MultibodySystem& system,
+                                                          const ConstVectorRef& y) const override;
+  std::array<Eigen::Vector3d, 8> corners_C_;  ///< in C's frame [m]
 };
 
 }  // namespace flexmbs::mbs

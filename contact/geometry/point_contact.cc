@@ -39,6 +39,25 @@ PointContactKinematics SpherePlane(const Sphere& sphere, const Plane& plane) {
   return WithTangents(contact);
 }
 
+PointContactKinematics PointPlane(const Eigen::Vector3d& p_WA_W, const Plane& plane) {
+  FLEXMBS_CHECK(std::abs(plane.n_W.norm() - 1.0) <= 1e-9, "PointPlane: the plane's normal must be a unit vector");
+  PointContactKinematics contact;
+  contact.n_W = plane.n_W;
+  contact.g_N = plane.n_W.dot(p_WA_W - plane.p_WP_W);
+  contact.p_WA_W = p_WA_W;
+  contact.p_WB_W = p_WA_W - contact.g_N * plane.n_W;
+  return WithTangents(contact);
+}
+
+std::array<Eigen::Vector3d, 8> BoxCorners(const Eigen::Vector3d& half_extents) {
+  std::array<Eigen::Vector3d, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    corners[static_cast<std::size_t>(i)] =
+        half_extents.cwiseProduct(Eigen::Vector3d(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0));
+  }
+  return corners;
+}
+
 PointContactKinematics SphereSphere(const Sphere& a, const Sphere& b) {
   FLEXMBS_CHECK(a.radius > 0.0 && b.radius > 0.0, "SphereSphere: the radii must be > 0");
   const Eigen::Vector3d d = a.p_WS_W - b.p_WS_W;

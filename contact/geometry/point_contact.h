@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -52,6 +53,15 @@ void TangentBasis(const Eigen::Vector3d& n_W, Eigen::Vector3d* t1_W, Eigen::Vect
 /// p_S - r n (the sphere's lowest point), p_WB_W = p_S - (g_N + r) n (its foot on the plane).
 /// Preconditions (InternalError): radius > 0, |plane.n_W| = 1 within 1e-9.
 PointContactKinematics SpherePlane(const Sphere& sphere, const Plane& plane);
+
+/// Point A at p_WA_W (a corner of a box, a vertex of a mesh) against plane B: g_N = n . (p - p_P),
+/// n_W = the plane's normal, p_WB_W = p - g_N n (its foot on the plane). Precondition
+/// (InternalError): |plane.n_W| = 1 within 1e-9.
+PointContactKinematics PointPlane(const Eigen::Vector3d& p_WA_W, const Plane& plane);
+
+/// The 8 corners of a box with the half extents h [m] (> 0) about its frame's origin, in that
+/// frame: (±h_x, ±h_y, ±h_z), x changing fastest, then y, then z (the first four the -z face).
+std::array<Eigen::Vector3d, 8> BoxCorners(const Eigen::Vector3d& half_extents);
 
 /// Sphere A against sphere B: with d = p_SA - p_SB, l = |d|: g_N = l - r_A - r_B, n_W = d / l,
 /// p_WA_W = p_SA - r_A n, p_WB_W = p_SB + r_B n. Throws DegenerateContactError if l <= 1e-12

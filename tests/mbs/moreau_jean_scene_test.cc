@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <string>
 
 #include "mbs/scene.h"
@@ -102,8 +103,9 @@ TEST_F(UnilateralSceneTest, BadContactsAreNamedWithTheirItemAndValue) {
   message = Refused(text, "law: unilateral", "law: hertz");
   EXPECT_NE(message.find("contacts[0].law: contact 'floor': law 'hertz' must be unilateral"), std::string::npos)
       << message;
-  message = Refused(text, "type: sphere_sphere", "type: box_plane");
-  EXPECT_NE(message.find("contacts[1].type: contact 'pair': 'box_plane' must be one of: sphere_plane, sphere_sphere"),
+  message = Refused(text, "type: sphere_sphere", "type: cylinder_plane");
+  EXPECT_NE(message.find("contacts[1].type: contact 'pair': 'cylinder_plane' must be one of: sphere_plane, "
+                         "sphere_sphere, box_plane"),
             std::string::npos)
       << message;
   message = Refused(text, "name: pair", "name: floor");
@@ -133,6 +135,28 @@ TEST_F(UnilateralSceneTest, UnilateralContactsNeedMoreauJeanAndMoreauJeanNeedsIt
   EXPECT_NE(message.find("simulation.step: only for method moreau_jean"), std::string::npos) << message;
   message = Refused(contacts + kMoreauJean, "method: moreau_jean", "method: event_driven");
   EXPECT_NE(message.find("simulation.step: only for method moreau_jean"), std::string::npos) << message;
+}
+
+TEST_F(UnilateralSceneTest, BoxPlaneLoadsItsHalfExtentsAndRefusesAnEdgeOfZero) {
+  const std::string box = std::string(kBodies) +
+                          "contacts:\n  - {name: seat, type: box_plane, box: {body: other, marker: centre}, "
+                          "size: [0.2, 0.1, 0.04], plane: {body: ground}, friction: 0.4}\n" +
+                          kMoreauJean;
+  const Scene scene = LoadScene(Write(box));
+  ASSERT_EQ(scene.system->num_unilateral_contacts(), 1);
+  const UnilateralContact& seat = scene.system->unilateral_contact(0);
+  EXPECT_EQ(seat.type(), "box_plane");
+  EXPECT_EQ(seat.num_points(), 8);
+  // The lowest corners of the box (centre 1.1 m up, 0.04 m high) 1.08 m above the ground.
+  double lowest = 1e9;
+  for (const UnilateralContactKinematics& k : seat.Evaluate(0.0, *scene.system, scene.initial_state)) {
+    lowest = std::min(lowest, k.g_N);
+  }
+  EXPECT_NEAR(lowest, 1.08, 1e-15);
+  const std::string message = Refused(box, "size: [0.2, 0.1, 0.04]", "size: [0.2, 0, 0.04]");
+  EXPECT_NE(message.find("contacts[0].size: contact 'seat': the box's edges [m] must be > 0, not (0.2, 0, 0.04)"),
+            std::string::npos)
+      << message;
 }
 
 TEST_F(UnilateralSceneTest, ImpactLevelPositionLoadsAndNeedsThetaOneAndNoRestitution) {
