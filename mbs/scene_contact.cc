@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/contact_force.h"
+#include "mbs/scene_pcm.h"
 #include "mbs/scene_spur_gear.h"
 #include "mbs/scene_surface.h"
 #include "mbs/scene_values.h"
@@ -110,28 +111,30 @@ contact::NormalLaw ReadNormalLaw(const YamlNode& node, const std::string& elemen
 
 CompliantContactLaw ReadLaw(const YamlNode& node, const std::string& element, const ContactShape& shape) {
   CompliantContactLaw law{ReadNormalLaw(node, element, shape), {}};
-  if (node.Has("friction")) {
-    const YamlNode friction = node.Required("friction");
-    friction.RejectUnknownKeys({"coefficient", "regularisation_speed"});
-    const double coefficient = friction.Required("coefficient").AsDouble();
-    const double speed = friction.Has("regularisation_speed") ? friction.Required("regularisation_speed").AsDouble()
-                                                              : contact::RegularisedCoulomb{}.regularisation_speed;
-    law.friction = At(friction, element, [&] { return contact::MakeRegularisedCoulomb(coefficient, speed); });
-  }
+  if (node.Has("friction")) law.friction = ReadFriction(node.Required("friction"), element);
   return law;
 }
 
 }  // namespace
 
+contact::RegularisedCoulomb ReadFriction(const YamlNode& node, const std::string& element) {
+  node.RejectUnknownKeys({"coefficient", "regularisation_speed"});
+  const double coefficient = node.Required("coefficient").AsDouble();
+  const double speed = node.Has("regularisation_speed") ? node.Required("regularisation_speed").AsDouble()
+                                                        : contact::RegularisedCoulomb{}.regularisation_speed;
+  return At(node, element, [&] { return contact::MakeRegularisedCoulomb(coefficient, speed); });
+}
+
 bool IsContactForceType(std::string_view type) {
   return type == "sphere_plane_contact" || type == "sphere_sphere_contact" || type == "sphere_surface_contact" ||
-         type == "surface_plane_contact" || type == "spur_gear_contact";
+         type == "surface_plane_contact" || type == "spur_gear_contact" || type == "pcm_contact";
 }
 
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
                                                const MultibodySystem& system,
                                                const std::function<MarkerRef(const YamlNode&)>& read_marker) {
   if (type == "spur_gear_contact") return ReadSpurGearContact(node, name, read_marker);
+  if (type == "pcm_contact") return ReadPcmContact(node, name, read_marker);
   if (type == "sphere_plane_contact") {
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
                             "restitution", "impact_speed", "materials", "friction"});

@@ -2,19 +2,24 @@
 // Reading the compliant contact force elements of a scene file (docs/scene.md, "Contact
 // elements"): `sphere_plane_contact`, `sphere_sphere_contact`, `sphere_surface_contact` and
 // `surface_plane_contact` with their law, restitution, materials and friction keys;
-// `spur_gear_contact` by mbs/scene_spur_gear.h.
+// `spur_gear_contact` by mbs/scene_spur_gear.h, `pcm_contact` by mbs/scene_pcm.h.
 
 #include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
 
+#include "contact/laws/friction.h"
 #include "core/yaml_node.h"
 #include "mbs/force_element.h"
 #include "mbs/marker_ref.h"
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
+
+/// Regularised Coulomb friction `{coefficient, regularisation_speed}` (mu >= 0; eps > 0 [m/s],
+/// default 1e-4) of force element `element`; InputError at `node` naming the element otherwise.
+contact::RegularisedCoulomb ReadFriction(const YamlNode& node, const std::string& element);
 
 /// True for the force-element types ReadContactForce reads.
 bool IsContactForceType(std::string_view type);
