@@ -1,9 +1,8 @@
 // `flexmbs simulate` with a `pcm_contact` force element (docs/scene.md, "Contact elements"): a
 // rigid cube (an STL file) dropped on a rigid plate (another) with the Polygonal Contact Model
-// settles at the static foundation sinkage m g / (c A), level, under the explicit and the implicit
-// method; an unknown body, an unreadable or
-// truncated mesh file, a flipped triangle, a hole, and a zero or negative layer modulus or
-// thickness are refused with one line and exit 2.
+// settles at the static foundation sinkage m g / (c A), level, under the explicit and the
+// implicit method; an unknown body, an unreadable or truncated mesh file, a flipped triangle, a
+// hole, and a zero or negative layer modulus or thickness are refused with one line and exit 2.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
