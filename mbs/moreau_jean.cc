@@ -178,7 +178,8 @@ std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, 
     results[k].P_N += P(i3);
     results[k].P_T += P.segment<2>(i3 + 1);
     const double slip = (active.H.middleRows(i3 + 1, 2) * v_next).norm();
-    results[k].sliding = results[k].sliding || (active.mu(static_cast<Index>(i)) > 0.0 && P(i3) > 0.0 && slip > kSlipSpeed);
+    const bool slides = active.mu(static_cast<Index>(i)) > 0.0 && P(i3) > 0.0 && slip > kSlipSpeed;
+    results[k].sliding = results[k].sliding || slides;
     if (P.segment<3>(i3).isZero(0.0)) continue;
     const UnilateralContactKinematics& c = points.kinematics[static_cast<std::size_t>(active.index[i])];
     results[k].loads.push_back(

@@ -1,6 +1,7 @@
 #include "mbs/scene.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <limits>
@@ -107,9 +108,8 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
     element =
         ReadContactForce(node, name, type, *system, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); });
   } else {
-    type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing, sphere_plane_contact, "
-                               "sphere_sphere_contact, sphere_surface_contact, surface_plane_contact",
-                               type));
+    type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing, {}", type,
+                               fmt::join(kContactForceTypes, ", ")));
   }
   Within(node, [&] { return system->AddForceElement(std::move(element)); });
 }
@@ -158,7 +158,8 @@ void ReadIntegratorOptions(const YamlNode& node, double end_time, OdeOptions* in
   }
   if (node.Has("newton")) {
     constexpr std::array<OdeNewton, 3> kNewton{OdeNewton::kAuto, OdeNewton::kDense, OdeNewton::kSparse};
-    integrator->newton = kNewton[static_cast<std::size_t>(node.Required("newton").AsChoice({"auto", "dense", "sparse"}))];
+    const int choice = node.Required("newton").AsChoice({"auto", "dense", "sparse"});
+    integrator->newton = kNewton[static_cast<std::size_t>(choice)];
   }
   ReadPositive(node, "relative_tolerance", &integrator->relative_tolerance);
   ReadPositive(node, "absolute_tolerance", &integrator->absolute_tolerance);
@@ -283,9 +284,10 @@ Scene LoadScene(const std::filesystem::path& file) {
       }
       if (scene.options.moreau_jean && scene.options.moreau_jean->impact_level == ImpactLevel::kPosition &&
           contact->law().restitution > 0.0) {
-        item.Required("restitution").Fail(fmt::format("{:g}: impact_level position takes no restitution (the points' "
-                                                      "impacts follow from the step's positions); velocity level for e > 0",
-                                                      contact->law().restitution));
+        item.Required("restitution")
+            .Fail(fmt::format("{:g}: impact_level position takes no restitution (the points' impacts follow from "
+                              "the step's positions); velocity level for e > 0",
+                              contact->law().restitution));
       }
       if (!scene.options.moreau_jean && !scene.options.event_driven) {
         item.Fail(fmt::format("contact '{}' is unilateral, which only simulation.method moreau_jean or "

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <initializer_list>
 
@@ -126,8 +127,7 @@ contact::RegularisedCoulomb ReadFriction(const YamlNode& node, const std::string
 }
 
 bool IsContactForceType(std::string_view type) {
-  return type == "sphere_plane_contact" || type == "sphere_sphere_contact" || type == "sphere_surface_contact" ||
-         type == "surface_plane_contact" || type == "spur_gear_contact" || type == "pcm_contact";
+  return std::find(kContactForceTypes.begin(), kContactForceTypes.end(), type) != kContactForceTypes.end();
 }
 
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,

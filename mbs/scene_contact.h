@@ -4,6 +4,7 @@
 // `surface_plane_contact` with their law, restitution, materials and friction keys;
 // `spur_gear_contact` by mbs/scene_spur_gear.h, `pcm_contact` by mbs/scene_pcm.h.
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -21,7 +22,12 @@ namespace flexmbs::mbs {
 /// default 1e-4) of force element `element`; InputError at `node` naming the element otherwise.
 contact::RegularisedCoulomb ReadFriction(const YamlNode& node, const std::string& element);
 
-/// True for the force-element types ReadContactForce reads.
+/// The force-element types ReadContactForce reads, as the scene spells them.
+inline constexpr std::array<std::string_view, 6> kContactForceTypes{
+    "sphere_plane_contact",  "sphere_sphere_contact", "sphere_surface_contact",
+    "surface_plane_contact", "spur_gear_contact",     "pcm_contact"};
+
+/// True for the force-element types ReadContactForce reads (kContactForceTypes).
 bool IsContactForceType(std::string_view type);
 
 /// The contact element `name` of type `type` (IsContactForceType) from its scene entry `node`;

@@ -133,7 +133,8 @@ StopRun Reduced(int modes, bool correction, const testing::ImpactScheme& scheme)
     spring = element.get();
     system.AddForceElement(std::move(element));
   } else {
-    system.AddUnilateralContact(std::make_unique<SurfacePlaneUnilateral>("stop", origin, pad, kept, stop, UnilateralLaw{}));
+    system.AddUnilateralContact(
+        std::make_unique<SurfacePlaneUnilateral>("stop", origin, pad, kept, stop, UnilateralLaw{}));
   }
   Eigen::VectorXd y = system.NeutralState();
   y(system.num_positions() + system.velocity_offset(beam) + 1) = -kSpeed;

@@ -194,6 +194,15 @@ TEST(SpherePlaneContact, SceneEntryAndBadInput) {
   const std::string message = flexmbs::testing::InputErrorMessage([&] { LoadScene(scene("0")); });
   EXPECT_NE(message.find("forces[0].radius: force element 'floor': 0 m must be > 0"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos);
+  // An unknown type lists every force element, the contact elements among them.
+  std::ofstream(dir / "typo.yaml") << "bodies: {}\nforces:\n  - {name: floor, type: sphere_plane_contacts}\n"
+                                   << "simulation: {end_time: 0.01}\n";
+  const std::string typo = flexmbs::testing::InputErrorMessage([&] { LoadScene(dir / "typo.yaml"); });
+  EXPECT_NE(typo.find("forces[0].type: 'sphere_plane_contacts' must be one of: point_load, spring_damper, bushing, "
+                      "sphere_plane_contact, sphere_sphere_contact, sphere_surface_contact, surface_plane_contact, "
+                      "spur_gear_contact, pcm_contact"),
+            std::string::npos)
+      << typo;
   std::filesystem::remove_all(dir);
 }
 
