@@ -10,7 +10,7 @@ bool KktFactor::Compute(const Eigen::MatrixXd& kkt) {
     return dense_.isInvertible();
   }
   const Eigen::SparseMatrix<double> matrix = kkt.sparseView();
-  sparse_ = std::make_shared<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>>();
+  sparse_ = std::make_unique<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>>();
   sparse_->compute(matrix);
   return sparse_->info() == Eigen::Success;
 }

@@ -14,7 +14,7 @@
 namespace flexmbs::mbs {
 
 /// KktFactor factorises sparsely from this many rows on (measured on bouncing balls, 6 x 6 mass
-/// blocks: dense faster at 12 rows, sparse 1.6x faster at 30, 2.4x at 60, 42x at 600) ...
+/// blocks: dense faster at 12 rows, sparse 1.6x faster at 30, 2.4x at 60, 36x at 600) ...
 inline constexpr Eigen::Index kSparseKktFromSize = 24;
 /// ... where at most this fraction of the entries is non-zero (one flexible body's dense 38 x 38
 /// block: sparse 15 % slower).
@@ -33,7 +33,7 @@ class KktFactor {
 
  private:
   Eigen::FullPivLU<Eigen::MatrixXd> dense_;
-  std::shared_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> sparse_;
+  std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> sparse_;
 };
 
 }  // namespace flexmbs::mbs
