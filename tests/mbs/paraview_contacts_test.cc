@@ -2,7 +2,7 @@
 // files"): every contact point in contact with its load on body A, read back by VTK's own reader
 // (tests/paraview_read_back.h). A ball pressed into the floor by a compliant contact (force
 // element) and a ball resting on it under a unilateral contact after one Moreau-Jean step (its
-// impulse over the step, the weight).
+// impulse over the step, the weight); a sample without contact has an empty block.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -53,18 +53,24 @@ TEST(ParaviewContacts, EveryContactPointIsDrawnWithItsLoad) {
   x.head<3>() << -0.5, 0.4, kRadius - 1e-3;  // 1 mm into it
   system.SetBodyState(1, x, Eigen::VectorXd::Zero(6), y);
 
+  // A first sample with the pressed ball lifted clear and no step yet: an empty contacts block.
+  Eigen::VectorXd lifted = y;
+  lifted(system.position_offset(1) + 2) += 0.01;
   MoreauJeanStepper stepper(system, MoreauJeanOptions{1e-3});
   const MoreauJeanStepReport report = stepper.Step(0.0, 1e-3, y);
   const fs::path dir = fs::temp_directory_path() / fmt::format("flexmbs_paraview_contacts_{}", getpid());
   fs::create_directories(dir);
   {
     ParaviewWriter writer(system, dir / "run.pvd");
+    ASSERT_TRUE(writer.Record(0.0, lifted));
     ASSERT_TRUE(writer.Record(1e-3, y, report));
   }
   const nlohmann::json samples = flexmbs::testing::ReadParaviewCollection(dir / "run.pvd", dir);
   fs::remove_all(dir);
-  ASSERT_EQ(samples.size(), 1u);
-  const nlohmann::json& blocks = samples[0]["blocks"];
+  ASSERT_EQ(samples.size(), 2u);
+  ASSERT_EQ(samples[0]["blocks"].size(), 3u);
+  EXPECT_EQ(samples[0]["blocks"][2]["points"].size(), 0u);
+  const nlohmann::json& blocks = samples[1]["blocks"];
   ASSERT_EQ(blocks.size(), 3u);
   const nlohmann::json& contacts = blocks[2];
   EXPECT_EQ(contacts["name"], "contacts");
