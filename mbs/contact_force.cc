@@ -112,4 +112,63 @@ std::vector<ContactLoad> SphereSphereContact::ContactLoads(double t, const Multi
   return loads;
 }
 
+CompliantPointsContact::CompliantPointsContact(std::string name, CompliantContactLaw law, MarkerRef a, MarkerRef b)
+    : name_(std::move(name)), contact_(std::move(law), std::move(a), std::move(b)) {}
+
+void CompliantPointsContact::AddForces(double, const MultibodySystem& system, const ConstVectorRef& y,
+                                       Eigen::Ref<Eigen::VectorXd> h) const {
+  for (const ContactPoint& point : Points(system, y)) contact_.AddForces(system, point, h);
+}
+
+double CompliantPointsContact::PotentialEnergy(double, const MultibodySystem& system, const ConstVectorRef& y) const {
+  double energy = 0.0;
+  for (const ContactPoint& point : Points(system, y)) energy += contact_.PotentialEnergy(point);
+  return energy;
+}
+
+void CompliantPointsContact::AddForceJacobian(double, const MultibodySystem& system, const ConstVectorRef& y,
+                                              Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                                              Eigen::Ref<Eigen::MatrixXd> dh_du) const {
+  for (const ContactPoint& point : Points(system, y)) contact_.AddForceJacobian(system, point, dh_dx, dh_du);
+}
+
+std::vector<ContactLoad> CompliantPointsContact::ContactLoads(double, const MultibodySystem& system,
+                                                              const ConstVectorRef& y) const {
+  std::vector<ContactLoad> loads;
+  for (const ContactPoint& point : Points(system, y)) contact_.AppendLoad(point, &loads);
+  return loads;
+}
+
+double CompliantPointsContact::NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const {
+  double force = 0.0;
+  for (const ContactPoint& point : Points(system, y)) force += contact_.NormalForce(point);
+  return force;
+}
+
+BoxPlaneContact::BoxPlaneContact(std::string name, MarkerRef box, const Eigen::Vector3d& half_extents, MarkerRef plane,
+                                 CompliantContactLaw law)
+    : CompliantPointsContact(std::move(name), std::move(law), box, plane), box_(std::move(box)),
+      plane_(std::move(plane)) {
+  if (!(half_extents.minCoeff() > 0.0) || !half_extents.allFinite()) {
+    throw InputError(fmt::format("force element '{}': the box's half extents [m] ({:g}, {:g}, {:g}) must be finite "
+                                 "and > 0",
+                                 this->name(), half_extents.x(), half_extents.y(), half_extents.z()));
+  }
+  corners_C_ = contact::BoxCorners(half_extents);
+}
+
+std::vector<ContactPoint> BoxPlaneContact::Points(const MultibodySystem& system, const ConstVectorRef& y) const {
+  const MarkerKinematics box = system.MarkerState(box_, y), plane = system.MarkerState(plane_, y);
+  std::vector<ContactPoint> points(corners_C_.size());
+  for (std::size_t c = 0; c < corners_C_.size(); ++c) {
+    ContactPoint& point = points[c];
+    point.a = box;
+    point.b = plane;
+    point.n_W = plane.R_WM.col(2);
+    point.p_Wc_W = box.p_WM_W + box.R_WM * corners_C_[c];
+    point.penetration = -point.n_W.dot(point.p_Wc_W - plane.p_WM_W);
+  }
+  return points;
+}
+
 }  // namespace flexmbs::mbs

@@ -4,7 +4,9 @@
 // all evaluated by mbs/compliant_contact.h. Each element here owns its geometry only.
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
+#include <vector>
 
 #include "mbs/compliant_contact.h"
 #include "mbs/force_element.h"
@@ -38,6 +40,7 @@ class SpherePlaneContact final : public ForceElement {
   bool is_contact() const override { return true; }
   /// The load at the contact point while in contact.
   std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+
  private:
   ContactPoint Geometry(const MultibodySystem& system, const ConstVectorRef& y) const;
 
@@ -68,6 +71,7 @@ class SphereSphereContact final : public ForceElement {
   bool is_contact() const override { return true; }
   /// The load at the contact point while in contact.
   std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+
  private:
   ContactPoint Geometry(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
 
@@ -75,6 +79,53 @@ class SphereSphereContact final : public ForceElement {
   MarkerRef sphere1_, sphere2_;
   double radius1_, radius2_;
   CompliantContact contact_;
+};
+
+/// A compliant contact of many points under one law (the corners of a box, the vertices of a
+/// surface): its loads, energy, Jacobian and drawn loads are its points' (CompliantContact), the
+/// points its geometry's (Points).
+class CompliantPointsContact : public ForceElement {
+ public:
+  const std::string& name() const final { return name_; }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const final;
+  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const final;
+  /// CompliantContact::AddForceJacobian of every point in contact.
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const final;
+  bool is_contact() const final { return true; }
+  /// The load at every point in contact.
+  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const final;
+  /// The normal forces summed over the points [N] at y.
+  double NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const;
+
+ protected:
+  /// The law between markers a (body A) and b (body B).
+  CompliantPointsContact(std::string name, CompliantContactLaw law, MarkerRef a, MarkerRef b);
+  /// Every point's geometry at y (a fixed number of them; penetration <= 0 apart).
+  virtual std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const = 0;
+
+ private:
+  std::string name_;
+  CompliantContact contact_;
+};
+
+/// A box of half extents h [m] about the origin of marker C (its axes the box's) against the plane
+/// through the origin of marker P with outward normal n = P's z axis, a compliant contact at each
+/// of its 8 corners: penetration delta = -n . (p_corner - p_P), F_N(delta, delta') n + F_T at the
+/// corner on the box, the opposite on the plane's body. The penalty counterpart of
+/// BoxPlaneUnilateral.
+class BoxPlaneContact final : public CompliantPointsContact {
+ public:
+  /// half_extents > 0 and finite [m]; InputError naming the element otherwise.
+  BoxPlaneContact(std::string name, MarkerRef box, const Eigen::Vector3d& half_extents, MarkerRef plane,
+                  CompliantContactLaw law);
+
+ private:
+  std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const override;
+
+  MarkerRef box_, plane_;
+  std::array<Eigen::Vector3d, 8> corners_C_;  ///< in C's frame [m]
 };
 
 }  // namespace flexmbs::mbs

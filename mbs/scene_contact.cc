@@ -155,6 +155,19 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
                                                     surface.num_modes, std::move(law));
     });
   }
+  if (type == "box_plane_contact") {
+    node.RejectUnknownKeys({"name", "type", "box", "size", "plane", "law", "stiffness", "damping", "exponent",
+                            "restitution", "impact_speed", "friction"});
+    const MarkerRef box = read_marker(node.Required("box")), plane = read_marker(node.Required("plane"));
+    const YamlNode size_node = node.Required("size");
+    const Eigen::Vector3d size = ReadVector3(size_node);
+    if (!(size.minCoeff() > 0.0)) {
+      size_node.Fail(fmt::format("force element '{}': the box's edges [m] must be > 0, not ({:g}, {:g}, {:g})", name,
+                                 size.x(), size.y(), size.z()));
+    }
+    CompliantContactLaw law = ReadLaw(node, name, {"box", "plane", true, 0.0});
+    return At(node, "", [&] { return std::make_unique<BoxPlaneContact>(name, box, 0.5 * size, plane, std::move(law)); });
+  }
   if (type == "surface_plane_contact") {
     node.RejectUnknownKeys({"name", "type", "body", "surface", "plane", "law", "stiffness", "damping", "exponent",
                             "restitution", "impact_speed", "friction"});

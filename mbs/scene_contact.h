@@ -23,8 +23,8 @@ namespace flexmbs::mbs {
 contact::RegularisedCoulomb ReadFriction(const YamlNode& node, const std::string& element);
 
 /// The force-element types ReadContactForce reads, as the scene spells them.
-inline constexpr std::array<std::string_view, 6> kContactForceTypes{
-    "sphere_plane_contact",  "sphere_sphere_contact", "sphere_surface_contact",
+inline constexpr std::array<std::string_view, 7> kContactForceTypes{
+    "sphere_plane_contact",  "sphere_sphere_contact", "box_plane_contact", "sphere_surface_contact",
     "surface_plane_contact", "spur_gear_contact",     "pcm_contact"};
 
 /// True for the force-element types ReadContactForce reads (kContactForceTypes).

@@ -65,9 +65,9 @@ double SphereSurfaceContact::NormalForce(double t, const MultibodySystem& system
 
 SurfacePlaneContact::SurfacePlaneContact(std::string name, MarkerRef origin, sid::ContactSurface surface,
                                          Eigen::Index num_modes, MarkerRef plane, CompliantContactLaw law)
-    : name_(std::move(name)), origin_(std::move(origin)), plane_(std::move(plane)), surface_(std::move(surface)),
-      num_modes_(num_modes), contact_(std::move(law), origin_, plane_) {
-  ForElement(name_, [&] { CheckSurface(name_, surface_, num_modes_); });
+    : CompliantPointsContact(std::move(name), std::move(law), origin, plane), origin_(std::move(origin)),
+      plane_(std::move(plane)), surface_(std::move(surface)), num_modes_(num_modes) {
+  ForElement(this->name(), [&] { CheckSurface(this->name(), surface_, num_modes_); });
 }
 
 std::vector<ContactPoint> SurfacePlaneContact::Points(const MultibodySystem& system, const ConstVectorRef& y) const {
@@ -89,39 +89,10 @@ std::vector<ContactPoint> SurfacePlaneContact::Points(const MultibodySystem& sys
   return points;
 }
 
-void SurfacePlaneContact::AddForces(double, const MultibodySystem& system, const ConstVectorRef& y,
-                                    Eigen::Ref<Eigen::VectorXd> h) const {
-  for (const ContactPoint& point : Points(system, y)) contact_.AddForces(system, point, h);
-}
-
-double SurfacePlaneContact::PotentialEnergy(double, const MultibodySystem& system, const ConstVectorRef& y) const {
-  double energy = 0.0;
-  for (const ContactPoint& point : Points(system, y)) energy += contact_.PotentialEnergy(point);
-  return energy;
-}
-
-void SurfacePlaneContact::AddForceJacobian(double, const MultibodySystem& system, const ConstVectorRef& y,
-                                           Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
-  for (const ContactPoint& point : Points(system, y)) contact_.AddForceJacobian(system, point, dh_dx, dh_du);
-}
-
-double SurfacePlaneContact::NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const {
-  double force = 0.0;
-  for (const ContactPoint& point : Points(system, y)) force += contact_.NormalForce(point);
-  return force;
-}
-
 std::vector<ContactLoad> SphereSurfaceContact::ContactLoads(double t, const MultibodySystem& system,
                                                             const ConstVectorRef& y) const {
   std::vector<ContactLoad> loads;
   contact_.AppendLoad(Geometry(t, system, y), &loads);
-  return loads;
-}
-
-std::vector<ContactLoad> SurfacePlaneContact::ContactLoads(double /*t*/, const MultibodySystem& system,
-                                                           const ConstVectorRef& y) const {
-  std::vector<ContactLoad> loads;
-  for (const ContactPoint& point : Points(system, y)) contact_.AppendLoad(point, &loads);
   return loads;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mbs/compliant_contact.h"
+#include "mbs/contact_force.h"
 #include "mbs/force_element.h"
 #include "mbs/marker_ref.h"
 #include "sid/reduced_body.h"
@@ -65,35 +66,20 @@ class SphereSurfaceContact final : public ForceElement {
 /// delta_V = -n . (p_WV_W - p_WP_W), the law's force F_N(delta_V, delta_V') n + F_T at the vertex
 /// on A (its frame and modes: mbs/surface_state.h), the opposite on B. The penalty counterpart of
 /// SurfacePlaneUnilateral.
-class SurfacePlaneContact final : public ForceElement {
+class SurfacePlaneContact final : public CompliantPointsContact {
  public:
   /// `origin` is A's body-frame marker, `surface` its contact surface with phi over A's kept
   /// modes (3 V x num_modes). InputError naming the element otherwise.
   SurfacePlaneContact(std::string name, MarkerRef origin, sid::ContactSurface surface, Eigen::Index num_modes,
                       MarkerRef plane, CompliantContactLaw law);
 
-  const std::string& name() const override { return name_; }
-  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
-                 Eigen::Ref<Eigen::VectorXd> h) const override;
-  double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
-  /// CompliantContact::AddForceJacobian of every vertex in contact.
-  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
-                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
-  /// The normal forces summed over the vertices [N] at y.
-  double NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const;
-
-  bool is_contact() const override { return true; }
-  /// The load at every vertex in contact.
-  std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
  private:
   /// Every vertex's contact point at y.
-  std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const;
+  std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const override;
 
-  std::string name_;
   MarkerRef origin_, plane_;
   sid::ContactSurface surface_;
   Eigen::Index num_modes_;
-  CompliantContact contact_;
 };
 
 }  // namespace flexmbs::mbs

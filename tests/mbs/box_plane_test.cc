@@ -1,7 +1,8 @@
 // A box against a plane (mbs/unilateral_contact.h, BoxPlaneUnilateral; docs/contact.md): W_N u is
 // every corner's gap rate on a moving, turning box above a moving, tilted plane; a box dropped
 // flat comes to rest on its four bottom corners with the weight's impulse; on an incline it sticks
-// below the friction angle and slides with g (sin a - mu cos a) above it.
+// below the friction angle and slides with g (sin a - mu cos a) above it. The compliant box
+// (mbs/contact_force.h, BoxPlaneContact) settles at its static sinkage.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -11,9 +12,12 @@
 #include <random>
 #include <vector>
 
+#include "contact/laws/normal_law.h"
+#include "mbs/contact_force.h"
 #include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
 #include "mbs/rigid_body.h"
+#include "mbs/simulation.h"
 #include "mbs/unilateral_contact.h"
 #include "tests/mbs/moreau_jean_support.h"
 #include "tests/mbs/rigid_test_support.h"
@@ -111,6 +115,41 @@ TEST(BoxPlane, BoxOnAnInclineSticksBelowAndSlidesAboveTheFrictionAngle) {
               speed, worst);
   EXPECT_LT(speed, 1.5e-12);  // measured 1.4e-13 (the friction solver's tolerance on ~m g h / 4)
   EXPECT_LT(worst, 6e-13);    // measured 6.0e-14
+}
+
+TEST(BoxPlane, CompliantBoxSettlesAtItsStaticSinkage) {
+  // The penalty counterpart (box_plane_contact): a linear spring k per corner, damped; the flat
+  // box comes to rest sunk by m g / (4 k) on its four bottom corners.
+  constexpr double kStiffness = 1e5, kDamping = 200.0;  // [N/m], [N s/m] per corner
+  MultibodySystem system(Vector3d(0.0, 0.0, -kG));
+  const Vector3d edges = 2.0 * kHalfExtents;
+  const Matrix3d inertia = (kMass / 12.0 * Vector3d(edges.y() * edges.y() + edges.z() * edges.z(),
+                                                   edges.x() * edges.x() + edges.z() * edges.z(),
+                                                   edges.x() * edges.x() + edges.y() * edges.y()))
+                               .asDiagonal();
+  system.AddBody(std::make_unique<RigidBody>("box", kMass, Vector3d::Zero(), inertia,
+                                             std::vector<RigidBodyMarker>{{"centre"}}));
+  auto element = std::make_unique<BoxPlaneContact>("floor", system.Marker("box", "centre"), kHalfExtents,
+                                                   MarkerRef::Ground(Vector3d::Zero()),
+                                                   CompliantContactLaw{contact::LinearLaw(kStiffness, kDamping), {}});
+  const BoxPlaneContact* floor = element.get();
+  system.AddForceElement(std::move(element));
+  VectorXd y = system.NeutralState();
+  system.SetBodyState(0, testing::RigidPositions(Vector3d(0.0, 0.0, kHalfExtents.z() + 1e-3), Matrix3d::Identity()),
+                      VectorXd::Zero(6), y);
+  SimulationOptions options;
+  options.end_time = 1.0;
+  options.output_interval = 0.01;
+  options.integrator.method = OdeMethod::kImplicit;
+  options.integrator.relative_tolerance = 1e-10;
+  options.integrator.absolute_tolerance = 1e-13;
+  Simulate(system, options, y, [&](double, const VectorXd& sample, const VectorXd&) { y = sample; });
+  const double sinkage = kHalfExtents.z() - y(2), expected = kMass * kG / (4.0 * kStiffness);
+  std::printf("compliant box: sunk %.9e m against m g / (4 k) = %.9e m (%.2e), carried %.9f N, speed %.2e m/s\n",
+              sinkage, expected, sinkage / expected - 1.0, floor->NormalForce(system, y), y.segment<6>(7).norm());
+  EXPECT_NEAR(sinkage / expected, 1.0, 5e-12);                   // measured 4.6e-13
+  EXPECT_NEAR(floor->NormalForce(system, y), kMass * kG, 1.5e-9);  // measured 1.4e-10 (spring and damper)
+  ASSERT_EQ(floor->ContactLoads(1.0, system, y).size(), 4u);  // the bottom corners
 }
 
 }  // namespace

@@ -199,8 +199,8 @@ TEST(SpherePlaneContact, SceneEntryAndBadInput) {
                                    << "simulation: {end_time: 0.01}\n";
   const std::string typo = flexmbs::testing::InputErrorMessage([&] { LoadScene(dir / "typo.yaml"); });
   EXPECT_NE(typo.find("forces[0].type: 'sphere_plane_contacts' must be one of: point_load, spring_damper, bushing, "
-                      "sphere_plane_contact, sphere_sphere_contact, sphere_surface_contact, surface_plane_contact, "
-                      "spur_gear_contact, pcm_contact"),
+                      "sphere_plane_contact, sphere_sphere_contact, box_plane_contact, sphere_surface_contact, "
+                      "surface_plane_contact, spur_gear_contact, pcm_contact"),
             std::string::npos)
       << typo;
   std::filesystem::remove_all(dir);

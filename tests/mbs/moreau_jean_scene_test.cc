@@ -157,6 +157,19 @@ TEST_F(UnilateralSceneTest, BoxPlaneLoadsItsHalfExtentsAndRefusesAnEdgeOfZero) {
   EXPECT_NE(message.find("contacts[0].size: contact 'seat': the box's edges [m] must be > 0, not (0.2, 0, 0.04)"),
             std::string::npos)
       << message;
+  // Its penalty counterpart in forces: (box_plane_contact).
+  const std::string penalty = std::string(kBodies) +
+                              "forces:\n  - {name: seat, type: box_plane_contact, box: {body: other, marker: centre}, "
+                              "size: [0.2, 0.1, 0.04], plane: {body: ground}, stiffness: 1e5, damping: 10}\n" +
+                              "simulation: {end_time: 1}\n";
+  const Scene compliant = LoadScene(Write(penalty));
+  ASSERT_EQ(compliant.system->num_force_elements(), 1);
+  EXPECT_TRUE(compliant.system->force_element(0).is_contact());
+  const std::string refused = Refused(penalty, "size: [0.2, 0.1, 0.04]", "size: [-0.2, 0.1, 0.04]");
+  EXPECT_NE(refused.find("forces[0].size: force element 'seat': the box's edges [m] must be > 0, not (-0.2, 0.1, "
+                         "0.04)"),
+            std::string::npos)
+      << refused;
 }
 
 TEST_F(UnilateralSceneTest, ImpactLevelPositionLoadsAndNeedsThetaOneAndNoRestitution) {
