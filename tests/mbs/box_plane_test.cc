@@ -32,18 +32,22 @@ using Eigen::VectorXd;
 constexpr double kMass = 1.0, kG = 9.81;
 const Vector3d kHalfExtents(0.1, 0.1, 0.05);  // [m]: a 0.2 x 0.2 x 0.1 m box
 
+/// The inertia of the uniform box of kMass and kHalfExtents about its centre [kg m^2].
+Matrix3d BoxInertia() {
+  const Vector3d edges = 2.0 * kHalfExtents;
+  return (kMass / 12.0 * Vector3d(edges.y() * edges.y() + edges.z() * edges.z(),
+                                 edges.x() * edges.x() + edges.z() * edges.z(),
+                                 edges.x() * edges.x() + edges.y() * edges.y()))
+      .asDiagonal();
+}
+
 /// A box of kMass (uniform) with the marker "centre" at its centre, against the plane through
 /// W's origin tilted by `angle` [rad] about W's y axis (law e = 0, mu), gravity -z; the box rests
 /// on the plane, flat, `gap` [m] above it. Down the slope is (cos a, 0, -sin a).
 testing::ContactScene BoxOnPlane(double angle, double friction, double gap) {
   testing::ContactScene scene{std::make_unique<MultibodySystem>(Vector3d(0.0, 0.0, -kG)), VectorXd()};
   MultibodySystem& system = *scene.system;
-  const Vector3d edges = 2.0 * kHalfExtents;
-  const Matrix3d inertia = (kMass / 12.0 * Vector3d(edges.y() * edges.y() + edges.z() * edges.z(),
-                                                   edges.x() * edges.x() + edges.z() * edges.z(),
-                                                   edges.x() * edges.x() + edges.y() * edges.y()))
-                               .asDiagonal();
-  system.AddBody(std::make_unique<RigidBody>("box", kMass, Vector3d::Zero(), inertia,
+  system.AddBody(std::make_unique<RigidBody>("box", kMass, Vector3d::Zero(), BoxInertia(),
                                              std::vector<RigidBodyMarker>{{"centre"}}));
   const Matrix3d R_WP = Eigen::AngleAxisd(angle, Vector3d::UnitY()).toRotationMatrix();
   system.AddUnilateralContact(std::make_unique<BoxPlaneUnilateral>("floor", system.Marker("box", "centre"),
@@ -122,12 +126,7 @@ TEST(BoxPlane, CompliantBoxSettlesAtItsStaticSinkage) {
   // box comes to rest sunk by m g / (4 k) on its four bottom corners.
   constexpr double kStiffness = 1e5, kDamping = 200.0;  // [N/m], [N s/m] per corner
   MultibodySystem system(Vector3d(0.0, 0.0, -kG));
-  const Vector3d edges = 2.0 * kHalfExtents;
-  const Matrix3d inertia = (kMass / 12.0 * Vector3d(edges.y() * edges.y() + edges.z() * edges.z(),
-                                                   edges.x() * edges.x() + edges.z() * edges.z(),
-                                                   edges.x() * edges.x() + edges.y() * edges.y()))
-                               .asDiagonal();
-  system.AddBody(std::make_unique<RigidBody>("box", kMass, Vector3d::Zero(), inertia,
+  system.AddBody(std::make_unique<RigidBody>("box", kMass, Vector3d::Zero(), BoxInertia(),
                                              std::vector<RigidBodyMarker>{{"centre"}}));
   auto element = std::make_unique<BoxPlaneContact>("floor", system.Marker("box", "centre"), kHalfExtents,
                                                    MarkerRef::Ground(Vector3d::Zero()),
