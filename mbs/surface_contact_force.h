@@ -51,8 +51,8 @@ class SphereSurfaceContact final : public ForceElement {
   bool is_contact() const override { return true; }
   /// The load at the contact point while in contact.
   std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
- private:
 
+ private:
   std::string name_;
   MarkerRef sphere_, origin_;
   double radius_;
