@@ -246,23 +246,17 @@ void CheckMoreauJeanOptions(const MoreauJeanOptions& options) {
   }
 }
 
-int FirstContactOutsideImpactLevel(const MultibodySystem& system, ImpactLevel level) {
-  if (level == ImpactLevel::kVelocity) return -1;
-  for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
-    if (system.unilateral_contact(k).law().restitution > 0.0) return k;
-  }
-  return -1;
-}
-
 MoreauJeanStepper::MoreauJeanStepper(const MultibodySystem& system, const MoreauJeanOptions& options)
     : system_(system), options_(options), u_dot_(VectorXd::Zero(system.num_velocities())) {
   CheckMoreauJeanOptions(options_);
-  const int outside = FirstContactOutsideImpactLevel(system_, options_.impact_level);
-  if (outside >= 0) {
-    const UnilateralContact& contact = system_.unilateral_contact(outside);
-    throw InputError(fmt::format("contact '{}': restitution {:g} needs impact level velocity (on position level the "
-                                 "points' impacts are inelastic, e = 0)",
-                                 contact.name(), contact.law().restitution));
+  if (options_.impact_level == ImpactLevel::kVelocity) return;
+  for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
+    const UnilateralContact& contact = system_.unilateral_contact(k);
+    if (contact.law().restitution > 0.0) {
+      throw InputError(fmt::format("contact '{}': restitution {:g} needs impact level velocity (on position level "
+                                   "the points' impacts are inelastic, e = 0)",
+                                   contact.name(), contact.law().restitution));
+    }
   }
 }
 

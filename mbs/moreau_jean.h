@@ -39,10 +39,6 @@ struct MoreauJeanOptions {
 /// position level), solver_tolerance > 0 and solver_max_iterations >= 1.
 void CheckMoreauJeanOptions(const MoreauJeanOptions& options);
 
-/// The first of the system's unilateral contacts whose law `level` cannot integrate (position
-/// level: a restitution e > 0), or -1.
-int FirstContactOutsideImpactLevel(const MultibodySystem& system, ImpactLevel level);
-
 /// One contact's outcome of a step [t_k, t_k+1], over its points (UnilateralContact::num_points).
 struct ContactStepResult {
   bool active = false;    ///< a point in the step's index set: g_N(x_k) + h/2 U_N,k <= 0
