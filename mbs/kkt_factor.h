@@ -20,11 +20,17 @@ inline constexpr Eigen::Index kSparseKktFromSize = 24;
 /// block: sparse 15 % slower).
 inline constexpr double kSparseKktMaxDensity = 0.25;
 
+/// The sparse path's singularity probe: K x = K 1 solved must give x = 1 within this (20 bodies
+/// with 5 joint rows: 3e-15; the same with a joint row given twice, which SparseLU factorises
+/// without complaint: 1.5e18).
+inline constexpr double kSingularProbeTolerance = 1e-6;
+
 /// A factorised square KKT matrix.
 class KktFactor {
  public:
   /// Factorises `kkt` (square), sparsely if it has kSparseKktFromSize rows or more and at most
-  /// kSparseKktMaxDensity of its entries are non-zero; returns false if it is singular.
+  /// kSparseKktMaxDensity of its entries are non-zero; returns false if it is singular (dense: by
+  /// the full-pivot LU's rank, sparse: by kSingularProbeTolerance).
   bool Compute(const Eigen::MatrixXd& kkt);
   /// kkt^-1 rhs.
   Eigen::MatrixXd Solve(const Eigen::MatrixXd& rhs) const;
