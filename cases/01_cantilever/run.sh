@@ -5,10 +5,7 @@
 # README.md says the case shows (check.py; exit 1 if a check fails).
 # Usage: run.sh [path/to/flexmbs]
 set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
-flexmbs="${1:-flexmbs}"
-out="${FLEXMBS_OUT:-$here/out}"
-mkdir -p "$out"
+source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 "$flexmbs" mesh "$here/beam.yaml"
 "$flexmbs" mesh "$here/beam.yaml" --json > "$out/beam.mesh.json"
 "$flexmbs" reduce "$here/beam.yaml" -o "$out/beam.sid.h5"

@@ -5,13 +5,7 @@
 # deflection with the independent planar beam reference.
 # Usage: run.sh [path/to/flexmbs]
 set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
-flexmbs="${1:-flexmbs}"
-# A path (not a name looked up on PATH) made absolute: the script changes into its folder.
-case "$flexmbs" in */*) flexmbs="$(cd "$(dirname "$flexmbs")" && pwd)/$(basename "$flexmbs")" ;; esac
-out="${FLEXMBS_OUT:-$here/out}"
-mkdir -p "$out"
-cd "$here"
+source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 "$flexmbs" reduce rod.yaml -o "$out/rod.sid.h5"
 "$flexmbs" info "$out/rod.sid.h5"
 sed "s|file: out/rod.sid.h5|file: $out/rod.sid.h5|" scene.yaml > "$out/scene.yaml"

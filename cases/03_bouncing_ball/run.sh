@@ -4,13 +4,7 @@
 # plot out/bouncing_ball.png. No preprocessing: the ball is rigid.
 # Usage: run.sh [path/to/flexmbs]
 set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
-flexmbs="${1:-flexmbs}"
-# A path (not a name looked up on PATH) made absolute: the script changes into its folder.
-case "$flexmbs" in */*) flexmbs="$(cd "$(dirname "$flexmbs")" && pwd)/$(basename "$flexmbs")" ;; esac
-out="${FLEXMBS_OUT:-$here/out}"
-mkdir -p "$out"
-cd "$here"
+source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 "$flexmbs" simulate scene_event_driven.yaml -o "$out/event_driven.h5"
 "$flexmbs" simulate scene_moreau_jean.yaml -o "$out/moreau_jean.h5"
 /usr/bin/python3 compare.py "$out/event_driven.h5" "$out/moreau_jean.h5" --plot "$out/bouncing_ball.png"
