@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets up a fresh machine and runs the main job: installs the Debian packages, builds
 # flexmbs, preprocesses the steel cantilever of cases/01_cantilever, preprocesses and simulates
-# the flexible slider-crank of cases/02_slider_crank and simulates the bouncing ball of
-# cases/03_bouncing_ball (see their READMEs).
+# the flexible slider-crank of cases/02_slider_crank, simulates the bouncing ball of
+# cases/03_bouncing_ball and reduces and simulates the sphere striking a rod of
+# cases/04_sphere_on_rod (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -10,4 +11,5 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/01_cantilever/run.sh build/bin/flexmbs
 ./cases/02_slider_crank/run.sh build/bin/flexmbs
-exec ./cases/03_bouncing_ball/run.sh build/bin/flexmbs
+./cases/03_bouncing_ball/run.sh build/bin/flexmbs
+exec ./cases/04_sphere_on_rod/run.sh build/bin/flexmbs
