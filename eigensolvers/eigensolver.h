@@ -41,7 +41,7 @@ std::string_view MissedModeCheckName(MissedModeCheck check);
 /// How the slepc backend factorises K - sigma M on more than one rank.
 enum class DistributedFactorization {
   /// Substructuring where it applies (K - sigma M positive definite) and its interface has at
-  /// most a set number of rows (reduction/slepc_solver.cc), else MUMPS.
+  /// most a set number of rows (eigensolvers/distributed/slepc_shifted_matrix.cc), else MUMPS.
   kAuto,
   /// MUMPS's own distributed Cholesky (L D L^T).
   kMumps,
