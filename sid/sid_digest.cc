@@ -1,5 +1,6 @@
 #include "sid/sid_digest.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,16 @@ class BodyHasher {
   Sha256 sha_;
 };
 
+/// `items` (nodes or surfaces) in the order of their names: the order the reader gets them back
+/// in (a group's members are listed by name), whatever order the body held them in.
+template <typename Item>
+std::vector<const Item*> ByName(const std::vector<Item>& items) {
+  std::vector<const Item*> sorted;
+  for (const Item& item : items) sorted.push_back(&item);
+  std::sort(sorted.begin(), sorted.end(), [](const Item* a, const Item* b) { return a->name < b->name; });
+  return sorted;
+}
+
 }  // namespace
 
 std::string ContentDigest(const ReducedBody& body) {
@@ -75,20 +86,20 @@ std::string ContentDigest(const ReducedBody& body) {
     h.Indices(set.second);
   });
   h.Matrix(body.phi);
-  h.Sequence(body.nodes, [&h](const Node& node) {
-    h.Text(node.name);
-    h.Indices(node.fe_nodes);
-    h.Text(node.coupling);
-    for (const layout::NodeField& field : layout::kNodeFields) h.Taylor(field.name, node.*field.member);
+  h.Sequence(ByName(body.nodes), [&h](const Node* node) {
+    h.Text(node->name);
+    h.Indices(node->fe_nodes);
+    h.Text(node->coupling);
+    for (const layout::NodeField& field : layout::kNodeFields) h.Taylor(field.name, node->*field.member);
   });
-  h.Sequence(body.surfaces, [&h](const ContactSurface& surface) {
-    h.Text(surface.name);
-    h.Indices(surface.fe_nodes);
-    h.Matrix(surface.vertices);
-    h.Indices(surface.face_sizes);
-    h.Indices(surface.face_vertices);
-    h.Matrix(surface.face_normals);
-    h.Matrix(surface.phi);
+  h.Sequence(ByName(body.surfaces), [&h](const ContactSurface* surface) {
+    h.Text(surface->name);
+    h.Indices(surface->fe_nodes);
+    h.Matrix(surface->vertices);
+    h.Indices(surface->face_sizes);
+    h.Indices(surface->face_vertices);
+    h.Matrix(surface->face_normals);
+    h.Matrix(surface->phi);
   });
   h.Indices(body.visual_surface.face_sizes);
   h.Indices(body.visual_surface.face_nodes);

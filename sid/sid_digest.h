@@ -11,7 +11,8 @@ namespace flexmbs::sid {
 
 /// SHA-256 (64 hex digits) over every field of `body` but its provenance, in a fixed order:
 /// each name or string with its length, each matrix with its dims and its doubles bit for bit,
-/// each index list as 64-bit integers. Equal for a body and its exact round trip through a file.
+/// each index list as 64-bit integers; marker nodes and surfaces in the order of their names.
+/// Equal for a body and its exact round trip through a file.
 std::string ContentDigest(const ReducedBody& body);
 
 }  // namespace flexmbs::sid
