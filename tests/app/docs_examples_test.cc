@@ -1,9 +1,10 @@
 // Every complete input shown in docs/*.md runs (issue 22: the first scene of docs/scene.md did
 // not). A complete example is a ```yaml block right after the line
-//   <!-- complete: body -->                       (a body file: `flexmbs mesh` reads it)
+//   <!-- complete: body -->                       (a body file: `flexmbs mesh` reads it, and
+//                                                   `flexmbs reduce` too when it has `reduction:`)
 //   <!-- complete: scene[; F = P[, F = P ...]] --> (a scene: `flexmbs simulate` runs it in full,
-//                                                   with each body file F reduced beforehand from
-//                                                   the body file P of the repository)
+//                                                   with each body file F it names reduced
+//                                                   beforehand from the repository's body file P)
 // Any ```yaml block with a top-level `bodies:` or `geometry:` key must carry the marker, so a new
 // complete example cannot escape the test.
 #include <gtest/gtest.h>
@@ -107,7 +108,9 @@ TEST_F(DocsExamplesTest, EveryBlockWithBodiesOrGeometryAtTheTopIsMarkedComplete)
 }
 
 // Each body example is written two folders below a folder holding meshes/ (where the cases'
-// body files are), so that its `../../meshes/...` resolves as it does for them.
+// body files are), so that its `../../meshes/...` resolves as it does for them. One with a
+// `reduction:` section is reduced as well: a body file that reduces, marked intact by
+// `info --verify`.
 TEST_F(DocsExamplesTest, BodyExamplesAreReadAndMeshed) {
   const auto examples = Examples("body");
   ASSERT_FALSE(examples.empty()) << "no <!-- complete: body --> example in docs/";
@@ -123,6 +126,13 @@ TEST_F(DocsExamplesTest, BodyExamplesAreReadAndMeshed) {
     const nlohmann::json report = nlohmann::json::parse(run.out);
     EXPECT_GT(report["nodes"].get<long>(), 0);
     EXPECT_GT(report["mass_kg"].get<double>(), 0.0);
+    if (!HasTopLevelKey(block.yaml, "reduction")) continue;
+    const fs::path sid = dir_ / "cases" / "example" / "body.sid.h5";
+    const Outcome reduce = flexmbs::testing::RunFlexmbs({"reduce", body.string(), "-o", sid.string()}, dir_);
+    ASSERT_EQ(reduce.exit_code, kExitOk) << reduce.err;
+    const Outcome verify = flexmbs::testing::RunFlexmbs({"info", "--verify", sid.string()}, dir_);
+    EXPECT_EQ(verify.exit_code, kExitOk) << verify.err;
+    fs::remove(sid);
   }
 }
 
@@ -136,10 +146,11 @@ TEST_F(DocsExamplesTest, SceneExamplesRunToTheirEndTime) {
     SCOPED_TRACE("docs/" + block.page + ":" + std::to_string(block.line));
     const fs::path folder = dir_ / std::to_string(n++);
     fs::create_directories(folder);
-    const std::regex body_file(R"(\s*([^=,\s]+)\s*=\s*([^,\s]+)\s*)");
-    for (std::sregex_iterator it(needs.begin(), needs.end(), body_file), end; it != end; ++it) {
-      const Outcome reduce = flexmbs::testing::RunFlexmbs(
-          {"reduce", (kSource / (*it)[2].str()).string(), "-o", (folder / (*it)[1].str()).string()}, folder);
+    const std::regex needed_file(R"(\s*([^=,\s]+)\s*=\s*([^,\s]+)\s*)");
+    for (std::sregex_iterator it(needs.begin(), needs.end(), needed_file), end; it != end; ++it) {
+      const fs::path from = kSource / (*it)[2].str(), to = folder / (*it)[1].str();
+      ASSERT_TRUE(fs::exists(from) && from.extension() == ".yaml") << from << ", named by the example's mark, is not a body file";
+      const Outcome reduce = flexmbs::testing::RunFlexmbs({"reduce", from.string(), "-o", to.string()}, folder);
       ASSERT_EQ(reduce.exit_code, kExitOk) << reduce.err;
     }
     std::ofstream(folder / "scene.yaml") << block.yaml;
