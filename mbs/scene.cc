@@ -196,6 +196,13 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
   options.moreau_jean = ReadMoreauJeanOptions(node, method == 2);
   options.event_driven = ReadEventDrivenOptions(node, method == 3);
   ReadIntegratorOptions(node, options.end_time, &options.integrator);
+  if (method == 0) {
+    for (const std::string_view key : {"jacobian", "newton"}) {
+      if (node.Has(key)) {
+        node.Required(key).Fail("only for method implicit (the explicit method solves no Newton systems)");
+      }
+    }
+  }
   ReadPositive(node, "baumgarte_frequency", &options.baumgarte_frequency);
   if (node.Has("redundant_pivot")) {
     const YamlNode item = node.Required("redundant_pivot");
