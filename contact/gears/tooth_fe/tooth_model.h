@@ -1,0 +1,36 @@
+#pragma once
+// A spur gear tooth's compliance along its flank from the project's FE stage (docs/contact.md,
+// "Elastic teeth"): gmsh meshes the tooth on its rim segment (tooth_geo.h), fem/ assembles K,
+// and one sparse factorisation gives the tooth's deflection under a load along the line of action
+// at each load point of the flank.
+
+#include "contact/gears/spur_gear.h"
+#include "contact/gears/tooth_fe/tooth_geo.h"
+#include "contact/gears/tooth_stiffness.h"
+
+namespace flexmbs::gear_tooth_fe {
+
+/// The FE tooth's options: its outline, the elements and the load points.
+struct ToothModelOptions {
+  ToothGeometryOptions geometry;
+  int element_order = 2;  ///< 1: hex8 (wedge6), 2: hex20 (wedge15)
+  int loads = 9;          ///< load points from the form circle to the tip (>= 2)
+};
+
+/// What an FE tooth run gives: the compliance table and the size of the model.
+struct ToothModelResult {
+  contact::ToothCompliance compliance;
+  long nodes = 0;     ///< the mesh's nodes
+  long elements = 0;  ///< its elements
+};
+
+/// The compliance of `gear`'s tooth (unthinned, MakeSpurGear) in plane strain: the slab's faces
+/// held in z, the cut faces and the bore clamped, a unit load per face width along -n (into the
+/// tooth) at each load point, spread over the face width by the element edges' consistent
+/// weights; the deflection is the centre point's displacement along -n (ToothCompliance).
+/// InputError from MakeToothGeometry, fem::ImportMesh, or for an invalid material.
+ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
+                                       const contact::ToothMaterial& material,
+                                       const ToothModelOptions& options);
+
+}  // namespace flexmbs::gear_tooth_fe

@@ -1,0 +1,77 @@
+#include "contact/gears/tooth_stiffness.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+
+namespace flexmbs::contact {
+namespace {
+
+/// ISO 6336-1:2019 Table 8: C1 ... C9 of q' [mm um / N].
+constexpr std::array<double, 9> kIsoC = {0.04723,  0.15551, 0.25791,  -0.00635, -0.11654,
+                                         -0.00193, -0.24188, 0.00529, 0.00182};
+
+/// 1 N/(mm um) in N/m^2.
+constexpr double kNewtonPerMmMicron = 1e9;
+
+/// ISO 6336-1's C_B of one wheel's basic rack.
+double RackFactor(const SpurGearSpec& g) {
+  const double alpha_deg = g.pressure_angle * 180.0 / std::numbers::pi;
+  return (1.0 + 0.5 * (1.2 - g.dedendum_coefficient)) * (1.0 - 0.02 * (20.0 - alpha_deg));
+}
+
+}  // namespace
+
+IsoMeshStiffness IsoSinglePairStiffness(const SpurGearSpec& g1, const SpurGearSpec& g2) {
+  const double z1 = g1.teeth, z2 = g2.teeth, x1 = g1.profile_shift, x2 = g2.profile_shift;
+  const auto& c = kIsoC;
+  const double q = c[0] + c[1] / z1 + c[2] / z2 + c[3] * x1 + c[4] * x1 / z1 + c[5] * x2 +
+                   c[6] * x2 / z2 + c[7] * x1 * x1 + c[8] * x2 * x2;
+  IsoMeshStiffness iso;
+  iso.theoretical = kNewtonPerMmMicron / q;
+  iso.c_b = 0.5 * (RackFactor(g1) + RackFactor(g2));
+  iso.single_pair = iso.theoretical * iso.c_m * iso.c_r * iso.c_b;
+  return iso;
+}
+
+double WeberFlattening(double load_per_width, double rho1, double rho2, double h1, double h2,
+                       const ToothMaterial& material) {
+  FLEXMBS_CHECK(load_per_width > 0.0 && rho1 > 0.0 && rho2 > 0.0 && h1 > 0.0 && h2 > 0.0,
+                "WeberFlattening needs a load, radii and depths > 0");
+  const double nu = material.poisson_ratio;
+  const double soft = (1.0 - nu * nu) / (std::numbers::pi * material.youngs_modulus);
+  const double radius = rho1 * rho2 / (rho1 + rho2);
+  const double half_width = std::sqrt(8.0 * load_per_width * radius * soft);
+  return 2.0 * load_per_width * soft *
+         (std::log(2.0 * h1 / half_width) + std::log(2.0 * h2 / half_width) - nu / (1.0 - nu));
+}
+
+ToothComplianceAt InterpolateCompliance(const ToothCompliance& tooth, double roll) {
+  const std::vector<double>& t = tooth.roll;
+  FLEXMBS_CHECK(t.size() >= 2 && tooth.compliance.size() == t.size() &&
+                    tooth.centre_depth.size() == t.size(),
+                "a tooth compliance table needs two or more samples of each column");
+  const double clamped = std::clamp(roll, t.front(), t.back());
+  const auto upper = std::upper_bound(t.begin() + 1, t.end() - 1, clamped);
+  const auto k = static_cast<std::size_t>(upper - t.begin()) - 1;
+  FLEXMBS_CHECK(t[k + 1] > t[k], "a tooth compliance table's roll angles must increase");
+  const double s = (clamped - t[k]) / (t[k + 1] - t[k]);
+  return {(1.0 - s) * tooth.compliance[k] + s * tooth.compliance[k + 1],
+          (1.0 - s) * tooth.centre_depth[k] + s * tooth.centre_depth[k + 1]};
+}
+
+double TeethPairStiffness(const ElasticTeeth& teeth, const GearPair& pair, double roll1,
+                          double roll2) {
+  const ToothComplianceAt q1 = InterpolateCompliance(teeth.tooth1, roll1);
+  const ToothComplianceAt q2 = InterpolateCompliance(teeth.tooth2, roll2);
+  const double w = teeth.reference_load;
+  const double flattening =
+      WeberFlattening(w, pair.gear1.base_radius * roll1, pair.gear2.base_radius * roll2,
+                      q1.centre_depth, q2.centre_depth, teeth.material);
+  return 1.0 / (q1.compliance + q2.compliance + flattening / w);
+}
+
+}  // namespace flexmbs::contact
