@@ -46,7 +46,12 @@ SimeonState PublishedSolution() {
 // simeon_crank_reference.py's solution at t = 0.1 s from INIT projected like flexmbs does:
 // converged to 3e-13 (rigid positions and velocities), 8e-12 (modal positions), 2.4e-11 (q1', q2'),
 // 1.1e-9 (q3', q4'), 2e-11 (phi2'', x3'', multipliers), 3.4e-8 (modal accelerations): the change
-// from rtol 1e-12 to 1e-13.
+// from rtol 1e-12 to 1e-13. No test regenerates these values: the script takes about 5 minutes
+// (sympy's check of crank.f, then DOP853 at rtol 1e-13 in Python), and even its integration
+// alone at rtol 1e-10 took 10-26 s on the shared 2-core machine. Rerun by hand (2026-11-27,
+// integrate() at rtol 1e-10 from the same projected INIT): it gives these 24 values to 6.8e-10
+// (positions), 1.1e-7 (velocities), 2.9e-6 (accelerations) and 1.5e-9 (multipliers) relative, the
+// size of that tolerance's error.
 SimeonState IndependentSolution() {
   SimeonState y;
   y << 1.5000000000000037e+01, -3.3117349880530661e-01, 1.6973733265865448e-01,
