@@ -1,5 +1,6 @@
 #include "reduction/sid_body_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <numeric>
@@ -167,6 +168,11 @@ sid::ReducedBody BuildReducedBody(const fem::Mesh& mesh, const FeModel& model, f
   out.phi = Phi;
   out.nodes = MarkerNodes(mesh, Phi, basis.held_by, sid_spec.markers);
   out.surfaces = ContactSurfaces(mesh, sid_spec.contact_surfaces, Phi);
+  // In the order of their names, the order the .sid.h5 file gives them back in (docs/sid.md):
+  // the body reduce exports (--format sid-ascii) numbers its nodes as export does from the file.
+  const auto by_name = [](const auto& a, const auto& b) { return a.name < b.name; };
+  std::sort(out.nodes.begin(), out.nodes.end(), by_name);
+  std::sort(out.surfaces.begin(), out.surfaces.end(), by_name);
   out.visual_surface = VisualSurfaceOf(mesh);
 
   if (sid_spec.geometric_stiffening) {

@@ -184,6 +184,33 @@ TEST(MarkerNodes, WithoutGeometricStiffeningCtAndNodeBlocksAreOrderZero) {
   }
 }
 
+// The built body holds its marker nodes and contact surfaces in the order of their names, the
+// order its .sid.h5 file gives them back in: the interface marker 'tip' after a sid: marker 'mid',
+// surfaces asked for as [top, bottom] as [bottom, top] (the ASCII SID numbered nodes in one order
+// from `reduce --format sid-ascii` and in the other from `export` of the file).
+TEST(MarkerNodes, NodesAndSurfacesAreInNameOrder) {
+  testing::Body b = testing::MakeBox(ElementType::kHex8, {4, 1, 1}, {0.4, 0.05, 0.05}, testing::Steel());
+  b.mesh.node_sets["mid"] = testing::NodesAt(b.mesh, 0, 0.2);
+  b.mesh.node_sets["top"] = testing::NodesAt(b.mesh, 2, 0.05);
+  b.mesh.node_sets["bottom"] = testing::NodesAt(b.mesh, 2, 0.0);
+  BoundaryConditions conditions;
+  conditions.supports.push_back({"root", testing::NodesAt(b.mesh, 0, 0.0)});
+  conditions.interfaces.push_back({"tip", testing::NodesAt(b.mesh, 0, 0.4), Coupling::kRigid, std::nullopt, {}});
+  eigensolvers::EigenOptions eigen;
+  eigen.num_modes = 2;
+  const ReducedBasis cb = CraigBamptonBasis(b.model(), conditions, eigen, testing::Spectra());
+  SidSpec sid;
+  sid.markers.push_back({"mid", "mid", MarkerCoupling::kAveraging, std::nullopt, std::nullopt});
+  sid.contact_surfaces = {"top", "bottom"};
+  const sid::ReducedBody body = BuildReducedBody(b.mesh, b.model(), fem::MassMatrixKind::kConsistent, sid, cb);
+  ASSERT_EQ(body.nodes.size(), 2u);
+  EXPECT_EQ(body.nodes[0].name, "mid");
+  EXPECT_EQ(body.nodes[1].name, "tip");
+  ASSERT_EQ(body.surfaces.size(), 2u);
+  EXPECT_EQ(body.surfaces[0].name, "bottom");
+  EXPECT_EQ(body.surfaces[1].name, "top");
+}
+
 TEST(MarkerNodes, BadMarkersAreOneLineInputErrors) {
   testing::Body b =
       testing::MakeBox(ElementType::kHex8, {2, 1, 1}, {0.2, 0.05, 0.05}, testing::Steel());
