@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -163,6 +164,19 @@ DatasetView InspectDataset(const FileState& file, hid_t loc, const std::string& 
 /// and under its checksum; else chunked in blocks of whole rows of about 1 MiB with the
 /// Fletcher32 checksum on every chunk.
 Handle DatasetCreationList(const std::vector<hsize_t>& dims, std::size_t element_bytes);
+
+/// The rows (index 0) per chunk DatasetCreationList gives a dataset of `dims`: 0 if it is not
+/// chunked (a scalar, or no values).
+hsize_t ChunkRows(const std::vector<hsize_t>& dims, std::size_t element_bytes);
+
+/// Writes the values of the chunked dataset `id` (created with DatasetCreationList(dims,
+/// element_bytes); `values` row-major, in the file's byte order) as whole chunks with their
+/// Fletcher32 checksums (core/fletcher32.h) through H5Dwrite_chunk, past HDF5's filter pipeline,
+/// which copies every chunk into a fresh allocation of its own (docs/h5.md, "Cost of the
+/// checksums"). The file is the same: HDF5 checks the checksums when it reads.
+void WriteChecksummedChunks(const FileState& file, hid_t id, const std::string& object,
+                            const std::vector<hsize_t>& dims, std::span<const std::byte> values,
+                            std::size_t element_bytes);
 
 /// The creation list of a chunked dataset with chunk dims `chunk` and the Fletcher32 checksum.
 Handle ChecksummedChunks(const std::vector<hsize_t>& chunk);

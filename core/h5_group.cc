@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -27,6 +28,7 @@ using detail::CheckStorage;
 using detail::CheckUnits;
 using detail::CheckValuesDigest;
 using detail::ChildType;
+using detail::ChunkRows;
 using detail::DatasetCreationList;
 using detail::DatasetView;
 using detail::Fail;
@@ -42,6 +44,7 @@ using detail::ReadStringData;
 using detail::StringTypeProblem;
 using detail::Utf8StringType;
 using detail::Writable;
+using detail::WriteChecksummedChunks;
 using detail::WriteValuesDigestIfInPlace;
 using detail::WriteStringAttribute;
 
@@ -208,7 +211,14 @@ void WriteNumeric(FileState& file, hid_t loc, const std::string& object, std::st
                        H5Dclose);
   std::size_t count = 1;
   for (hsize_t d : dims) count *= static_cast<std::size_t>(d);
-  if (count > 0) {
+  const std::size_t element_bytes = H5Tget_size(file_type);
+  if (ChunkRows(dims, element_bytes) > 0) {
+    // The memory types are the file types on a little-endian machine: the bytes are the file's.
+    static_assert(std::endian::native == std::endian::little, "chunks are written in the file's byte order");
+    FLEXMBS_CHECK(H5Tget_size(memory_type) == element_bytes, fmt::format("{}: memory and file types differ", object));
+    WriteChecksummedChunks(file, dataset.get(), object, dims,
+                           std::span(static_cast<const std::byte*>(data), count * element_bytes), element_bytes);
+  } else if (count > 0) {
     Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), file, object,
           "write the dataset");
   }

@@ -1,5 +1,6 @@
 // core/h5_detail.h: how datasets are stored (chunked with the Fletcher32 checksum, compact
-// scalars) and the checks readers make of a dataset's storage before they read it.
+// scalars), how whole datasets are written chunk by chunk, and the checks readers make of a
+// dataset's storage before they read it.
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -7,10 +8,14 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+#include "core/fletcher32.h"
 #include "core/h5_detail.h"
 
 namespace flexmbs::h5::detail {
@@ -24,6 +29,13 @@ constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 constexpr hsize_t kMaxChunkBytes = hsize_t{1} << 32;
 /// The Fletcher32 checksum stored after each chunk's values.
 constexpr hsize_t kFletcher32Bytes = 4;
+
+/// The bytes of one row (index 0) of a dataset of `dims` with `element_bytes` per value.
+std::size_t RowBytes(const std::vector<hsize_t>& dims, std::size_t element_bytes) {
+  std::size_t bytes = element_bytes;
+  for (std::size_t d = 1; d < dims.size(); ++d) bytes *= static_cast<std::size_t>(dims[d]);
+  return bytes;
+}
 
 /// Throws InputError naming `object` unless every chunk of the chunked dataset `view` is found
 /// in its chunk index with its filters applied. The 1.8 format's chunk index (version-1 B-trees)
@@ -91,18 +103,48 @@ Handle ChecksummedChunks(const std::vector<hsize_t>& chunk) {
   return list;
 }
 
+hsize_t ChunkRows(const std::vector<hsize_t>& dims, std::size_t element_bytes) {
+  if (dims.empty() || std::find(dims.begin(), dims.end(), hsize_t{0}) != dims.end()) return 0;
+  return std::clamp<hsize_t>(kChunkBytes / (RowBytes(dims, element_bytes)), 1, dims[0]);
+}
+
 Handle DatasetCreationList(const std::vector<hsize_t>& dims, std::size_t element_bytes) {
-  std::size_t row_values = 1;
-  for (std::size_t d = 1; d < dims.size(); ++d) row_values *= static_cast<std::size_t>(dims[d]);
-  const bool empty = std::find(dims.begin(), dims.end(), hsize_t{0}) != dims.end();
-  if (dims.empty() || empty) {
+  const hsize_t chunk_rows = ChunkRows(dims, element_bytes);
+  if (chunk_rows == 0) {
     Handle list(CheckInternal(H5Pcreate(H5P_DATASET_CREATE), "create a dataset creation list"), H5Pclose);
     if (dims.empty()) CheckInternal(H5Pset_layout(list.get(), H5D_COMPACT), "make a compact dataset");
     return list;
   }
   std::vector<hsize_t> chunk = dims;
-  chunk[0] = std::clamp<hsize_t>(kChunkBytes / (row_values * element_bytes), 1, dims[0]);
+  chunk[0] = chunk_rows;
   return ChecksummedChunks(chunk);
+}
+
+void WriteChecksummedChunks(const FileState& file, hid_t id, const std::string& object,
+                            const std::vector<hsize_t>& dims, std::span<const std::byte> values,
+                            std::size_t element_bytes) {
+  const hsize_t chunk_rows = ChunkRows(dims, element_bytes);
+  const std::size_t row_bytes = RowBytes(dims, element_bytes);
+  FLEXMBS_CHECK(chunk_rows > 0 && values.size() == dims[0] * row_bytes,
+                fmt::format("{}: {} bytes of values for dims [{}]", object, values.size(), fmt::join(dims, ", ")));
+  const std::size_t chunk_bytes = static_cast<std::size_t>(chunk_rows) * row_bytes;
+  // One chunk at a time in a buffer that stays in cache: its values, the fill value 0 past the
+  // last row (HDF5 stores edge chunks whole and checksums them so), the checksum after them.
+  std::vector<std::byte> chunk(chunk_bytes + kFletcher32Bytes);
+  std::vector<hsize_t> offset(dims.size(), 0);
+  for (hsize_t row = 0; row < dims[0]; row += chunk_rows) {
+    const std::size_t bytes = static_cast<std::size_t>(std::min(chunk_rows, dims[0] - row)) * row_bytes;
+    const std::span<const std::byte> part = values.subspan(static_cast<std::size_t>(row) * row_bytes, bytes);
+    std::copy(part.begin(), part.end(), chunk.begin());
+    std::fill(chunk.begin() + static_cast<std::ptrdiff_t>(bytes), chunk.end(), std::byte{0});
+    const std::uint32_t checksum = Fletcher32(std::span(chunk).first(chunk_bytes));
+    for (std::size_t k = 0; k < kFletcher32Bytes; ++k) {
+      chunk[chunk_bytes + k] = static_cast<std::byte>((checksum >> (8 * k)) & 0xff);  // little-endian, as HDF5
+    }
+    offset[0] = row;
+    Check(H5Dwrite_chunk(id, H5P_DEFAULT, 0, offset.data(), chunk.size(), chunk.data()), file, object,
+          "write the dataset");
+  }
 }
 
 void CheckStorage(const FileState& file, const DatasetView& view, const std::string& object,
