@@ -211,11 +211,20 @@ void ValidateConditions(Index num_nodes, const BoundaryConditions& conditions) {
     }
     owner_names.push_back(fmt::format("{} '{}'", what, name));
   };
+  // Supports may share nodes (a node in two holds the union of their components, as Nastran's
+  // SPCs add up); a node of an interface belongs to that interface alone.
   std::vector<int> owner(static_cast<std::size_t>(num_nodes), -1);
   for (const SupportSpec& s : conditions.supports) {
     claim_name("support", s.name);
-    CheckNodeList("support", s.name, s.nodes, num_nodes, &owner, static_cast<int>(owner_names.size()) - 1,
-                  owner_names);
+    if (std::none_of(s.components.begin(), s.components.end(), [](bool held) { return held; })) {
+      throw InputError(fmt::format("support '{}': holds no component (give x, y and/or z)", s.name));
+    }
+    const int id = static_cast<int>(owner_names.size()) - 1;
+    std::vector<int> own(static_cast<std::size_t>(num_nodes), -1);
+    CheckNodeList("support", s.name, s.nodes, num_nodes, &own, id, owner_names);
+    for (const int n : s.nodes) {
+      if (owner[static_cast<std::size_t>(n)] < 0) owner[static_cast<std::size_t>(n)] = id;
+    }
   }
   for (const InterfaceSpec& i : conditions.interfaces) {
     claim_name("interface", i.name);
@@ -235,12 +244,16 @@ class TransformBuilder {
   explicit TransformBuilder(const Eigen::Matrix3Xd& nodes)
       : nodes_(nodes), num_dofs_(3 * nodes.cols()), role_(static_cast<std::size_t>(num_dofs_), kInterior) {}
 
-  // Clamps every DOF of the support's nodes.
+  // Clamps the held components of the support's nodes (once, if another support holds them too).
   void AddSupport(const SupportSpec& s) {
     for (const int n : s.nodes) {
-      for (Index a = 0; a < 3; ++a) role_[static_cast<std::size_t>(DofOf(n, a))] = kClamped;
+      for (Index a = 0; a < 3; ++a) {
+        Role& role = role_[static_cast<std::size_t>(DofOf(n, a))];
+        if (!s.components[static_cast<std::size_t>(a)] || role == kClamped) continue;
+        role = kClamped;
+        ++t_.num_support_dofs;
+      }
     }
-    t_.num_support_dofs += 3 * static_cast<Index>(s.nodes.size());
   }
 
   // The interface's boundary DOF: B's columns from next_boundary_ on.

@@ -42,6 +42,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -70,11 +71,13 @@ struct InterfaceSpec {
   std::vector<double> weights;
 };
 
-/// A node set clamped to the ground (u = 0 on all three DOF of every node). Not a boundary DOF:
-/// no constraint modes belong to it.
+/// A node set held to the ground: u = 0 along each held component of every node (all three:
+/// clamped; some: as a Nastran SPC on components 1-3 holds them). Not a boundary DOF: no
+/// constraint modes belong to it.
 struct SupportSpec {
   std::string name;
   std::vector<int> nodes;  ///< node indices, no duplicates
+  std::array<bool, 3> components = {true, true, true};  ///< held along x, y, z of B; at least one
 };
 
 /// What holds a body during a reduction. Empty: the body is free-free.
@@ -122,7 +125,7 @@ struct ConstraintTransform {
   /// "<interface>_<tx|ty|tz|rx|ry|rz>" (markers).
   std::vector<std::string> boundary_names;
   std::vector<InterfaceRange> interfaces;
-  Eigen::Index num_support_dofs = 0;  ///< DOF clamped by supports
+  Eigen::Index num_support_dofs = 0;  ///< DOF held by supports (their held components)
 
   Eigen::Index num_dofs() const { return G.rows(); }
   Eigen::Index num_boundary() const { return B.cols(); }
@@ -132,7 +135,8 @@ struct ConstraintTransform {
 /// Builds the transformation of `conditions` for a mesh with node positions `nodes` (3 x n).
 /// Throws a one-line InputError naming the interface or support for: an empty name, a name
 /// used twice, no nodes, a node index out of range or listed twice, a node in two interfaces or
-/// supports, weights on a non-averaging interface or of the wrong count or not finite and > 0,
+/// in an interface and a support (supports may share nodes: the union of their components is
+/// held), a support that holds no component, weights on a non-averaging interface or of the wrong count or not finite and > 0,
 /// a non-finite marker, and (rigid, averaging) nodes on one line, which leave the marker's
 /// rotation about the line undetermined.
 ConstraintTransform BuildConstraintTransform(const Eigen::Matrix3Xd& nodes, const BoundaryConditions& conditions);

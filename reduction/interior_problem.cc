@@ -19,7 +19,9 @@ namespace {
 // below this fraction of the first (exactly collinear positions give round-off).
 constexpr double kCollinearFraction = 1e-9;
 
-bool SameSupport(const SupportSpec& a, const SupportSpec& b) { return a.name == b.name && a.nodes == b.nodes; }
+bool SameSupport(const SupportSpec& a, const SupportSpec& b) {
+  return a.name == b.name && a.nodes == b.nodes && a.components == b.components;
+}
 
 bool SameInterface(const InterfaceSpec& a, const InterfaceSpec& b) {
   return a.name == b.name && a.nodes == b.nodes && a.coupling == b.coupling &&
@@ -167,9 +169,14 @@ void ThrowNotHeld(const FeModel& model, const BoundaryConditions& conditions) {
     if (i.coupling == Coupling::kAveraging) has_averaging = true;
     held.insert(held.end(), i.nodes.begin(), i.nodes.end());
   }
+  const bool partial = std::any_of(conditions.supports.begin(), conditions.supports.end(), [](const SupportSpec& s) {
+    return std::find(s.components.begin(), s.components.end(), false) != s.components.end();
+  });
   std::string reason;
   if (conditions.empty()) {
     reason = "nothing holds it";
+  } else if (partial) {
+    reason = "supports that hold only some components leave a rigid motion free (hold the others somewhere too)";
   } else if (!has_averaging) {
     Eigen::Matrix3Xd x(3, static_cast<Eigen::Index>(held.size()));
     for (std::size_t k = 0; k < held.size(); ++k) x.col(static_cast<Eigen::Index>(k)) = model.nodes.col(held[k]);

@@ -17,6 +17,30 @@ const std::vector<std::string_view> kMethods = {"free_free", "fixed_interface", 
 const std::vector<std::string_view> kCouplings = {"nodes", "rigid", "averaging"};
 // In the order of the LoadDistribution enum.
 const std::vector<std::string_view> kDistributions = {"resultant", "per_node"};
+// A support's components, axes of B.
+const std::vector<std::string_view> kAxes = {"x", "y", "z"};
+
+// A support: a node set name (x, y and z held) or {node_set, components: [x, y, z]}.
+SupportSetting ReadSupport(const YamlNode& node, const std::vector<std::string>& node_sets) {
+  SupportSetting spec;
+  if (!node.Has("node_set") && !node.Has("components")) {
+    spec.node_set = ReadNodeSetName(node, node_sets);
+    return spec;
+  }
+  node.RejectUnknownKeys({"node_set", "components"});
+  spec.node_set = ReadNodeSetName(node.Required("node_set"), node_sets);
+  if (!node.Has("components")) return spec;
+  const YamlNode components = node.Required("components");
+  const std::vector<YamlNode> list = components.AsList();
+  if (list.empty()) components.Fail("an empty list holds nothing: give x, y and/or z");
+  spec.components = {false, false, false};
+  for (const YamlNode& entry : list) {
+    const auto axis = static_cast<std::size_t>(entry.AsChoice(kAxes));
+    if (spec.components[axis]) entry.Fail(fmt::format("'{}' is listed twice", kAxes[axis]));
+    spec.components[axis] = true;
+  }
+  return spec;
+}
 
 InterfaceSetting ReadInterface(const YamlNode& node, const std::vector<std::string>& node_sets) {
   node.RejectUnknownKeys({"node_set", "coupling", "marker"});
@@ -51,7 +75,9 @@ std::string_view MethodName(ReductionMethod method) { return kMethods[static_cas
 BoundaryConditions ResolveConditions(const ReductionSpec& spec,
                                      const std::map<std::string, std::vector<int>>& node_sets) {
   BoundaryConditions conditions;
-  for (const std::string& name : spec.supports) conditions.supports.push_back({name, node_sets.at(name)});
+  for (const SupportSetting& s : spec.supports) {
+    conditions.supports.push_back({s.node_set, node_sets.at(s.node_set), s.components});
+  }
   for (const InterfaceSetting& setting : spec.interfaces) {
     InterfaceSpec interface;
     interface.name = setting.node_set;
@@ -100,7 +126,7 @@ ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
   if (section.Has("orthonormalize")) spec.orthonormalize = section.Required("orthonormalize").AsBool();
   if (section.Has("supports")) {
     for (const YamlNode& node : section.Required("supports").AsList()) {
-      spec.supports.push_back(ReadNodeSetName(node, node_sets));
+      spec.supports.push_back(ReadSupport(node, node_sets));
     }
   }
   if (section.Has("interfaces")) {

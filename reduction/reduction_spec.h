@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -27,6 +28,13 @@ struct InterfaceSetting {
   std::optional<Eigen::Vector3d> p_BoMarker_B;  ///< marker position [m]; default: the set's centroid
 };
 
+/// One support as the body file names it: a node set and the components it holds (a plain
+/// name holds x, y and z; `{node_set: edges, components: [z]}` only z).
+struct SupportSetting {
+  std::string node_set;
+  std::array<bool, 3> components = {true, true, true};  ///< held along x, y, z of B
+};
+
 /// Static correction modes for unit loads on a node set (correction_modes.h LoadSet).
 struct CorrectionSpec {
   std::string node_set;
@@ -43,7 +51,7 @@ struct CorrectionSpec {
 ///       eigensolver: spectra         # spectra (default) | slepc
 ///       rigid_body_modes: exact      # free_free: exact (default) | computed
 ///       orthonormalize: false        # craig_bampton: reduced M = I, K diagonal
-///       supports: [clamp]            # node sets clamped during the reduction
+///       supports: [clamp, {node_set: edges, components: [z]}]  # held during the reduction
 ///       interfaces:
 ///         - {node_set: tip, coupling: nodes}        # nodes | rigid | averaging
 ///         - {node_set: hub, coupling: rigid, marker: [0, 0, 0]}
@@ -57,7 +65,7 @@ struct ReductionSpec {
   std::string eigensolver = "spectra";
   bool exact_rigid_body_modes = true;
   bool orthonormalize = false;
-  std::vector<std::string> supports;
+  std::vector<SupportSetting> supports;
   std::vector<InterfaceSetting> interfaces;
   std::vector<CorrectionSpec> corrections;
 };
@@ -66,8 +74,8 @@ struct ReductionSpec {
 /// (every interface and correction set must be one of them). Throws InputError
 /// "<file>:<line>:<col>: reduction.<item>: <problem>" for a missing section, an unknown
 /// method, coupling, distribution or eigensolver, a zero direction, neither modes nor max_frequency_hz, a non-positive
-/// count or band, neither a support nor an interface where the method needs one, or an
-/// unknown node set.
+/// count or band, neither a support nor an interface where the method needs one, an
+/// unknown node set, or a support's unknown, repeated or empty list of components.
 ReductionSpec LoadReductionSpec(const std::filesystem::path& body_file,
                                 const std::vector<std::string>& node_sets);
 

@@ -49,7 +49,9 @@ TEST(ReductionSpec, ReadsACraigBamptonSection) {
   EXPECT_EQ(spec.num_modes, 12);
   EXPECT_EQ(spec.eigensolver, "slepc");
   EXPECT_TRUE(spec.orthonormalize);
-  EXPECT_EQ(spec.supports, std::vector<std::string>{"clamp"});
+  ASSERT_EQ(spec.supports.size(), 1u);
+  EXPECT_EQ(spec.supports[0].node_set, "clamp");
+  EXPECT_EQ(spec.supports[0].components, (std::array<bool, 3>{true, true, true}));
   ASSERT_EQ(spec.interfaces.size(), 2u);
   EXPECT_EQ(spec.interfaces[0].coupling, Coupling::kNodes);
   EXPECT_FALSE(spec.interfaces[0].p_BoMarker_B.has_value());
