@@ -246,6 +246,19 @@ TEST_F(InfoTest, Hdf5FileOfAnotherKindIsAnInputError) {
                    unmarked.string() + ": not a file flexmbs info reads (no 'format' attribute; it reads: flexmbs-sid; with --verify also flexmbs-results)");
 }
 
+// docs/cli.md: without --verify, info summarises bodies only; a results file is named as such
+// (its summary: scripts/plot_results.py).
+TEST_F(InfoTest, ResultsFileWithoutVerifyIsAnInputError) {
+  const fs::path results = dir_ / "results.h5";
+  {
+    flexmbs::h5::File file = flexmbs::h5::File::Create(results);
+    file.root().SetStringAttribute("format", "flexmbs-results");
+    file.Commit();
+  }
+  ExpectInputError(Run({"info", results.string()}),
+                   results.string() + ": not a file flexmbs info reads (format 'flexmbs-results'; it reads: flexmbs-sid; with --verify also flexmbs-results)");
+}
+
 TEST_F(InfoTest, TruncatedBodyIsAnInputErrorForInfoAndExport) {
   const fs::path truncated = dir_ / "truncated.sid.h5";
   fs::copy_file(body_file_, truncated, fs::copy_options::overwrite_existing);
