@@ -28,12 +28,16 @@ struct SpurGearContact::Frame {
 };
 
 SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2,
-                                 contact::GearPair pair, contact::NormalLaw law)
+                                 contact::GearPair pair, contact::MeshLaw law)
     : name_(std::move(name)),
       wheel1_(std::move(wheel1)),
       wheel2_(std::move(wheel2)),
       pair_(std::move(pair)),
-      contact_(CompliantContactLaw{law, {}}, wheel2_, wheel1_) {}
+      law_(std::move(law)) {}
+
+CompliantContact SpurGearContact::PairLaw(const contact::ToothPair& tp) const {
+  return CompliantContact(CompliantContactLaw{law_.PairLaw(tp), {}}, wheel2_, wheel1_);
+}
 
 SpurGearContact::Frame SpurGearContact::PairFrame(double t, const MultibodySystem& system,
                                                   const ConstVectorRef& y) const {
@@ -87,15 +91,16 @@ ContactPoint SpurGearContact::Point(const Frame& f, const contact::ToothPair& tp
   return point;
 }
 
-std::vector<ContactPoint> SpurGearContact::Contacts(double t, const MultibodySystem& system,
-                                                    const ConstVectorRef& y) const {
+std::vector<SpurGearContact::PairContact> SpurGearContact::Contacts(double t,
+                                                                    const MultibodySystem& system,
+                                                                    const ConstVectorRef& y) const {
   const Frame f = PairFrame(t, system, y);
-  std::vector<ContactPoint> points;
+  std::vector<PairContact> contacts;
   for (const contact::ToothPair& tp :
        contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
-    if (tp.gap < 0.0) points.push_back(Point(f, tp));
+    if (tp.gap < 0.0) contacts.push_back({Point(f, tp), PairLaw(tp)});
   }
-  return points;
+  return contacts;
 }
 
 SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& system,
@@ -110,47 +115,47 @@ SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& 
     double force = 0.0;
     if (tp.gap < 0.0) {
       const ContactPoint point = Point(f, tp);
-      force = contact_.NormalForce(point);
+      force = PairLaw(tp).NormalForce(point);
       const Eigen::Vector3d f_W = force * point.n_W;  // on wheel 2; wheel 1 takes -f_W
       readout.torque1 += (point.p_Wc_W - f.wheel1.p_WM_W).cross(-f_W).dot(f.wheel1.R_WM.col(2));
       readout.torque2 += (point.p_Wc_W - f.wheel2.p_WM_W).cross(f_W).dot(f.wheel2.R_WM.col(2));
     }
     readout.pairs.push_back({tp, force});
+    readout.deflections.push_back(law_.Deflection(tp, force));
   }
   return readout;
 }
 
 void SpurGearContact::AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                                 Eigen::Ref<Eigen::VectorXd> h) const {
-  for (const ContactPoint& point : Contacts(t, system, y)) contact_.AddForces(system, point, h);
+  for (const PairContact& c : Contacts(t, system, y)) c.contact.AddForces(system, c.point, h);
 }
 
 double SpurGearContact::PotentialEnergy(double t, const MultibodySystem& system,
                                         const ConstVectorRef& y) const {
   double energy = 0.0;
-  for (const ContactPoint& point : Contacts(t, system, y))
-    energy += contact_.PotentialEnergy(point);
+  for (const PairContact& c : Contacts(t, system, y)) energy += c.contact.PotentialEnergy(c.point);
   return energy;
 }
 
 void SpurGearContact::AddForceJacobian(double t, const MultibodySystem& system,
                                        const ConstVectorRef& y, Eigen::Ref<Eigen::MatrixXd> dh_dx,
                                        Eigen::Ref<Eigen::MatrixXd> dh_du) const {
-  for (const ContactPoint& point : Contacts(t, system, y))
-    contact_.AddForceJacobian(system, point, dh_dx, dh_du);
+  for (const PairContact& c : Contacts(t, system, y))
+    c.contact.AddForceJacobian(system, c.point, dh_dx, dh_du);
 }
 
 std::vector<ContactLoad> SpurGearContact::ContactLoads(double t, const MultibodySystem& system,
                                                        const ConstVectorRef& y) const {
   std::vector<ContactLoad> loads;
-  for (const ContactPoint& point : Contacts(t, system, y)) contact_.AppendLoad(point, &loads);
+  for (const PairContact& c : Contacts(t, system, y)) c.contact.AppendLoad(c.point, &loads);
   return loads;
 }
 
 double SpurGearContact::MeshForce(double t, const MultibodySystem& system,
                                   const ConstVectorRef& y) const {
   double force = 0.0;
-  for (const ContactPoint& point : Contacts(t, system, y)) force += contact_.NormalForce(point);
+  for (const PairContact& c : Contacts(t, system, y)) force += c.contact.NormalForce(c.point);
   return force;
 }
 

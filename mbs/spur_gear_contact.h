@@ -22,16 +22,17 @@ namespace flexmbs::mbs {
 /// distance a), and each wheel's angle phi_i (contact::FlankPoint) is that of its marker's x axis
 /// from there about W1's z. Every tooth pair of contact::MeshingToothPairs with a penetration
 /// -g > 0 is a contact point in the middle of its two flank points, half way between the two
-/// markers' planes, with normal n_12 (wheel 2 takes F n_12): CompliantContact with the tooth-pair
-/// law (contact::ToothPairLaw) on the relative velocity of the two wheels' material points there,
-/// which is the gap's rate. Axes that stay parallel are assumed; the Jacobian leaves out the line
+/// markers' planes, with normal n_12 (wheel 2 takes F n_12): CompliantContact with the tooth
+/// pair's law (contact::MeshLaw: constant, or of massless elastic teeth at the pair's place on the
+/// path) on the relative velocity of the two wheels' material points there, which is the gap's
+/// rate. Axes that stay parallel are assumed; the Jacobian leaves out the line
 /// of action's turning with moving axes. Throws SimulationError if the axes come within
 /// r_b1 + r_b2 of each other or are more than 8.1 deg from parallel (a marker's z reversed).
 class SpurGearContact final : public ForceElement {
  public:
-  /// `pair` from contact::MakeGearPair, `law` from contact::ToothPairLaw.
+  /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw.
   SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
-                  contact::NormalLaw law);
+                  contact::MeshLaw law);
   const std::string& name() const override { return name_; }
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
@@ -61,6 +62,8 @@ class SpurGearContact final : public ForceElement {
     double phi1 = 0.0, phi2 = 0.0;  ///< the wheels' angles [rad] (contact::FlankPoint)
     /// Every pair of contact::MeshingToothPairs; force [N] the law's, 0 for a pair apart.
     std::vector<contact::ToothPairLoad> pairs;
+    /// Per pair (same order) its teeth's deflections under that force (zeros for rigid teeth).
+    std::vector<contact::ToothPairDeflection> deflections;
     /// The torques [N m] on wheel 1 and wheel 2 about their axes (the markers' z through the
     /// markers' origins) from the pairs' loads at their contact points.
     double torque1 = 0.0, torque2 = 0.0;
@@ -76,14 +79,21 @@ class SpurGearContact final : public ForceElement {
   Frame PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
   /// The contact point of tooth pair `tp` (penetration -g) in frame `f`.
   static ContactPoint Point(const Frame& f, const contact::ToothPair& tp);
-  /// The contact points of the tooth pairs in contact (penetration > 0).
-  std::vector<ContactPoint> Contacts(double t, const MultibodySystem& system,
-                                     const ConstVectorRef& y) const;
+  /// A tooth pair in contact: its point and the contact evaluating its law.
+  struct PairContact {
+    ContactPoint point;
+    CompliantContact contact;
+  };
+  /// The tooth pairs in contact (penetration > 0).
+  std::vector<PairContact> Contacts(double t, const MultibodySystem& system,
+                                    const ConstVectorRef& y) const;
+  /// The compliant contact of tooth pair `tp` (wheel 2 as body A).
+  CompliantContact PairLaw(const contact::ToothPair& tp) const;
 
   std::string name_;
   MarkerRef wheel1_, wheel2_;
   contact::GearPair pair_;
-  CompliantContact contact_;
+  contact::MeshLaw law_;
 };
 
 }  // namespace flexmbs::mbs

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "contact/laws/law_checks.h"
 #include "core/error.h"
@@ -22,7 +23,40 @@ NormalLaw ToothPairLaw(const GearMeshCompliance& compliance, const GearPair& pai
   return LinearLaw(compliance.single_pair_stiffness * face_width, compliance.damping);
 }
 
-MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance,
+MeshLaw::MeshLaw(NormalLaw law) : law_(law) {}
+
+MeshLaw::MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping)
+    : law_(LinearLaw(1.0, damping)),
+      teeth_(std::move(teeth)),
+      pair_(pair),
+      face_width_(std::min(pair.gear1.spec.face_width, pair.gear2.spec.face_width)),
+      damping_(damping) {}
+
+std::pair<double, double> MeshLaw::Rolls(const ToothPair& tp) const {
+  return {std::max(tp.roll1, teeth_->tooth1.roll.front()),
+          std::max(tp.roll2, teeth_->tooth2.roll.front())};
+}
+
+NormalLaw MeshLaw::PairLaw(const ToothPair& tp) const {
+  if (!teeth_) return law_;
+  const auto [t1, t2] = Rolls(tp);
+  return LinearLaw(TeethPairStiffness(*teeth_, pair_, t1, t2) * face_width_, damping_);
+}
+
+ToothPairDeflection MeshLaw::Deflection(const ToothPair& tp, double force) const {
+  if (!teeth_) return {};
+  const auto [t1, t2] = Rolls(tp);
+  const double w = force / face_width_;  // per face width
+  const double w_ref = teeth_->reference_load;
+  const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
+  const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
+  return {q1.compliance * w, q2.compliance * w,
+          WeberFlattening(w_ref, pair_.gear1.base_radius * t1, pair_.gear2.base_radius * t2,
+                          q1.centre_depth, q2.centre_depth, teeth_->material) *
+              w / w_ref};
+}
+
+MeshLoads EvaluateMesh(const GearPair& pair, const MeshLaw& law, double centre_distance,
                        double phi1, double phi2, double omega1, double omega2) {
   MeshLoads loads;
   const Eigen::Vector2d p_O1O2(centre_distance, 0.0);
@@ -30,7 +64,7 @@ MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre
     if (!(tp.gap < 0.0)) continue;
     const double rate =
         Sign(tp.side) * (pair.gear1.base_radius * omega1 + pair.gear2.base_radius * omega2);
-    const double force = Evaluate(law, -tp.gap, rate).force;
+    const double force = Evaluate(law.PairLaw(tp), -tp.gap, rate).force;
     if (force == 0.0) continue;
     loads.pairs.push_back({tp, force});
     loads.torque1 += Cross(tp.p_O1C, -force * tp.n_12);
@@ -39,7 +73,7 @@ MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre
   return loads;
 }
 
-double StaticTransmissionError(const GearPair& pair, const NormalLaw& law, double centre_distance,
+double StaticTransmissionError(const GearPair& pair, const MeshLaw& law, double centre_distance,
                                double phi1, double torque) {
   FLEXMBS_CHECK(torque > 0.0 && std::isfinite(torque),
                 "StaticTransmissionError needs a torque > 0");

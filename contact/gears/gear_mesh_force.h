@@ -1,11 +1,14 @@
 #pragma once
 // The mesh force of a spur pair with compliant teeth on rigid flanks (docs/contact.md, "Spur
-// gears"): each tooth pair in contact a linear spring-dashpot along its line of action, from the
-// single-pair mesh stiffness of ISO 6336-1, and the torques on both wheels. Axes at rest.
+// gears"): each tooth pair in contact a linear spring-dashpot along its line of action, of the
+// single-pair mesh stiffness of ISO 6336-1 or of elastic teeth in series at the pair's place on the
+// path of contact, and the torques on both wheels. Axes at rest.
 
+#include <optional>
 #include <vector>
 
 #include "contact/gears/gear_mesh.h"
+#include "contact/gears/tooth_stiffness.h"
 #include "contact/laws/normal_law.h"
 
 namespace flexmbs::contact {
@@ -24,6 +27,41 @@ struct GearMeshCompliance {
 /// and > 0" or LinearLaw's for a negative damping.
 NormalLaw ToothPairLaw(const GearMeshCompliance& compliance, const GearPair& pair);
 
+/// How far a load F on a tooth pair moves its teeth along the line of action [m] (each tooth's
+/// tangential deflection, tooth_stiffness.h's q F / b, and the two flanks' flattening); zero for
+/// rigid teeth. With an undamped law they add up to the pair's penetration.
+struct ToothPairDeflection {
+  double tooth1 = 0.0, tooth2 = 0.0, flattening = 0.0;
+};
+
+/// The tooth pairs' laws of a mesh: one law for every pair (teeth of constant stiffness, the rigid
+/// flanks' model), or, for massless elastic teeth, a LinearLaw(c(t1, t2) b, c) per pair from its
+/// roll angles (TeethPairStiffness: both teeth and the flattening as springs in series, b the
+/// common face width). The series is solved quasi-statically (docs/contact.md, "Elastic teeth"):
+/// exact for massless teeth when the damping c acts on the pair's whole deflection.
+class MeshLaw {
+ public:
+  /// Every tooth pair takes `law` (implicit: a NormalLaw is the constant-stiffness mesh).
+  MeshLaw(NormalLaw law);  // NOLINT(google-explicit-constructor)
+  /// Elastic teeth of `pair` with a damping c >= 0 [N s/m] per tooth pair in contact.
+  /// InputError from LinearLaw for a negative damping.
+  MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping);
+  /// The law of tooth pair `tp`.
+  NormalLaw PairLaw(const ToothPair& tp) const;
+  /// The deflections under a load F [N] on `tp` (elastic teeth; zeros otherwise).
+  ToothPairDeflection Deflection(const ToothPair& tp, double force) const;
+  bool elastic() const { return teeth_.has_value(); }
+
+ private:
+  /// t_i held at or above the first roll angle of the tooth's table (the form circle).
+  std::pair<double, double> Rolls(const ToothPair& tp) const;
+
+  NormalLaw law_;
+  std::optional<ElasticTeeth> teeth_;
+  GearPair pair_;  ///< the elastic teeth's pair (their base radii)
+  double face_width_ = 0.0, damping_ = 0.0;
+};
+
 /// One tooth pair's load: F >= 0 [N] pushes wheel 2 along n_12 at the contact point and wheel 1
 /// the opposite way.
 struct ToothPairLoad {
@@ -40,9 +78,9 @@ struct MeshLoads {
 
 /// The mesh loads of `pair` at centre distance a [m] (axes at rest), angles phi1, phi2 [rad] and
 /// angular velocities omega1, omega2 [rad/s] about +z: each tooth pair of MeshingToothPairs with
-/// a penetration delta = -g > 0 carries law(delta, delta'), delta' = sigma (r_b1 omega1 + r_b2
+/// a penetration delta = -g > 0 carries its law(delta, delta'), delta' = sigma (r_b1 omega1 + r_b2
 /// omega2) (the gap's rate, dg/dphi_i = -sigma r_bi).
-MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre_distance,
+MeshLoads EvaluateMesh(const GearPair& pair, const MeshLaw& law, double centre_distance,
                        double phi1, double phi2, double omega1, double omega2);
 
 /// The static transmission error [m] of `pair` at wheel 1's angle phi1 [rad] and centre distance
@@ -50,8 +88,9 @@ MeshLoads EvaluateMesh(const GearPair& pair, const NormalLaw& law, double centre
 /// lags its rigid kinematic position along the line of action, delta = r_b2 (phi2 - phi2_0)
 /// (phi2_0 = TouchingAngle2 on the positive flanks), where the mesh's torque on wheel 1 balances
 /// T. Found by bisection on delta (the mesh torque grows with it). With rigid flanks every pair
-/// in contact takes delta, so this is T / (r_b1 c' b n) for n pairs.
-double StaticTransmissionError(const GearPair& pair, const NormalLaw& law, double centre_distance,
+/// in contact takes delta, so this is T / (r_b1 b sum_pairs c) (T / (r_b1 c' b n) for n pairs of
+/// constant stiffness).
+double StaticTransmissionError(const GearPair& pair, const MeshLaw& law, double centre_distance,
                                double phi1, double torque);
 
 }  // namespace flexmbs::contact

@@ -62,7 +62,8 @@ ToothFlankProfile RightFlankProfile(const SpurGear& gear, double rack_tip_radius
   }
   // Where the straight flank ends, Y_T = Y_c - rho sin(alpha), it generates the flank point on the
   // line of action (r - Y_T) / sin(alpha) from the pitch point towards T1, r sin(alpha) from T1.
-  const double from_t1 = r * std::sin(alpha) - (r - (y_c - rho * std::sin(alpha))) / std::sin(alpha);
+  const double from_t1 =
+      r * std::sin(alpha) - (r - (y_c - rho * std::sin(alpha))) / std::sin(alpha);
   if (!(from_t1 > 1e-9 * r)) {
     throw InputError(fmt::format(
         "teeth {}, profile shift {}: the generating rack's rounding (tip radius {:.4g} m) reaches "

@@ -11,7 +11,7 @@ namespace flexmbs::contact {
 namespace {
 
 /// ISO 6336-1:2019 Table 8: C1 ... C9 of q' [mm um / N].
-constexpr std::array<double, 9> kIsoC = {0.04723,  0.15551, 0.25791,  -0.00635, -0.11654,
+constexpr std::array<double, 9> kIsoC = {0.04723,  0.15551,  0.25791, -0.00635, -0.11654,
                                          -0.00193, -0.24188, 0.00529, 0.00182};
 
 /// 1 N/(mm um) in N/m^2.
@@ -51,9 +51,9 @@ double WeberFlattening(double load_per_width, double rho1, double rho2, double h
 
 ToothComplianceAt InterpolateCompliance(const ToothCompliance& tooth, double roll) {
   const std::vector<double>& t = tooth.roll;
-  FLEXMBS_CHECK(t.size() >= 2 && tooth.compliance.size() == t.size() &&
-                    tooth.centre_depth.size() == t.size(),
-                "a tooth compliance table needs two or more samples of each column");
+  FLEXMBS_CHECK(
+      t.size() >= 2 && tooth.compliance.size() == t.size() && tooth.centre_depth.size() == t.size(),
+      "a tooth compliance table needs two or more samples of each column");
   const double clamped = std::clamp(roll, t.front(), t.back());
   const auto upper = std::upper_bound(t.begin() + 1, t.end() - 1, clamped);
   const auto k = static_cast<std::size_t>(upper - t.begin()) - 1;

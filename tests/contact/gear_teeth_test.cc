@@ -33,8 +33,8 @@ TEST(ToothProfile, RackFilletEndsOnTheInvoluteAndStartsOnTheRootCircle) {
       if (teeth < 31 && shift < 0.0) continue;  // undercut
       const SpurGear gear = MakeSpurGear(Wheel(teeth, shift), "gear");
       const ToothFlankProfile profile = RightFlankProfile(gear, kBasicRackTipRadius, 16);
-      worst_form = std::max(worst_form, (profile.fillet.back() -
-                                         ToothFlankPoint(gear, profile.form_roll)).norm());
+      worst_form = std::max(
+          worst_form, (profile.fillet.back() - ToothFlankPoint(gear, profile.form_roll)).norm());
       worst_root = std::max(worst_root, std::abs(profile.fillet.front().norm() - gear.root_radius));
       EXPECT_GT(profile.fillet.front().x(), 0.0);
       EXPECT_LT(profile.form_roll, gear.tip_roll);

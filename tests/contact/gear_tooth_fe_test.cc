@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "contact/gears/gear_mesh_force.h"
 #include "contact/gears/tooth_fe/tooth_model.h"
 #include "contact/gears/tooth_stiffness.h"
 #include "tests/input_error.h"
@@ -75,12 +76,11 @@ TEST(ToothFe, SinglePairStiffnessAlongThePathHasIsoSizeAndShape) {
       "%.4g, pitch point (%.3f) %.4g N/(mm um); ISO c'_th %.4g, c' %.4g; FE c_pitch C_M C_B %.4g\n",
       fe1.nodes, fe2.nodes, c_start / kPerMmMicron, c_max / kPerMmMicron,
       (s_max - pair.path_start) / length, c_end / kPerMmMicron,
-      (s_pitch - pair.path_start) / length, c_pitch / kPerMmMicron,
-      iso.theoretical / kPerMmMicron, iso.single_pair / kPerMmMicron,
-      c_pitch * iso.c_m * iso.c_b / kPerMmMicron);
+      (s_pitch - pair.path_start) / length, c_pitch / kPerMmMicron, iso.theoretical / kPerMmMicron,
+      iso.single_pair / kPerMmMicron, c_pitch * iso.c_m * iso.c_b / kPerMmMicron);
   // Shape: the ends a third softer than the middle, the maximum inside the middle third.
-  EXPECT_LT(c_start, 0.8 * c_max);  // measured 0.66
-  EXPECT_LT(c_end, 0.8 * c_max);    // measured 0.68
+  EXPECT_LT(c_start, 0.8 * c_max);                           // measured 0.66
+  EXPECT_LT(c_end, 0.8 * c_max);                             // measured 0.68
   EXPECT_GT((s_max - pair.path_start) / length, 1.0 / 3.0);  // measured 0.565
   EXPECT_LT((s_max - pair.path_start) / length, 2.0 / 3.0);
   EXPECT_LT(std::abs(s_max - s_pitch), 0.15 * length);  // measured 0.041
@@ -88,12 +88,88 @@ TEST(ToothFe, SinglePairStiffnessAlongThePathHasIsoSizeAndShape) {
   EXPECT_NEAR(c_pitch / iso.theoretical, 1.0, 0.15);  // measured +0.095
 }
 
+/// The FE teeth of the z 20/40 pair on the coarse mesh, computed once for the tests below.
+const contact::ElasticTeeth& CoarseTeeth() {
+  static const contact::ElasticTeeth teeth = [] {
+    contact::ElasticTeeth t;
+    t.tooth1 =
+        ToothComplianceFromFe(contact::MakeSpurGear(Wheel(20), "gear 1"), t.material, Coarse())
+            .compliance;
+    t.tooth2 =
+        ToothComplianceFromFe(contact::MakeSpurGear(Wheel(40), "gear 2"), t.material, Coarse())
+            .compliance;
+    return t;
+  }();
+  return teeth;
+}
+
+// Under a constant torque T on wheel 1 (wheel 2 held), the static transmission error of the
+// FE-tooth mesh repeats with the mesh (2 pi / z1 of wheel 1), is T / (r_b1 b c(s)) in single and
+// T / (r_b1 b (c(s) + c(s + p_b))) in double contact with c from the pairs' places on the path,
+// and the share of double contact is epsilon_alpha - 1 (rigid flanks: a pair enters the mesh at
+// the path's start whatever the load); each pair's two tooth deflections and the flattening add
+// up to its penetration (the springs in series).
+TEST(ToothFe, StaticTransmissionErrorVariesWithTheStiffnessAlongThePathAndRepeatsWithTheMesh) {
+  const contact::GearPair pair = contact::MakeGearPair({Wheel(20), Wheel(40), 0.0, 0.0});
+  const contact::MeshLaw law(pair, CoarseTeeth(), 0.0);
+  const double r_b1 = pair.gear1.base_radius, r_b2 = pair.gear2.base_radius;
+  const double torque = 400.0, a = pair.centre_distance;
+  const double period = 2.0 * std::numbers::pi / 20;
+  const int per_cycle = 400, cycles = 3;
+  int doubles = 0;
+  double worst_level = 0.0, worst_period = 0.0, worst_split = 0.0, single_max = 0.0,
+         single_min = 1e30, double_max = 0.0;
+  for (int i = 0; i < per_cycle; ++i) {
+    const double phi1 = 0.05 + period * (i + 0.5) / per_cycle;
+    const double ste = contact::StaticTransmissionError(pair, law, a, phi1, torque);
+    const double phi2 =
+        contact::TouchingAngle2(pair, a, phi1, 0.0, contact::FlankSide::kPositive) + ste / r_b2;
+    const contact::MeshLoads loads = contact::EvaluateMesh(pair, law, a, phi1, phi2, 0.0, 0.0);
+    double stiffness = 0.0;  // sum of c b over the pairs in contact
+    for (const contact::ToothPairLoad& load : loads.pairs) {
+      stiffness += law.PairLaw(load.pair).stiffness;
+      const contact::ToothPairDeflection d = law.Deflection(load.pair, load.force);
+      worst_split = std::max(worst_split,
+                             std::abs((d.tooth1 + d.tooth2 + d.flattening) / -load.pair.gap - 1.0));
+    }
+    const double expected = torque / (r_b1 * stiffness);
+    worst_level = std::max(worst_level, std::abs(ste / expected - 1.0));
+    const bool is_double = loads.pairs.size() == 2;
+    doubles += is_double;
+    if (is_double) {
+      double_max = std::max(double_max, ste);
+    } else {
+      single_max = std::max(single_max, ste);
+      single_min = std::min(single_min, ste);
+    }
+    for (int k = 1; k < cycles; ++k) {
+      const double later =
+          contact::StaticTransmissionError(pair, law, a, phi1 + k * period, torque);
+      worst_period = std::max(worst_period, std::abs(later / ste - 1.0));
+    }
+  }
+  const double share = static_cast<double>(doubles) / per_cycle;
+  std::printf(
+      "[measured] FE-tooth STE under %.0f N m: single contact %.4g ... %.4g um, double up to %.4g "
+      "um; against T / (r_b1 b sum c) %.2g, periodicity %.2g; double contact %.4f of the cycle, "
+      "epsilon - 1 = %.4f; teeth' deflections and flattening add to the penetration to %.2g\n",
+      torque, single_min * 1e6, single_max * 1e6, double_max * 1e6, worst_level, worst_period,
+      share, pair.contact_ratio - 1.0, worst_split);
+  // The bisection's round-off on the angles against delta ~ 1e-5 m: measured 3.7e-12, 5.7e-12.
+  EXPECT_LT(worst_level, 4e-11);
+  EXPECT_LT(worst_period, 6e-11);
+  EXPECT_NEAR(share, pair.contact_ratio - 1.0, 1.0 / per_cycle);  // measured 2e-4 (sampling 2.5e-3)
+  EXPECT_GT(single_min, 1.2 * double_max);                        // measured 1.65
+  EXPECT_LT(worst_split, 5e-15);  // measured 4.4e-16
+}
+
 TEST(ToothFe, RefusesAnOutlineOutOfRange) {
   const contact::SpurGear gear = contact::MakeSpurGear(Wheel(20), "gear");
   ToothModelOptions options = Coarse();
   options.geometry.rim_depth = 0.0;
-  EXPECT_NE(InputErrorMessage([&] { ToothComplianceFromFe(gear, {}, options); })
-                .find("FE tooth rim depth / m 0 must be"),
+  EXPECT_NE(InputErrorMessage([&] {
+              ToothComplianceFromFe(gear, {}, options);
+            }).find("FE tooth rim depth / m 0 must be"),
             std::string::npos);
   options = Coarse();
   options.geometry.segment_pitches = 5.0;
@@ -102,8 +178,9 @@ TEST(ToothFe, RefusesAnOutlineOutOfRange) {
                       "teeth"),
             std::string::npos)
       << wide;
-  const std::string material =
-      InputErrorMessage([&] { ToothComplianceFromFe(gear, {-2e11, 0.3}, Coarse()); });
+  const std::string material = InputErrorMessage([&] {
+    ToothComplianceFromFe(gear, {-2e11, 0.3}, Coarse());
+  });
   EXPECT_NE(material.find("FE tooth: material 'tooth'"), std::string::npos) << material;
 }
 

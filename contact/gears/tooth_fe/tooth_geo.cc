@@ -19,8 +19,8 @@ class GeoScript {
   explicit GeoScript(double size) : size_(size) {}
   /// A point at p [m] in the plane z = 0; its tag.
   int Point(const Eigen::Vector2d& p) {
-    text_ += fmt::format("Point({}) = {{{:.17g}, {:.17g}, 0, {:.17g}}};\n", ++points_, p.x(),
-                         p.y(), size_);
+    text_ += fmt::format("Point({}) = {{{:.17g}, {:.17g}, 0, {:.17g}}};\n", ++points_, p.x(), p.y(),
+                         size_);
     return points_;
   }
   /// A curve of `kind` ("Line", "Spline", "Circle") through the point tags; its tag.
@@ -58,8 +58,8 @@ std::vector<Eigen::Vector2d> InvoluteBetween(const contact::SpurGear& gear, doub
 void CheckOptions(const ToothGeometryOptions& o, int z) {
   contact::RequirePositive("FE tooth rim depth / m", o.rim_depth);
   contact::RequirePositive("FE tooth mesh size / m", o.mesh_size);
-  if (!(o.segment_pitches >= 0.5 && o.segment_pitches * 2.0 * std::numbers::pi / z <
-                                         std::numbers::pi / 2.0)) {
+  if (!(o.segment_pitches >= 0.5 &&
+        o.segment_pitches * 2.0 * std::numbers::pi / z < std::numbers::pi / 2.0)) {
     throw InputError(fmt::format(
         "FE tooth segment {} pitches must be >= 0.5 and span less than 90 deg on {} teeth",
         o.segment_pitches, z));
@@ -98,8 +98,8 @@ ToothGeometry MakeToothGeometry(const contact::SpurGear& gear, const ToothGeomet
   std::vector<int> loop{geo.Curve("Line", {bore_right, root_right}),
                         geo.Curve("Circle", {root_right, centre, fillet_right})};
   std::vector<int> load_tags{geo.Point(g.load_point.front())};
-  loop.push_back(geo.Spline(
-      fillet_right, {profile.fillet.begin() + 1, profile.fillet.end() - 1}, load_tags.back()));
+  loop.push_back(geo.Spline(fillet_right, {profile.fillet.begin() + 1, profile.fillet.end() - 1},
+                            load_tags.back()));
   for (int k = 1; k < loads; ++k) {
     load_tags.push_back(geo.Point(g.load_point[static_cast<std::size_t>(k)]));
     loop.push_back(geo.Spline(load_tags[load_tags.size() - 2],
@@ -125,15 +125,17 @@ ToothGeometry MakeToothGeometry(const contact::SpurGear& gear, const ToothGeomet
   loop.push_back(geo.Curve("Circle", {fillet_left, centre, root_left}));
   loop.push_back(geo.Curve("Line", {root_left, bore_left}));
   loop.push_back(geo.Curve("Circle", {bore_left, centre, bore_right}));
-  geo.Add(fmt::format("Curve Loop(1) = {{{}}};\nPlane Surface(1) = {{1}};\n", fmt::join(loop, ", ")));
+  geo.Add(
+      fmt::format("Curve Loop(1) = {{{}}};\nPlane Surface(1) = {{1}};\n", fmt::join(loop, ", ")));
   std::vector<int> inner;
   for (const Eigen::Vector2d& c : g.centre_point) inner.push_back(geo.Point(c));
   geo.Add(fmt::format("Point{{{}}} In Surface{{1}};\n", fmt::join(inner, ", ")));
-  geo.Add(fmt::format("Recombine Surface{{1}};\nExtrude {{0, 0, {:.17g}}} {{ Surface{{1}}; "
-                      "Layers{{1}}; Recombine; }}\n",
-                      g.face_width));
-  g.geo = "// One spur gear tooth on its rim segment (flexmbs gear_tooth_fe). Unit: m.\n" +
-          geo.text();
+  geo.Add(
+      fmt::format("Recombine Surface{{1}};\nExtrude {{0, 0, {:.17g}}} {{ Surface{{1}}; "
+                  "Layers{{1}}; Recombine; }}\n",
+                  g.face_width));
+  g.geo =
+      "// One spur gear tooth on its rim segment (flexmbs gear_tooth_fe). Unit: m.\n" + geo.text();
   return g;
 }
 

@@ -104,7 +104,8 @@ ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
   Eigen::SparseMatrix<double> K_ff(free_count, free_count);
   K_ff.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(K_ff);
-  FLEXMBS_CHECK(factor.info() == Eigen::Success, "the FE tooth's stiffness is not positive definite");
+  FLEXMBS_CHECK(factor.info() == Eigen::Success,
+                "the FE tooth's stiffness is not positive definite");
 
   // One load case per load point: a unit force along -n, i.e. w = 1 / b per face width.
   const std::size_t loads = g.roll.size();
