@@ -154,6 +154,8 @@ nlohmann::json ReportJson(const SimulateOptions& options, const mbs::Scene& scen
     j["impacts"] = events.impacts;
     j["separations"] = events.separations;
     j["closings"] = events.closings;
+    j["sticks"] = events.sticks;
+    j["slips"] = events.slips;
     j["max_impact_points"] = events.max_impact_points;
     j["max_lcp_error"] = events.max_lcp_error;
   }
@@ -204,10 +206,11 @@ void PrintReportText(const SimulateOptions& options, const mbs::Scene& scene,
                stats.moreau_jean.max_solver_error);
   }
   if (scene.options.event_driven) {
-    fmt::print("events          {} ({} impacts, at most {} points in one, {} closings, {} separations), largest LCP "
-               "error {:.3g}\n",
+    fmt::print("events          {} ({} impacts, at most {} points in one, {} closings, {} separations, {} sticks, "
+               "{} slips), largest contact-solve error {:.3g}\n",
                stats.event_driven.events, stats.event_driven.impacts, stats.event_driven.max_impact_points,
-               stats.event_driven.closings, stats.event_driven.separations, stats.event_driven.max_lcp_error);
+               stats.event_driven.closings, stats.event_driven.separations, stats.event_driven.sticks,
+               stats.event_driven.slips, stats.event_driven.max_lcp_error);
   }
   if (scene.options.integrator.method == mbs::OdeMethod::kImplicit) {
     fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,

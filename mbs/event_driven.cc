@@ -14,6 +14,10 @@ void CheckEventDrivenOptions(const EventDrivenOptions& options) {
     throw InputError(fmt::format("simulation: rest_velocity {:g} m/s must be finite and > 0",
                                  options.rest_velocity));
   }
+  if (!positive(options.stick_velocity)) {
+    throw InputError(fmt::format("simulation: stick_velocity {:g} m/s must be finite and > 0",
+                                 options.stick_velocity));
+  }
   if (!positive(options.gap_tolerance) || !positive(options.gap_projection_tolerance)) {
     throw InputError(
         fmt::format("simulation: gap tolerances {:g} m and {:g} m must be finite and > 0",

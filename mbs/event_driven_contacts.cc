@@ -13,6 +13,7 @@
 #include "contact/complementarity/lcp_solver.h"
 #include "core/error.h"
 #include "mbs/constraint_solver.h"
+#include "mbs/contact_reactions.h"
 #include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
@@ -50,27 +51,70 @@ ConstrainedResponse Respond(const MultibodySystem& system, double t, const Const
   return response;
 }
 
-/// W_N of the given kinematics stacked (k x n_u).
-MatrixXd NormalRows(const std::vector<UnilateralContactKinematics>& kinematics, Index nu) {
-  MatrixXd W(static_cast<Index>(kinematics.size()), nu);
-  for (std::size_t i = 0; i < kinematics.size(); ++i)
-    W.row(static_cast<Index>(i)) = kinematics[i].W_N;
+/// The rows of the listed points' velocities stacked, d per point: W_N (d = 1) or W_N, W_T1,
+/// W_T2 (d = 3) (d k x n_u).
+MatrixXd LocalRows(const std::vector<UnilateralContactKinematics>& kinematics, Index nu, Index d) {
+  MatrixXd W(d * static_cast<Index>(kinematics.size()), nu);
+  for (std::size_t i = 0; i < kinematics.size(); ++i) {
+    const Index row = d * static_cast<Index>(i);
+    W.row(row) = kinematics[i].W_N;
+    if (d == 3) W.middleRows(row + 1, 2) = kinematics[i].W_T;
+  }
   return W;
 }
 
-/// (M, q) by contact::SolveLcp (Lemke, then proximal Newton on a singular M); a solve that does
-/// not converge is a SimulationError at t naming `what`.
-contact::LcpSolution SolveLcpOrStop(const MatrixXd& M, const VectorXd& q, double tolerance, double t,
-                                    std::string_view what) {
-  const contact::LcpSolution solution = contact::SolveLcp({M, q}, {tolerance});
-  if (!solution.converged) {
-    throw SimulationError(
-        t, fmt::format("t = {:.9g} s: event-driven {} LCP of {} contact points did not converge: "
-                       "residual {:.3g} > tolerance {:.3g} after {} iterations ({})",
-                       t, what, q.size(), solution.error, tolerance, solution.iterations,
-                       solution.message));
+/// Sweeps of NSGS before the friction-contact solver hands over to Newton.
+constexpr int kNsgsSweeps = 1000;
+
+/// The reactions r of a local problem and how the solve went.
+struct Reactions {
+  VectorXd r;
+  contact::SolveStatus status;
+};
+
+/// The reactions of U = W r + q with d rows per point: the LCP (W, q) (d = 1; contact::SolveLcp) or
+/// the friction-contact problem (d = 3; SolveContactReactions). A solve that does not converge is a
+/// SimulationError at t naming `what`.
+Reactions SolveOrStop(const MatrixXd& W, const VectorXd& q, const VectorXd& mu, Index d, double tolerance, double t,
+                      std::string_view what) {
+  Reactions reactions;
+  contact::SolveStatus& status = reactions.status;
+  if (d == 1) {
+    contact::LcpSolution lcp = contact::SolveLcp({W, q}, {tolerance});
+    reactions.r = std::move(lcp.z);
+    status = lcp;
+  } else {
+    status = SolveContactReactions(W, q, mu, tolerance, kNsgsSweeps, &reactions.r);
   }
-  return solution;
+  if (!status.converged) {
+    throw SimulationError(
+        t, fmt::format("t = {:.9g} s: event-driven {} problem of {} contact points did not converge: "
+                       "residual {:.3g} > tolerance {:.3g} after {} iterations ({})",
+                       t, what, mu.size(), status.error, tolerance, status.iterations, status.message));
+  }
+  return reactions;
+}
+
+/// Of a local vector (d entries per point, the normal first), the normal entries.
+VectorXd NormalEntries(const VectorXd& local, Index d) {
+  return Eigen::Map<const VectorXd, 0, Eigen::InnerStride<>>(local.data(), local.size() / d, Eigen::InnerStride<>(d));
+}
+
+/// Of a local vector with 3 entries per point, the tangential pairs (2 x k).
+Eigen::Matrix2Xd TangentialEntries(const VectorXd& local) {
+  Eigen::Matrix2Xd pairs(2, local.size() / 3);
+  for (Index i = 0; i < pairs.cols(); ++i) pairs.col(i) = local.segment<2>(3 * i + 1);
+  return pairs;
+}
+
+/// The direction a sliding point's friction opposes: its tangential velocity's, U_T / |U_T| with
+/// U_T = W_T u, while U_T points ahead of the slide's direction s (U_T . s > 0) and |U_T| > 1e-12
+/// m/s; s itself at the start of a slide and once U_T has turned through 90 degrees from it, so
+/// that the motion stays smooth up to the root U_T . s = 0 where the point sticks or turns.
+Eigen::Vector2d SlideDirection(const UnilateralContactKinematics& k, const ConstVectorRef& u, const Eigen::Vector2d& s) {
+  const Eigen::Vector2d U_T = k.W_T * u;
+  constexpr double kDirectionSpeed = 1e-12;  // [m/s]
+  return U_T.dot(s) > 0.0 && U_T.norm() > kDirectionSpeed ? Eigen::Vector2d(U_T.normalized()) : s;
 }
 
 }  // namespace
@@ -117,89 +161,134 @@ std::vector<UnilateralContactKinematics> EventDrivenContacts::EvaluateAll(
   return out;
 }
 
-VectorXd EventDrivenContacts::GapAccelerationBias(double t, const ConstVectorRef& y,
-                                                  const std::vector<int>& closed) const {
+bool EventDrivenContacts::HasFriction(int contact) const {
+  return system_.unilateral_contact(contact).law().friction > 0.0;
+}
+
+Eigen::Matrix3Xd EventDrivenContacts::AccelerationBias(double t, const ConstVectorRef& y,
+                                                       const std::vector<int>& indices) const {
   const Index nu = system_.num_velocities();
   const VectorXd u = y.tail(nu);
-  const double eps = std::cbrt(std::numeric_limits<double>::epsilon()) /
-                     std::max(1.0, u.lpNorm<Eigen::Infinity>());
+  const double eps = std::cbrt(std::numeric_limits<double>::epsilon()) / std::max(1.0, u.lpNorm<Eigen::Infinity>());
   VectorXd y_plus = y, y_minus = y;
   system_.DisplacePositions(eps * u, y_plus);
   system_.DisplacePositions(-eps * u, y_minus);
-  const auto plus = Evaluate(t, y_plus, closed), minus = Evaluate(t, y_minus, closed);
-  VectorXd bias(static_cast<Index>(closed.size()));
-  for (std::size_t i = 0; i < closed.size(); ++i) {
-    bias(static_cast<Index>(i)) = (plus[i].W_N - minus[i].W_N).dot(u) / (2.0 * eps);
+  const auto plus = Evaluate(t, y_plus, indices), minus = Evaluate(t, y_minus, indices);
+  Eigen::Matrix3Xd bias(3, static_cast<Index>(indices.size()));
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    const Index c = static_cast<Index>(i);
+    bias(0, c) = (plus[i].W_N - minus[i].W_N).dot(u) / (2.0 * eps);
+    bias.col(c).tail<2>() = (plus[i].W_T - minus[i].W_T) * u / (2.0 * eps);
   }
   return bias;
 }
 
 ClosedContactForces EventDrivenContacts::Derivative(double t, const ConstVectorRef& y,
-                                                    const std::vector<int>& closed,
+                                                    const std::vector<ClosedPoint>& closed,
                                                     Eigen::Ref<VectorXd> y_dot) const {
   const Index nu = system_.num_velocities();
   for (int b = 0; b < system_.num_bodies(); ++b) {
     PositionDerivative(system_.BodyPositions(y, b), system_.BodyVelocities(y, b),
                        y_dot.segment(system_.position_offset(b), system_.body(b).num_positions()));
   }
+  const Index k = static_cast<Index>(closed.size());
   ClosedContactForces forces;
   forces.joint_lambda.resize(system_.num_constraints());
+  forces.lambda_T.setZero(2, k);
+  forces.tangential_acceleration.setZero(2, k);
+  forces.tangential_delassus.setZero(k);
   auto u_dot = y_dot.tail(nu);
   system_.Accelerations(t, y, u_dot, forces.joint_lambda);
   if (closed.empty()) return forces;
-  const MatrixXd W = NormalRows(Evaluate(t, y, closed), nu);
-  const ConstrainedResponse response = Respond(system_, t, y, W.transpose());
-  const MatrixXd delassus = W * response.dv;
-  const VectorXd w = W * u_dot + GapAccelerationBias(t, y, closed);
-  const contact::LcpSolution lcp =
-      SolveLcpOrStop(delassus, w, options_.lcp_tolerance, t, "acceleration-level");
-  u_dot += response.dv * lcp.z;
-  forces.joint_lambda += response.dlambda * lcp.z;
-  forces.lambda_N = lcp.z;
-  forces.gap_acceleration = lcp.w;
-  forces.delassus_diagonal = delassus.diagonal();
-  forces.lcp_iterations = lcp.iterations;
-  forces.lcp_error = lcp.error;
+  std::vector<int> indices;
+  for (const ClosedPoint& point : closed) indices.push_back(point.index);
+  const auto kinematics = Evaluate(t, y, indices);
+  const bool friction = std::any_of(closed.begin(), closed.end(),
+                                    [](const ClosedPoint& p) { return p.tangential != Tangential::kFree; });
+  const Index d = friction ? 3 : 1;
+  const MatrixXd rows = LocalRows(kinematics, nu, d);
+  MatrixXd columns = rows.transpose();
+  // The sticking points' cones in the friction-contact problem; a sliding point's friction
+  // -mu lambda_N s rides on its normal column (the problem sees it frictionless).
+  VectorXd mu = VectorXd::Zero(k);
+  Eigen::Matrix2Xd slide_friction = Eigen::Matrix2Xd::Zero(2, k);  // -mu s per sliding point
+  for (Index i = 0; i < k; ++i) {
+    const ClosedPoint& point = closed[static_cast<std::size_t>(i)];
+    const double mu_i = system_.unilateral_contact(points_[static_cast<std::size_t>(point.index)].contact).law().friction;
+    if (point.tangential == Tangential::kStick) mu(i) = mu_i;
+    if (point.tangential != Tangential::kSlide) continue;
+    const UnilateralContactKinematics& ki = kinematics[static_cast<std::size_t>(i)];
+    slide_friction.col(i) = -mu_i * SlideDirection(ki, y.tail(nu), point.slide_direction);
+    columns.col(d * i) += ki.W_T.transpose() * slide_friction.col(i);
+  }
+  const ConstrainedResponse response = Respond(system_, t, y, columns);
+  const MatrixXd W = rows * response.dv;
+  const Eigen::Matrix3Xd bias = AccelerationBias(t, y, indices);
+  VectorXd q = rows * u_dot;
+  for (Index i = 0; i < k; ++i) q.segment(d * i, d) += bias.col(i).head(d);
+  const Reactions reactions = SolveOrStop(W, q, mu, d, options_.lcp_tolerance, t, "acceleration-level");
+  const VectorXd& r = reactions.r;
+  const VectorXd a = W * r + q;
+  u_dot += response.dv * r;
+  forces.joint_lambda += response.dlambda * r;
+  forces.lambda_N = NormalEntries(r, d);
+  forces.gap_acceleration = NormalEntries(a, d);
+  forces.delassus_diagonal = NormalEntries(W.diagonal(), d);
+  forces.lcp_iterations = reactions.status.iterations;
+  forces.lcp_error = reactions.status.error;
+  if (!friction) return forces;
+  forces.lambda_T = TangentialEntries(r);
+  forces.tangential_acceleration = TangentialEntries(a);
+  for (Index i = 0; i < k; ++i) {
+    forces.tangential_delassus(i) = 0.5 * (W(3 * i + 1, 3 * i + 1) + W(3 * i + 2, 3 * i + 2));
+    if (closed[static_cast<std::size_t>(i)].tangential == Tangential::kSlide)
+      forces.lambda_T.col(i) = r(3 * i) * slide_friction.col(i);
+  }
   return forces;
 }
 
-ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y,
-                                         const std::vector<int>& points) const {
-  const Index nu = system_.num_velocities();
-  const MatrixXd W = NormalRows(Evaluate(t, y, points), nu);
-  const ConstrainedResponse response = Respond(system_, t, y, W.transpose());
-  ImpactResult result;
-  result.U_N_before = W * y.tail(nu);
-  VectorXd q = result.U_N_before;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const double e =
-        system_.unilateral_contact(points_[static_cast<std::size_t>(points[i])].contact)
-            .law()
-            .restitution;
-    // Newton's law acts on approaching points; a touching point already separating (U_N- > 0)
-    // only must not be pushed into the surface: U_N+ >= 0.
-    q(static_cast<Index>(i)) += e * std::min(0.0, q(static_cast<Index>(i)));
+ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y, const std::vector<int>& points) const {
+  const Index nu = system_.num_velocities(), k = static_cast<Index>(points.size());
+  VectorXd mu(k), e(k);
+  for (Index i = 0; i < k; ++i) {
+    const UnilateralLaw& law =
+        system_.unilateral_contact(points_[static_cast<std::size_t>(points[static_cast<std::size_t>(i)])].contact).law();
+    mu(i) = law.friction;
+    e(i) = law.restitution;
   }
-  const contact::LcpSolution lcp =
-      SolveLcpOrStop(W * response.dv, q, options_.lcp_tolerance, t, "impact");
-  result.P_N = lcp.z;
-  result.lcp_error = lcp.error;
-  y.tail(nu) += response.dv * lcp.z;
-  result.U_N_after = W * y.tail(nu);
+  const Index d = k > 0 && mu.maxCoeff() > 0.0 ? 3 : 1;
+  const MatrixXd rows = LocalRows(Evaluate(t, y, points), nu, d);
+  const ConstrainedResponse response = Respond(system_, t, y, rows.transpose());
+  const VectorXd U_before = rows * y.tail(nu);
+  VectorXd q = U_before;
+  // Newton's law acts on approaching points; a touching point already separating (U_N- > 0) only
+  // must not be pushed into the surface: U_N+ >= 0.
+  for (Index i = 0; i < k; ++i) q(d * i) += e(i) * std::min(0.0, q(d * i));
+  const Reactions reactions = SolveOrStop(rows * response.dv, q, mu, d, options_.lcp_tolerance, t, "impact");
+  y.tail(nu) += response.dv * reactions.r;
+  const VectorXd U_after = rows * y.tail(nu);
+  ImpactResult result;
+  result.U_N_before = NormalEntries(U_before, d);
+  result.U_N_after = NormalEntries(U_after, d);
+  result.P_N = NormalEntries(reactions.r, d);
+  result.U_T_after = d == 3 ? TangentialEntries(U_after) : Eigen::Matrix2Xd::Zero(2, k);
+  result.P_T = d == 3 ? TangentialEntries(reactions.r) : Eigen::Matrix2Xd::Zero(2, k);
+  result.lcp_error = reactions.status.error;
   return result;
 }
 
-void EventDrivenContacts::ProjectClosed(double t, Eigen::Ref<VectorXd> y,
-                                        const std::vector<int>& closed,
+void EventDrivenContacts::ProjectClosed(double t, Eigen::Ref<VectorXd> y, const std::vector<ClosedPoint>& closed,
                                         const ProjectionOptions& projection) const {
   const Index nu = system_.num_velocities();
   const bool joints = system_.num_constraints() > 0;
+  std::vector<int> indices;
+  for (const ClosedPoint& point : closed) indices.push_back(point.index);
   if (joints) ProjectPositions(system_, t, y, projection);
   if (!closed.empty()) {
     constexpr int kMaxIterations = 10;
     double residual = 0.0;
     for (int iteration = 0;; ++iteration) {
-      const auto kinematics = Evaluate(t, y, closed);
+      const auto kinematics = Evaluate(t, y, indices);
       VectorXd g(static_cast<Index>(closed.size()));
       for (std::size_t i = 0; i < closed.size(); ++i) g(static_cast<Index>(i)) = kinematics[i].g_N;
       residual = g.lpNorm<Eigen::Infinity>();
@@ -210,7 +299,7 @@ void EventDrivenContacts::ProjectClosed(double t, Eigen::Ref<VectorXd> y,
                            "to 0: max |g_N| {:.3g} m after {} steps",
                            t, closed.size(), residual, kMaxIterations));
       }
-      const MatrixXd W = NormalRows(kinematics, nu);
+      const MatrixXd W = LocalRows(kinematics, nu, 1);
       const ConstrainedResponse response = Respond(system_, t, y, W.transpose());
       const Eigen::CompleteOrthogonalDecomposition<MatrixXd> delassus(W * response.dv);
       system_.DisplacePositions(-response.dv * delassus.solve(g), y);
@@ -220,7 +309,17 @@ void EventDrivenContacts::ProjectClosed(double t, Eigen::Ref<VectorXd> y,
   }
   if (joints) ProjectVelocities(system_, t, y);
   if (closed.empty()) return;
-  const MatrixXd W = NormalRows(Evaluate(t, y, closed), nu);
+  // The rows held at zero velocity: every closed point's W_N, and W_T of the sticking ones.
+  const auto kinematics = Evaluate(t, y, indices);
+  std::vector<Eigen::RowVectorXd> held;
+  for (std::size_t i = 0; i < closed.size(); ++i) {
+    held.push_back(kinematics[i].W_N);
+    if (closed[i].tangential != Tangential::kStick) continue;
+    held.push_back(kinematics[i].W_T.row(0));
+    held.push_back(kinematics[i].W_T.row(1));
+  }
+  MatrixXd W(static_cast<Index>(held.size()), nu);
+  for (std::size_t i = 0; i < held.size(); ++i) W.row(static_cast<Index>(i)) = held[i];
   const ConstrainedResponse response = Respond(system_, t, y, W.transpose());
   const Eigen::CompleteOrthogonalDecomposition<MatrixXd> delassus(W * response.dv);
   y.tail(nu) -= response.dv * delassus.solve(VectorXd(W * y.tail(nu)));

@@ -31,6 +31,7 @@ std::optional<EventDrivenOptions> ReadEventDrivenOptions(const YamlNode& simulat
       item.Fail(fmt::format("{:g} must be finite and > 0", *value));
   };
   positive("rest_velocity", &options.rest_velocity);
+  positive("stick_velocity", &options.stick_velocity);
   positive("gap_tolerance", &options.gap_tolerance);
   if (simulation.Has("max_events")) {
     const YamlNode item = simulation.Required("max_events");

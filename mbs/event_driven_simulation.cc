@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -35,37 +36,59 @@ class EventDrivenRun {
         event_output_(event_output),
         watch_(watch),
         statistics_(statistics),
-        closed_(static_cast<std::size_t>(contacts_.num_points()), false),
+        state_(static_cast<std::size_t>(contacts_.num_points())),
         interval_impulse_(VectorXd::Zero(system.num_unilateral_contacts())),
+        interval_tangential_(Eigen::Matrix2Xd::Zero(2, system.num_unilateral_contacts())),
         interval_impact_(static_cast<std::size_t>(system.num_unilateral_contacts()), false) {}
 
   Index y_size() const { return system_.state_size(); }
+  /// The integrated impulses' entries: 3 per point (normal, t1, t2).
+  Index impulse_size() const { return 3 * contacts_.num_points(); }
   /// [y; I] for the integrator (I = 0 at the start).
   VectorXd InitialState(double t, const VectorXd& y0) {
-    VectorXd z = VectorXd::Zero(y_size() + contacts_.num_points());
+    VectorXd z = VectorXd::Zero(y_size() + impulse_size());
     z.head(y_size()) = y0;
     StartContacts(t, z);
-    last_impulse_ = z.tail(contacts_.num_points());
+    last_impulse_ = z.tail(impulse_size());
     return z;
   }
   OdeProblem Problem();
-  /// Handles the roots the integrator stopped at: impacts, separations, or no event (counted).
+  /// Handles the roots the integrator stopped at: impacts, separations, sticks, slips, or no event
+  /// (counted).
   void HandleRoots(double t, VectorXd& z, const std::vector<int>& directions);
   /// The contact report and the joint multipliers of the output interval that ends at (t, z).
   MoreauJeanStepReport Report(double t, const VectorXd& z, VectorXd* joint_lambda);
 
  private:
-  std::vector<int> Closed() const {
-    std::vector<int> closed;
+  /// A contact point's state between events.
+  struct PointState {
+    bool closed = false;
+    Tangential tangential = Tangential::kFree;  ///< while closed
+    Eigen::Vector2d slide_direction = Eigen::Vector2d::UnitX();
+  };
+  std::vector<ClosedPoint> Closed() const {
+    std::vector<ClosedPoint> closed;
     for (int i = 0; i < contacts_.num_points(); ++i) {
-      if (closed_[static_cast<std::size_t>(i)]) closed.push_back(i);
+      const PointState& point = state_[static_cast<std::size_t>(i)];
+      if (point.closed) closed.push_back({i, point.tangential, point.slide_direction});
     }
     return closed;
   }
+  /// Closes point i with its tangential state from its tangential velocity U_T [m/s]: frictionless,
+  /// sticking (|U_T| <= stick_velocity) or sliding along U_T.
+  void Close(int i, const Eigen::Vector2d& U_T);
   void StartContacts(double t, VectorXd& z);
   void ImpactAt(double t, VectorXd& z, const std::vector<UnilateralContactKinematics>& kinematics,
                 std::vector<ContactEvent>* events);
-  void OpenUnloaded(double t, VectorXd& z, std::vector<ContactEvent>* events);
+  /// The tangential roots: a sliding point whose velocity turned through 0 sticks (or turns), a
+  /// sticking point whose friction margin fell through 0 begins to slide. Whether any was an event.
+  bool TangentialRoots(double t, const VectorXd& z, const std::vector<int>& directions,
+                       std::vector<ContactEvent>* events);
+  /// Repeats the acceleration-level problem until the closed points agree with it: a point with
+  /// lambda_N = 0 and g_N'' > 0 opens, a sticking point the problem lets slip begins to slide.
+  void Settle(double t, VectorXd& z, std::vector<ContactEvent>* events);
+  /// The event record of a point's change of state without an impulse at t.
+  ContactEvent StateChange(double t, int i, ContactEventKind kind, const VectorXd& z) const;
   void Emit(std::vector<ContactEvent>& events, double t, const VectorXd& z);
 
   MultibodySystem& system_;
@@ -75,36 +98,56 @@ class EventDrivenRun {
   const EventOutputCallback& event_output_;
   DroppedRowWatch& watch_;
   SimulationStatistics& statistics_;
-  std::vector<bool> closed_;
+  std::vector<PointState> state_;
   VectorXd interval_impulse_;          ///< impact impulses per contact since the last output [N s]
+  Eigen::Matrix2Xd interval_tangential_;  ///< impacts' tangential impulses per contact [N s]
   std::vector<bool> interval_impact_;  ///< per contact: an impact since the last output
   VectorXd last_impulse_;              ///< I at the last output
 };
 
 OdeProblem EventDrivenRun::Problem() {
   OdeProblem problem;
-  problem.size = y_size() + contacts_.num_points();
+  const int n = contacts_.num_points();
+  problem.size = y_size() + impulse_size();
   problem.rhs = [this](double t, Eigen::Ref<const VectorXd> z, Eigen::Ref<VectorXd> z_dot) {
-    const std::vector<int> closed = Closed();
-    const ClosedContactForces forces =
-        contacts_.Derivative(t, z.head(y_size()), closed, z_dot.head(y_size()));
-    z_dot.tail(contacts_.num_points()).setZero();
-    for (std::size_t i = 0; i < closed.size(); ++i)
-      z_dot(y_size() + closed[i]) = forces.lambda_N(static_cast<Index>(i));
+    const std::vector<ClosedPoint> closed = Closed();
+    const ClosedContactForces forces = contacts_.Derivative(t, z.head(y_size()), closed, z_dot.head(y_size()));
+    auto impulse_rate = z_dot.tail(impulse_size());
+    impulse_rate.setZero();
+    for (std::size_t i = 0; i < closed.size(); ++i) {
+      const Index c = static_cast<Index>(i), at = 3 * closed[i].index;
+      impulse_rate(at) = forces.lambda_N(c);
+      impulse_rate.segment<2>(at + 1) = forces.lambda_T.col(c);
+    }
   };
-  problem.num_events = contacts_.num_points();
-  problem.events = [this](double t, Eigen::Ref<const VectorXd> z, Eigen::Ref<VectorXd> g) {
+  // Per point a normal root (an open gap, a closed point's force) and a tangential one (a sliding
+  // point's velocity along its direction, a sticking point's friction margin; 1 otherwise).
+  problem.num_events = 2 * n;
+  problem.events = [this, n](double t, Eigen::Ref<const VectorXd> z, Eigen::Ref<VectorXd> g) {
     const auto y = z.head(y_size());
-    const std::vector<int> closed = Closed();
+    const auto u = y.tail(system_.num_velocities());
     const auto kinematics = contacts_.EvaluateAll(t, y);
-    for (int i = 0; i < contacts_.num_points(); ++i)
+    g.tail(n).setOnes();
+    for (int i = 0; i < n; ++i) {
+      const PointState& point = state_[static_cast<std::size_t>(i)];
       g(i) = kinematics[static_cast<std::size_t>(i)].g_N;
+      if (point.closed && point.tangential == Tangential::kSlide)
+        g(n + i) = (kinematics[static_cast<std::size_t>(i)].W_T * u).dot(point.slide_direction);
+    }
+    const std::vector<ClosedPoint> closed = Closed();
     if (closed.empty()) return;
     VectorXd y_dot(y_size());
     const ClosedContactForces forces = contacts_.Derivative(t, y, closed, y_dot);
     for (std::size_t i = 0; i < closed.size(); ++i) {
       const Index c = static_cast<Index>(i);
-      g(closed[i]) = forces.delassus_diagonal(c) * forces.lambda_N(c) - forces.gap_acceleration(c);
+      const int at = closed[i].index;
+      g(at) = forces.delassus_diagonal(c) * forces.lambda_N(c) - forces.gap_acceleration(c);
+      if (closed[i].tangential != Tangential::kStick) continue;
+      // [N]: mu lambda_N - |lambda_T| while sticking, -|U_T'| / (W_TT)_ii once the problem lets
+      // the point slip; continuous through the switch, where both are 0.
+      const double mu = system_.unilateral_contact(contacts_.points()[static_cast<std::size_t>(at)].contact).law().friction;
+      g(n + at) = mu * forces.lambda_N(c) - forces.lambda_T.col(c).norm() -
+                  forces.tangential_acceleration.col(c).norm() / forces.tangential_delassus(c);
     }
   };
   problem.project = [this](double t, Eigen::Ref<VectorXd> z) {
@@ -116,8 +159,22 @@ OdeProblem EventDrivenRun::Problem() {
   return problem;
 }
 
+void EventDrivenRun::Close(int i, const Eigen::Vector2d& U_T) {
+  PointState& point = state_[static_cast<std::size_t>(i)];
+  point.closed = true;
+  if (!contacts_.HasFriction(contacts_.points()[static_cast<std::size_t>(i)].contact)) {
+    point.tangential = Tangential::kFree;
+  } else if (U_T.norm() <= ed_.stick_velocity) {
+    point.tangential = Tangential::kStick;
+  } else {
+    point.tangential = Tangential::kSlide;
+    point.slide_direction = U_T.normalized();
+  }
+}
+
 void EventDrivenRun::StartContacts(double t, VectorXd& z) {
   auto y = z.head(y_size());
+  const auto u = y.tail(system_.num_velocities());
   const auto kinematics = contacts_.EvaluateAll(t, y);
   bool approaching = false;
   for (int i = 0; i < contacts_.num_points(); ++i) {
@@ -130,25 +187,23 @@ void EventDrivenRun::StartContacts(double t, VectorXd& z) {
           system_.unilateral_contact(ref.contact).name(), ref.point, k.g_N, ed_.gap_tolerance));
     }
     if (k.g_N > ed_.gap_tolerance) continue;
-    const double U_N = k.W_N.dot(y.tail(system_.num_velocities()));
+    const double U_N = k.W_N.dot(u);
     if (U_N < 0.0) approaching = true;
-    closed_[static_cast<std::size_t>(i)] = U_N <= ed_.rest_velocity;
+    if (U_N <= ed_.rest_velocity) Close(i, k.W_T * u);
   }
   std::vector<ContactEvent> events;
   if (approaching) ImpactAt(t, z, kinematics, &events);
-  OpenUnloaded(t, z, &events);
+  Settle(t, z, &events);
   contacts_.ProjectClosed(t, y, Closed(), options_.projection);
   Emit(events, t, z);
 }
 
-void EventDrivenRun::ImpactAt(double t, VectorXd& z,
-                              const std::vector<UnilateralContactKinematics>& kinematics,
+void EventDrivenRun::ImpactAt(double t, VectorXd& z, const std::vector<UnilateralContactKinematics>& kinematics,
                               std::vector<ContactEvent>* events) {
   auto y = z.head(y_size());
   std::vector<int> touching;
   for (int i = 0; i < contacts_.num_points(); ++i) {
-    if (closed_[static_cast<std::size_t>(i)] ||
-        kinematics[static_cast<std::size_t>(i)].g_N <= ed_.gap_tolerance) {
+    if (state_[static_cast<std::size_t>(i)].closed || kinematics[static_cast<std::size_t>(i)].g_N <= ed_.gap_tolerance) {
       touching.push_back(i);
     }
   }
@@ -157,43 +212,105 @@ void EventDrivenRun::ImpactAt(double t, VectorXd& z,
   ++statistics_.event_driven.impacts;
   statistics_.event_driven.max_impact_points =
       std::max(statistics_.event_driven.max_impact_points, static_cast<int>(touching.size()));
-  statistics_.event_driven.max_lcp_error =
-      std::max(statistics_.event_driven.max_lcp_error, impact.lcp_error);
+  statistics_.event_driven.max_lcp_error = std::max(statistics_.event_driven.max_lcp_error, impact.lcp_error);
   for (std::size_t j = 0; j < touching.size(); ++j) {
     const Index c = static_cast<Index>(j);
     const int i = touching[j];
     const ContactPointRef& ref = contacts_.points()[static_cast<std::size_t>(i)];
+    PointState& point = state_[static_cast<std::size_t>(i)];
     const bool close = impact.U_N_after(c) <= ed_.rest_velocity;
-    if (close && !closed_[static_cast<std::size_t>(i)]) ++statistics_.event_driven.closings;
-    closed_[static_cast<std::size_t>(i)] = close;
+    if (close && !point.closed) ++statistics_.event_driven.closings;
+    if (close) {
+      Close(i, impact.U_T_after.col(c));
+    } else {
+      point.closed = false;
+    }
     interval_impulse_(ref.contact) += impact.P_N(c);
+    interval_tangential_.col(ref.contact) += impact.P_T.col(c);
     interval_impact_[static_cast<std::size_t>(ref.contact)] = true;
     events->push_back({t, ContactEventKind::kImpact, ref.contact, ref.point, impact.U_N_before(c),
-                       close ? 0.0 : impact.U_N_after(c), impact.P_N(c), energy_before, 0.0,
-                       close});
+                       close ? 0.0 : impact.U_N_after(c), impact.P_N(c), energy_before, 0.0, close});
   }
 }
 
-void EventDrivenRun::OpenUnloaded(double t, VectorXd& z, std::vector<ContactEvent>* events) {
+ContactEvent EventDrivenRun::StateChange(double t, int i, ContactEventKind kind, const VectorXd& z) const {
+  const ContactPointRef& ref = contacts_.points()[static_cast<std::size_t>(i)];
+  const double energy = system_.KineticEnergy(z.head(y_size()));
+  return {t, kind, ref.contact, ref.point, 0.0, 0.0, 0.0, energy, energy, state_[static_cast<std::size_t>(i)].closed};
+}
+
+bool EventDrivenRun::TangentialRoots(double t, const VectorXd& z, const std::vector<int>& directions,
+                                     std::vector<ContactEvent>* events) {
+  const int n = contacts_.num_points();
+  const auto y = z.head(y_size());
+  const auto u = y.tail(system_.num_velocities());
+  const std::vector<ClosedPoint> closed = Closed();
+  std::optional<ClosedContactForces> forces;  // the problem at t, for the sticking points' slips
+  bool changed = false;
+  for (std::size_t j = 0; j < closed.size(); ++j) {
+    const int i = closed[j].index;
+    PointState& point = state_[static_cast<std::size_t>(i)];
+    if (directions[static_cast<std::size_t>(n + i)] >= 0 || point.tangential == Tangential::kFree) continue;
+    if (point.tangential == Tangential::kSlide) {
+      const Eigen::Vector2d U_T = contacts_.Evaluate(t, y, {i})[0].W_T * u;
+      if (U_T.norm() > ed_.stick_velocity) {
+        point.slide_direction = U_T.normalized();  // turned, not stopped: no event
+        continue;
+      }
+      point.tangential = Tangential::kStick;
+      ++statistics_.event_driven.sticks;
+      events->push_back(StateChange(t, i, ContactEventKind::kStick, z));
+    } else {
+      if (!forces) {
+        VectorXd y_dot(y_size());
+        forces = contacts_.Derivative(t, y, closed, y_dot);
+      }
+      // The direction the point begins to slide in: its acceleration's, or (at the switch itself,
+      // where U_T' is still 0) against its friction force.
+      const Index c = static_cast<Index>(j);
+      const Eigen::Vector2d a_T = forces->tangential_acceleration.col(c), lambda_T = forces->lambda_T.col(c);
+      point.tangential = Tangential::kSlide;
+      point.slide_direction = a_T.norm() > 0.0 ? a_T.normalized() : Eigen::Vector2d(-lambda_T.normalized());
+      ++statistics_.event_driven.slips;
+      events->push_back(StateChange(t, i, ContactEventKind::kSlip, z));
+    }
+    changed = true;
+  }
+  return changed;
+}
+
+void EventDrivenRun::Settle(double t, VectorXd& z, std::vector<ContactEvent>* events) {
   auto y = z.head(y_size());
-  for (int round = 0; round < contacts_.num_points(); ++round) {
-    const std::vector<int> closed = Closed();
+  for (int round = 0; round <= 2 * contacts_.num_points(); ++round) {
+    const std::vector<ClosedPoint> closed = Closed();
     if (closed.empty()) return;
     VectorXd y_dot(y_size());
     const ClosedContactForces forces = contacts_.Derivative(t, y, closed, y_dot);
-    bool opened = false;
+    // A point opens when the problem leaves it no force and a gap acceleration > 0; a sticking
+    // point slips when it leaves it a tangential acceleration above the solve's round-off [m/s^2]
+    // (the roots open and slip points at their switches; this settles the state after an event).
+    const double acceleration_floor = 1e-8 * std::max(1.0, forces.gap_acceleration.lpNorm<Eigen::Infinity>() +
+                                                                forces.tangential_acceleration.lpNorm<Eigen::Infinity>());
+    bool changed = false;
     for (std::size_t j = 0; j < closed.size(); ++j) {
       const Index c = static_cast<Index>(j);
-      if (!(forces.lambda_N(c) <= 0.0 && forces.gap_acceleration(c) > 0.0)) continue;
-      const ContactPointRef& ref = contacts_.points()[static_cast<std::size_t>(closed[j])];
-      closed_[static_cast<std::size_t>(closed[j])] = false;
-      opened = true;
-      ++statistics_.event_driven.separations;
-      const double energy = system_.KineticEnergy(y);
-      events->push_back({t, ContactEventKind::kSeparation, ref.contact, ref.point, 0.0, 0.0, 0.0,
-                         energy, energy, false});
+      PointState& point = state_[static_cast<std::size_t>(closed[j].index)];
+      if (forces.lambda_N(c) <= 0.0 && forces.gap_acceleration(c) > 0.0) {
+        point.closed = false;
+        ++statistics_.event_driven.separations;
+        events->push_back(StateChange(t, closed[j].index, ContactEventKind::kSeparation, z));
+        changed = true;
+        continue;
+      }
+      const Eigen::Vector2d a_T = forces.tangential_acceleration.col(c);
+      if (point.tangential != Tangential::kStick || a_T.norm() <= acceleration_floor) continue;
+      point.tangential = Tangential::kSlide;
+      point.slide_direction = a_T.normalized();
+      ++statistics_.event_driven.slips;
+      events->push_back(StateChange(t, closed[j].index, ContactEventKind::kSlip, z));
+      changed = true;
     }
-    if (!opened) return;
+    if (!changed) return;
   }
 }
 
@@ -223,69 +340,72 @@ void EventDrivenRun::HandleRoots(double t, VectorXd& z, const std::vector<int>& 
   for (int i = 0; i < contacts_.num_points(); ++i) {
     const std::size_t s = static_cast<std::size_t>(i);
     if (directions[s] >= 0) continue;
-    if (!closed_[s] && kinematics[s].W_N.dot(u) < 0.0) impact = true;
-    if (closed_[s]) {
-      closed_[s] = false;
+    if (!state_[s].closed && kinematics[s].W_N.dot(u) < 0.0) impact = true;
+    if (state_[s].closed) {
+      state_[s].closed = false;
       separation = true;
       ++statistics_.event_driven.separations;
-      const ContactPointRef& ref = contacts_.points()[s];
-      const double energy = system_.KineticEnergy(y);
-      events.push_back({t, ContactEventKind::kSeparation, ref.contact, ref.point, 0.0, 0.0, 0.0,
-                        energy, energy, false});
+      events.push_back(StateChange(t, i, ContactEventKind::kSeparation, z));
     }
   }
-  if (!impact && !separation) {
+  const bool tangential = TangentialRoots(t, z, directions, &events);
+  if (!impact && !separation && !tangential) {
     ++statistics_.event_driven.ignored_roots;
     return;
   }
   if (impact) ImpactAt(t, z, kinematics, &events);
-  OpenUnloaded(t, z, &events);
+  Settle(t, z, &events);
   contacts_.ProjectClosed(t, y, Closed(), options_.projection);
   Emit(events, t, z);
 }
 
 MoreauJeanStepReport EventDrivenRun::Report(double t, const VectorXd& z, VectorXd* joint_lambda) {
   const auto y = z.head(y_size());
-  const std::vector<int> closed = Closed();
+  const std::vector<ClosedPoint> closed = Closed();
   VectorXd y_dot(y_size());
   const ClosedContactForces forces = contacts_.Derivative(t, y, closed, y_dot);
   *joint_lambda = forces.joint_lambda;
   const auto kinematics = contacts_.EvaluateAll(t, y);
-  const VectorXd impulse = z.tail(contacts_.num_points());
+  const VectorXd impulse = z.tail(impulse_size());
   MoreauJeanStepReport report;
   report.time = t;
   report.active_contacts = static_cast<int>(closed.size());
   report.solver_iterations = forces.lcp_iterations;
   report.solver_error = forces.lcp_error;
   report.lambda = forces.joint_lambda;
-  report.contacts.assign(static_cast<std::size_t>(system_.num_unilateral_contacts()),
-                         ContactStepResult{});
+  report.contacts.assign(static_cast<std::size_t>(system_.num_unilateral_contacts()), ContactStepResult{});
   for (auto& result : report.contacts) result.g_N = std::numeric_limits<double>::infinity();
   for (int i = 0; i < contacts_.num_points(); ++i) {
     const std::size_t s = static_cast<std::size_t>(i);
-    const int k = contacts_.points()[s].contact;
-    ContactStepResult& result = report.contacts[static_cast<std::size_t>(k)];
-    if (closed_[s]) ++result.active_points;
-    result.P_N += impulse(i) - last_impulse_(i);
+    ContactStepResult& result = report.contacts[static_cast<std::size_t>(contacts_.points()[s].contact)];
+    if (state_[s].closed) ++result.active_points;
+    if (state_[s].closed && state_[s].tangential == Tangential::kSlide) result.sliding = true;
+    const VectorXd interval = impulse.segment<3>(3 * i) - last_impulse_.segment<3>(3 * i);
+    result.P_N += interval(0);
+    result.P_T += interval.tail<2>();
     if (kinematics[s].g_N < result.g_N) {
       result.g_N = kinematics[s].g_N;
       result.U_N = kinematics[s].W_N.dot(y.tail(system_.num_velocities()));
     }
   }
   for (std::size_t c = 0; c < closed.size(); ++c) {
-    const UnilateralContactKinematics& point = kinematics[static_cast<std::size_t>(closed[c])];
-    const double lambda_N = forces.lambda_N(static_cast<Eigen::Index>(c));
-    if (lambda_N == 0.0) continue;
-    report.contacts[static_cast<std::size_t>(contacts_.points()[static_cast<std::size_t>(closed[c])].contact)]
-        .loads.push_back({0, point.p_WA_W, point.n_W, lambda_N * point.n_W});
+    const UnilateralContactKinematics& point = kinematics[static_cast<std::size_t>(closed[c].index)];
+    const Index j = static_cast<Index>(c);
+    if (forces.lambda_N(j) == 0.0) continue;
+    const Eigen::Vector3d force_W =
+        forces.lambda_N(j) * point.n_W + forces.lambda_T(0, j) * point.t1_W + forces.lambda_T(1, j) * point.t2_W;
+    report.contacts[static_cast<std::size_t>(contacts_.points()[static_cast<std::size_t>(closed[c].index)].contact)]
+        .loads.push_back({0, point.p_WA_W, point.n_W, force_W});
   }
   for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
     ContactStepResult& result = report.contacts[static_cast<std::size_t>(k)];
     result.P_N += interval_impulse_(k);
+    result.P_T += interval_tangential_.col(k);
     result.active = result.active_points > 0 || interval_impact_[static_cast<std::size_t>(k)];
   }
   last_impulse_ = impulse;
   interval_impulse_.setZero();
+  interval_tangential_.setZero();
   std::fill(interval_impact_.begin(), interval_impact_.end(), false);
   return report;
 }

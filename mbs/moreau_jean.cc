@@ -10,11 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "contact/complementarity/friction_contact_problem.h"
-#include "contact/complementarity/lcp_problem.h"
-#include "contact/complementarity/lcp_solver.h"
-#include "contact/complementarity/friction_solver.h"
 #include "core/error.h"
+#include "mbs/contact_reactions.h"
 #include "mbs/kkt_factor.h"
 #include "mbs/simulation_error.h"
 
@@ -188,34 +185,6 @@ std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, 
   return results;
 }
 
-/// The impulses P (3 per contact: normal, t1, t2) of U = W P + q: frictionless (every mu = 0) the
-/// LCP (W_NN, q_N) by contact::SolveLcp (Lemke, then proximal Newton on a singular W_NN),
-/// otherwise the friction-contact problem (d = 3) by SolveFrictionContact (NSGS, then proximal
-/// Newton on rank-deficient W).
-contact::SolveStatus SolveImpulses(const MatrixXd& W, const VectorXd& q, const VectorXd& mu,
-                                   const MoreauJeanOptions& options, VectorXd* P) {
-  const Index n_a = mu.size();
-  P->setZero(3 * n_a);
-  if (mu.maxCoeff() == 0.0) {
-    contact::LcpProblem lcp{MatrixXd(n_a, n_a), VectorXd(n_a)};
-    for (Index i = 0; i < n_a; ++i) {
-      lcp.q(i) = q(3 * i);
-      for (Index j = 0; j < n_a; ++j) lcp.M(i, j) = W(3 * i, 3 * j);
-    }
-    contact::LcpSolution solution = contact::SolveLcp(lcp, {options.solver_tolerance});
-    for (Index i = 0; i < n_a; ++i) (*P)(3 * i) = solution.z(i);
-    solution.message = "LCP by " + solution.message;
-    return solution;
-  }
-  contact::FrictionContactOptions friction;
-  friction.tolerance = options.solver_tolerance;
-  friction.nsgs_sweeps = options.solver_max_iterations;
-  contact::FrictionContactSolution solution = contact::SolveFrictionContact({3, W, q, mu}, friction);
-  *P = solution.r;
-  solution.message = "friction contact: " + solution.message;
-  return solution;
-}
-
 /// Turns a solver that did not converge into the SimulationError of step `step` at t.
 [[noreturn]] void NotConverged(long step, double t, double h, int active, const contact::SolveStatus& status,
                                double tolerance) {
@@ -296,7 +265,8 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
     const MatrixXd W = active.H * dv_per_P;
     VectorXd q = active.H * v_next;
     for (Index i = 0; i < n_a; ++i) q(3 * i) += active.normal_offset(i);
-    const contact::SolveStatus status = SolveImpulses(W, q, active.mu, options_, &P);
+    const contact::SolveStatus status =
+        SolveContactReactions(W, q, active.mu, options_.solver_tolerance, options_.solver_max_iterations, &P);
     if (!status.converged) NotConverged(step_number, t, h, static_cast<int>(n_a), status, options_.solver_tolerance);
     report_.solver_iterations = status.iterations;
     report_.solver_error = status.error;

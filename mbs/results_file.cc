@@ -35,7 +35,7 @@ struct EventSeries {
 
 EventSeries CreateEvents(h5::Group& root) {
   h5::Group group = root.CreateGroup("events");
-  group.SetStringAttribute("kind_values", "1 impact, 2 separation");
+  group.SetStringAttribute("kind_values", "1 impact, 2 separation, 3 stick, 4 slip");
   return {group.CreateAppendable("time", {}, "s"),
           group.CreateAppendable("kind", {}, "1"),
           group.CreateAppendable("contact", {}, "1"),

@@ -31,7 +31,7 @@ int AddBall(MultibodySystem& system, const char* name, const Vector3d& p_BoM_B) 
       std::vector<RigidBodyMarker>{{"centre", p_BoM_B, Matrix3d::Identity()}}));
 }
 
-TEST(EventDrivenContacts, GapAccelerationBiasOfTwoPassingSpheresIsTheCentripetalTerm) {
+TEST(EventDrivenContacts, AccelerationBiasOfTwoPassingSpheresIsTheCentripetalTerm) {
   MultibodySystem system(Vector3d::Zero());
   const int a = AddBall(system, "a", Vector3d::Zero()), b = AddBall(system, "b", Vector3d::Zero());
   system.AddUnilateralContact(std::make_unique<SphereSphereUnilateral>(
@@ -47,7 +47,7 @@ TEST(EventDrivenContacts, GapAccelerationBiasOfTwoPassingSpheresIsTheCentripetal
   u << v_b, 0.0, 0.0, 0.0;
   system.SetBodyState(b, x, u, y);
   const EventDrivenContacts contacts(system, EventDrivenOptions{});
-  const double bias = contacts.GapAccelerationBias(0.0, y, {0})(0);
+  const double bias = contacts.AccelerationBias(0.0, y, {0})(0, 0);
   // g = |d| - r1 - r2 with d = p_a - p_b moving at w = v_a - v_b: g'' = (|w|^2 - (n . w)^2) / |d|.
   const Vector3d d = p_a, w = v_a - v_b, n = d.normalized();
   const double exact = (w.squaredNorm() - n.dot(w) * n.dot(w)) / d.norm();
@@ -56,7 +56,7 @@ TEST(EventDrivenContacts, GapAccelerationBiasOfTwoPassingSpheresIsTheCentripetal
   EXPECT_NEAR(bias, exact, 5e-10 * exact);  // measured 5.1e-11 relative (O(eps^2) truncation)
 }
 
-TEST(EventDrivenContacts, GapAccelerationBiasOfASpinningOffsetMarkerIsItsCentripetalAcceleration) {
+TEST(EventDrivenContacts, AccelerationBiasOfASpinningOffsetMarkerIsItsCentripetalAcceleration) {
   // A body spinning at omega about its z axis (a principal axis: no gyroscopic acceleration,
   // no gravity) with a sphere on a marker at d along its x axis, against the plane x = -1 (normal
   // +x): the sphere centre's x is d cos(omega t), so g'' = -omega^2 d at t = 0.
@@ -74,7 +74,7 @@ TEST(EventDrivenContacts, GapAccelerationBiasOfASpinningOffsetMarkerIsItsCentrip
   u << 0.0, 0.0, 0.0, 0.0, 0.0, omega;
   system.SetBodyState(body, x, u, y);
   const EventDrivenContacts contacts(system, EventDrivenOptions{});
-  const double bias = contacts.GapAccelerationBias(0.0, y, {0})(0);
+  const double bias = contacts.AccelerationBias(0.0, y, {0})(0, 0);
   std::printf("offset marker: bias %.15f, exact %.15f m/s^2\n", bias, -omega * omega * d);
   EXPECT_NEAR(bias, -omega * omega * d, 6e-11 * omega * omega * d);  // measured 6.1e-12 relative
 }

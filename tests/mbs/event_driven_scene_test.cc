@@ -1,8 +1,9 @@
 // The scene keys of `simulation.method: event_driven` (mbs/event_driven_scene.h, docs/scene.md):
 // the documented scene runs through `flexmbs simulate` into a results file whose events/ group
 // holds the closed-form impacts and which `flexmbs info --verify` finds intact; a reduced cube
-// lands on the 58 vertices of its bottom surface; every key the method does not take, and
-// friction > 0, is one located line and exit 2 with no results file.
+// lands on the 58 vertices of its bottom surface; the ball launched sliding with friction rolls
+// from the closed-form time on, in the results' events and sliding series; every key the method
+// does not take is one located line and exit 2 with no results file.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -64,6 +65,7 @@ TEST_F(EventDrivenSceneTest, TheDocumentedSceneLoadsItsKeys) {
   ASSERT_TRUE(scene.options.event_driven.has_value());
   EXPECT_FALSE(scene.options.moreau_jean.has_value());
   EXPECT_EQ(scene.options.event_driven->rest_velocity, 1e-4);
+  EXPECT_EQ(scene.options.event_driven->stick_velocity, 1e-6);
   EXPECT_EQ(scene.options.event_driven->gap_tolerance, 1e-9);
   EXPECT_EQ(scene.options.event_driven->max_events, 10000);
   EXPECT_EQ(scene.options.integrator.relative_tolerance, 1e-10);
@@ -100,6 +102,36 @@ TEST_F(EventDrivenSceneTest, RunsThroughTheCliIntoAVerifiedResultsFileWithItsEve
   EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
 }
 
+TEST_F(EventDrivenSceneTest, ABallLaunchedSlidingWithFrictionRollsFromTheClosedFormTimeOn) {
+  // The documented ball on the floor, launched at v0 = 2 m/s without spin, mu = 0.2: it slides
+  // until t* = 2 v0 / (7 mu g) = 0.29125 s (tests/mbs/event_driven_friction_test.cc), then rolls.
+  std::string text = Changed("initial: {position: [0, 0, 1.1]}", "initial: {position: [0, 0, 0.1], velocity: [2, 0, 0]}");
+  text.replace(text.find("friction: 0 "), 12, "friction: 0.2 ");
+  text.replace(text.find("end_time: 9.0"), 13, "end_time: 1.0");
+  const Outcome run = Simulate(text, true);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["sticks"], 1);
+  EXPECT_EQ(report["slips"], 0);
+  EXPECT_EQ(report["impacts"], 0);
+  const h5::File file = h5::File::Open(dir_ / "results.h5");
+  const h5::Group events = file.root().OpenGroup("events");
+  ASSERT_EQ(events.ReadVector("kind").size(), 1);
+  EXPECT_EQ(events.ReadVector("kind")(0), 3.0);
+  const double t_star = 2.0 * 2.0 / (7.0 * 0.2 * 9.81);
+  EXPECT_NEAR(events.ReadVector("time")(0), t_star, 1e-12);  // measured: exact to the printed digits
+  const h5::Group floor = file.root().OpenGroup("contacts").OpenGroup("floor");
+  const Eigen::VectorXd time = file.root().ReadVector("time"), sliding = floor.ReadVector("sliding");
+  const Eigen::MatrixXd tangential = floor.ReadMatrix("tangential_impulse");
+  for (Eigen::Index k = 1; k < time.size(); ++k) {
+    EXPECT_EQ(sliding(k), time(k) < t_star ? 1.0 : 0.0) << time(k);
+    // Sliding, the friction's impulse over an interval is mu m g times its length, against the
+    // motion (t1 = x here); rolling, none.
+    const double friction = time(k - 1) >= t_star ? 0.0 : -0.2 * 9.81 * (std::min(time(k), t_star) - time(k - 1));
+    EXPECT_NEAR(tangential(k, 0), friction, 1e-12) << time(k);
+  }
+}
+
 TEST_F(EventDrivenSceneTest, KeysItDoesNotTakeAreOneLocatedLineAndExit2) {
   struct Case {
     std::string from, to, expected;
@@ -111,8 +143,7 @@ TEST_F(EventDrivenSceneTest, KeysItDoesNotTakeAreOneLocatedLineAndExit2) {
        "simulation.fixed_step: not for method event_driven"},
       {"  method: event_driven\n", "  method: event_driven\n  jacobian: model\n",
        "simulation.jacobian: not for method event_driven"},
-      {"friction: 0 ", "friction: 0.3 ",
-       "contacts[0].friction: 0.3: method event_driven integrates frictionless contacts only"},
+      {"stick_velocity: 1.0e-6", "stick_velocity: 0", "simulation.stick_velocity: 0 must be finite and > 0"},
       {"rest_velocity: 1.0e-4", "rest_velocity: -1",
        "simulation.rest_velocity: -1 must be finite and > 0"},
       {"max_events: 10000", "max_events: 2.5",

@@ -1,6 +1,7 @@
 #include "tests/mbs/moreau_jean_support.h"
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <string>
 #include <utility>
 
@@ -90,6 +91,33 @@ StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double
       },
       [&](double, const MoreauJeanStepReport& step) { history.steps.push_back(step); });
   return history;
+}
+
+EventRun RunEventDriven(ContactScene& scene, double end_time, double output_interval, double rest_velocity,
+                        double relative_tolerance, double absolute_tolerance) {
+  SimulationOptions options;
+  options.end_time = end_time;
+  options.output_interval = output_interval;
+  options.integrator.relative_tolerance = relative_tolerance;
+  options.integrator.absolute_tolerance = absolute_tolerance;
+  options.event_driven = EventDrivenOptions{};
+  options.event_driven->rest_velocity = rest_velocity;
+  EventRun run;
+  MoreauJeanStepReport report;
+  const MultibodySystem& system = *scene.system;
+  const auto start = std::chrono::steady_clock::now();
+  run.statistics = Simulate(
+      *scene.system, options, scene.y0,
+      [&](double t, const VectorXd& y, const VectorXd&) {
+        run.t.push_back(t);
+        run.y.push_back(y);
+        run.contacts.push_back(report);
+        run.energy.push_back(system.KineticEnergy(y) + system.PotentialEnergy(t, y));
+      },
+      [&](double, const MoreauJeanStepReport& step) { report = step; },
+      [&](const ContactEvent& event) { run.events.push_back(event); });
+  run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
 }
 
 }  // namespace flexmbs::mbs::testing

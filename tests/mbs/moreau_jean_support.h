@@ -1,14 +1,17 @@
 #pragma once
-// Scenes of the Moreau-Jean tests (tests/mbs/moreau_jean_test.cc, moreau_jean_friction_test.cc):
-// a ball above the ground plane and a block on an incline, built in the library, and a run that
-// keeps every step's state and contact report.
+// Scenes of the Moreau-Jean and event-driven tests (tests/mbs/moreau_jean_test.cc,
+// moreau_jean_friction_test.cc, event_driven_test.cc, event_driven_friction_test.cc): a ball above
+// the ground plane and a block on an incline, built in the library, and runs that keep every
+// output's state and contact report.
 
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
 
+#include "mbs/event_driven.h"
 #include "mbs/moreau_jean.h"
 #include "mbs/multibody_system.h"
+#include "mbs/simulation.h"
 
 namespace flexmbs::mbs::testing {
 
@@ -42,5 +45,21 @@ struct StepHistory {
 /// Runs `scene` to end_time by steps of h (theta, impact level) with an output at every step.
 StepHistory RunMoreauJean(ContactScene& scene, double h, double end_time, double theta = 0.5,
                           ImpactLevel level = ImpactLevel::kVelocity);
+
+/// The outputs and events of an event-driven run.
+struct EventRun {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> y;
+  std::vector<MoreauJeanStepReport> contacts;  ///< the report of the interval ending at t
+  std::vector<double> energy;                  ///< kinetic + potential [J]
+  std::vector<ContactEvent> events;
+  SimulationStatistics statistics;
+  double wall_seconds = 0.0;
+};
+
+/// Runs `scene` event-driven to end_time with an output every output_interval [s], the given
+/// rest_velocity [m/s] and ARKODE tolerances.
+EventRun RunEventDriven(ContactScene& scene, double end_time, double output_interval, double rest_velocity,
+                        double relative_tolerance = 1e-10, double absolute_tolerance = 1e-12);
 
 }  // namespace flexmbs::mbs::testing
