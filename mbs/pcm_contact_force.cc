@@ -7,36 +7,18 @@
 #include <cmath>
 #include <utility>
 
-#include "contact/pcm/bvh.h"
-#include "contact/pcm/candidate_pairs.h"
 #include "contact/pcm/contact_element.h"
 #include "contact/pcm/surface_checks.h"
 #include "core/error.h"
-#include "core/skew.h"
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
-namespace {
-
-/// The mesh placed in W by its marker, and its vertices' velocities [m/s].
-struct PlacedMesh {
-  contact::PolygonMesh mesh;
-  Eigen::Matrix3Xd velocities_W;
-};
-PlacedMesh Place(const contact::PolygonMesh& mesh_M, const MarkerKinematics& marker) {
-  PlacedMesh placed{mesh_M, Eigen::Matrix3Xd()};
-  placed.mesh.vertices_W = (marker.R_WM * mesh_M.vertices_W).colwise() + marker.p_WM_W;
-  const Eigen::Matrix3Xd r_W = placed.mesh.vertices_W.colwise() - marker.p_WM_W;
-  placed.velocities_W.resize(3, r_W.cols());
-  for (Eigen::Index v = 0; v < r_W.cols(); ++v) placed.velocities_W.col(v) = marker.v_WM_W + marker.w_WM_W.cross(r_W.col(v));
-  return placed;
-}
-
-}  // namespace
 
 PcmContactForce::PcmContactForce(std::string name, PcmSurface A, PcmSurface B, double areal_damping,
-                                 const contact::RegularisedCoulomb& friction, double max_depth)
-    : name_(std::move(name)), A_(std::move(A)), B_(std::move(B)), max_depth_(max_depth) {
+                                 const contact::RegularisedCoulomb& friction, double max_depth,
+                                 PcmTreeUpdate tree_update)
+    : name_(std::move(name)), A_(std::move(A)), B_(std::move(B)), max_depth_(max_depth), tree_update_(tree_update),
+      trees_(std::make_unique<TreeCache>()) {
   try {
     contact::RequirePcmSurface(A_.mesh_M, A_.name, A_.closed);
     contact::RequirePcmSurface(B_.mesh_M, B_.name, B_.closed);
@@ -50,17 +32,42 @@ PcmContactForce::PcmContactForce(std::string name, PcmSurface A, PcmSurface B, d
 }
 
 struct PcmContactForce::Evaluation {
-  MarkerKinematics marker_A, marker_B;
-  PlacedMesh A, B;
+  PlacedPcmSurface A, B;
   std::vector<contact::PcmElement> elements;
 };
 
+std::vector<contact::FacePair> PcmContactForce::CandidatePairs(const contact::PolygonMesh& A,
+                                                               const contact::PolygonMesh& B) const {
+  std::unique_lock<std::mutex> lock(trees_->mutex, std::try_to_lock);
+  if (tree_update_ == PcmTreeUpdate::kRebuild || !lock.owns_lock()) {
+    if (lock.owns_lock()) trees_->builds += 2;
+    return contact::CandidatePairs(contact::Bvh(A), contact::Bvh(B, max_depth_));
+  }
+  const auto update = [&](std::optional<contact::Bvh>& tree, const contact::PolygonMesh& mesh, double depth) {
+    if (!tree) {
+      tree.emplace(mesh, depth);
+      ++trees_->builds;
+      return;
+    }
+    tree->Refit(mesh);
+    if (tree->Degradation() > kRebuildDegradation) {
+      tree->Rebuild(mesh);
+      ++trees_->builds;
+    }
+  };
+  update(trees_->A, A, 0.0);
+  update(trees_->B, B, max_depth_);
+  return contact::CandidatePairs(*trees_->A, *trees_->B);
+}
+
+int PcmContactForce::tree_builds() const {
+  const std::lock_guard<std::mutex> lock(trees_->mutex);
+  return trees_->builds;
+}
+
 PcmContactForce::Evaluation PcmContactForce::Evaluate(const MultibodySystem& system, const ConstVectorRef& y) const {
-  Evaluation e{system.MarkerState(A_.marker, y), system.MarkerState(B_.marker, y), {}, {}, {}};
-  e.A = Place(A_.mesh_M, e.marker_A);
-  e.B = Place(B_.mesh_M, e.marker_B);
-  e.elements = contact::ContactElements(
-      e.A.mesh, e.B.mesh, contact::CandidatePairs(contact::Bvh(e.A.mesh), contact::Bvh(e.B.mesh, max_depth_)), max_depth_);
+  Evaluation e{PlacedPcmSurface(system, A_, y), PlacedPcmSurface(system, B_, y), {}};
+  e.elements = contact::ContactElements(e.A.mesh(), e.B.mesh(), CandidatePairs(e.A.mesh(), e.B.mesh()), max_depth_);
   return e;
 }
 
@@ -68,12 +75,23 @@ void PcmContactForce::AddForces(double, const MultibodySystem& system, const Con
                                 Eigen::Ref<Eigen::VectorXd> h) const {
   const Evaluation e = Evaluate(system, y);
   if (e.elements.empty()) return;
-  const contact::PairLoad load = contact::SumLoads(law_, e.elements, e.A.mesh, e.A.velocities_W, e.B.mesh,
-                                                   e.B.velocities_W, e.marker_A.p_WM_W);
+  const MarkerKinematics &frame_A = e.A.frame(), &frame_B = e.B.frame();
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero(), moment_W = Eigen::Vector3d::Zero();  // on A, about A's origin
+  Eigen::VectorXd modal_A = Eigen::VectorXd::Zero(A_.modal.phi.cols()), modal_B = Eigen::VectorXd::Zero(B_.modal.phi.cols());
+  for (const contact::PcmElement& element : e.elements) {
+    const contact::ElementLoad load = StateOf(e, element).load;
+    if (!(load.normal_force > 0.0)) continue;
+    force_W += load.force_W;
+    moment_W += (load.point_W - frame_A.p_WM_W).cross(load.force_W);
+    if (A_.is_modal()) modal_A += e.A.ModalJacobian(element.face_A, element.weights_A).transpose() * load.force_W;
+    if (B_.is_modal()) modal_B -= e.B.ModalJacobian(element.face_B, element.weights_B).transpose() * load.force_W;
+  }
   // About B's origin: -(M_A + (p_A - p_B) x F).
-  const Eigen::Vector3d moment_B = -(load.moment_W + (e.marker_A.p_WM_W - e.marker_B.p_WM_W).cross(load.force_W));
-  system.AddMarkerLoad(A_.marker, e.marker_A, load.force_W, load.moment_W, h);
-  system.AddMarkerLoad(B_.marker, e.marker_B, -load.force_W, moment_B, h);
+  const Eigen::Vector3d moment_B = -(moment_W + (frame_A.p_WM_W - frame_B.p_WM_W).cross(force_W));
+  system.AddMarkerLoad(A_.marker, frame_A, force_W, moment_W, h);
+  system.AddMarkerLoad(B_.marker, frame_B, -force_W, moment_B, h);
+  if (A_.is_modal()) h.segment(e.A.modal_column(), modal_A.size()) += modal_A;
+  if (B_.is_modal()) h.segment(e.B.modal_column(), modal_B.size()) += modal_B;
 }
 
 double PcmContactForce::PotentialEnergy(double, const MultibodySystem& system, const ConstVectorRef& y) const {
@@ -82,11 +100,11 @@ double PcmContactForce::PotentialEnergy(double, const MultibodySystem& system, c
 
 PcmContactForce::ElementState PcmContactForce::StateOf(const Evaluation& e, const contact::PcmElement& element) const {
   ElementState state{contact::Evaluate(law_, element,
-                                       contact::RelativeVelocity(element, e.A.mesh, e.A.velocities_W, e.B.mesh,
-                                                                 e.B.velocities_W)),
+                                       contact::RelativeVelocity(element, e.A.mesh(), e.A.velocities_W(), e.B.mesh(),
+                                                                 e.B.velocities_W())),
                      Eigen::Vector3d::Zero()};
   for (int k = 0; k < 3; ++k) {
-    state.p_WA_W += element.weights_A(k) * e.A.mesh.vertices_W.col(e.A.mesh.face_vertices[3 * element.face_A + k]);
+    state.p_WA_W += element.weights_A(k) * e.A.mesh().vertices_W.col(e.A.mesh().face_vertices[3 * element.face_A + k]);
   }
   return state;
 }
@@ -105,27 +123,29 @@ std::vector<ContactLoad> PcmContactForce::ContactLoads(double, const MultibodySy
 void PcmContactForce::AddForceJacobian(double, const MultibodySystem& system, const ConstVectorRef& y,
                                        Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const {
   const Evaluation e = Evaluate(system, y);
-  const std::array<std::pair<const MarkerRef*, const MarkerKinematics*>, 2> ends{
-      std::pair{&A_.marker, &e.marker_A}, std::pair{&B_.marker, &e.marker_B}};
+  const std::array<const PcmSurface*, 2> sides{&A_, &B_};
+  const std::array<const PlacedPcmSurface*, 2> placed{&e.A, &e.B};
   const std::array<double, 2> signs{1.0, -1.0};
   for (const contact::PcmElement& element : e.elements) {
     const auto [load, p_WA_W] = StateOf(e, element);
     if (!(load.normal_force > 0.0)) continue;
-    // The load acts at the pressure centre (rows); the relative velocity is that of A's point
-    // under it against B's point at it (columns).
+    // The load acts at the pressure centre (rows; a modal side's modes through its material
+    // point's weights); the relative velocity is that of A's point under it against B's point at
+    // it (columns).
+    const std::array<int, 2> faces{element.face_A, element.face_B};
+    const std::array<Eigen::Vector3d, 2> weights{element.weights_A, element.weights_B};
     const std::array<Eigen::Vector3d, 2> moving_points{p_WA_W, load.point_W};
     std::array<Eigen::MatrixXd, 2> J, J_moving;
     for (int i = 0; i < 2; ++i) {
-      const MarkerKinematics& M = *ends[i].second;
-      J[i] = M.jacobian.topRows<3>() - Skew(load.point_W - M.p_WM_W) * M.jacobian.bottomRows<3>();
-      J_moving[i] = M.jacobian.topRows<3>() - Skew(moving_points[i] - M.p_WM_W) * M.jacobian.bottomRows<3>();
+      J[i] = placed[i]->PointJacobian(load.point_W, faces[i], weights[i]);
+      J_moving[i] = placed[i]->PointJacobian(moving_points[i], faces[i], weights[i]);
     }
     for (int i = 0; i < 2; ++i) {
-      if (ends[i].first->is_ground()) continue;
+      if (sides[i]->marker.is_ground()) continue;
       for (int j = 0; j < 2; ++j) {
-        if (ends[j].first->is_ground()) continue;
-        const Eigen::Index row = system.velocity_offset(ends[i].first->body);
-        const Eigen::Index column = system.velocity_offset(ends[j].first->body);
+        if (sides[j]->marker.is_ground()) continue;
+        const Eigen::Index row = system.velocity_offset(sides[i]->marker.body);
+        const Eigen::Index column = system.velocity_offset(sides[j]->marker.body);
         const double sign = signs[i] * signs[j];
         dh_dx.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_displacement * J_moving[j];
         dh_du.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_velocity * J_moving[j];
