@@ -6,20 +6,19 @@
 // time and the process's CPU time are given: on a machine shared with other jobs the CPU time
 // is the steadier measure.
 //
-//   bench_sid_file [--dofs 100000,512000] [--modes 20] [--repeat 3] [--dir /tmp]
+// --parts 1 adds where the checksums' cost goes (sid_file_parts.h).
+//
+//   bench_sid_file [--dofs 100000,512000] [--modes 20] [--repeat 3] [--dir /tmp] [--parts 0|1]
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
-#include <limits>
 #include <string>
 #include <string_view>
 
 #include "bench/command_line.h"
+#include "bench/cpu_and_wall_time.h"
+#include "bench/sid_file_parts.h"
 #include "sid/sid_file.h"
 #include "tests/sid/sample_body.h"
 
@@ -49,34 +48,10 @@ sid::ReducedBody GeneratedBody(Eigen::Index dofs, Eigen::Index n) {
   return body;
 }
 
-/// Wall-clock and CPU time of one run [s].
-struct Seconds {
-  double wall = std::numeric_limits<double>::infinity();
-  double cpu = std::numeric_limits<double>::infinity();
-};
-
-double ProcessCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-/// The fastest of `repeat` runs of `f`, in wall-clock and in CPU time (each its own minimum).
-Seconds Fastest(int repeat, const std::function<void()>& f) {
-  Seconds best;
-  for (int r = 0; r < repeat; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = ProcessCpuSeconds();
-    f();
-    best.cpu = std::min(best.cpu, ProcessCpuSeconds() - cpu_start);
-    best.wall = std::min(best.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  return best;
-}
-
 int Run(int argc, char** argv) {
   std::vector<int> dofs{100000, 512000};
   int modes = 20, repeat = 3;
+  bool parts = false;
   fs::path dir = fs::temp_directory_path();
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string_view option = argv[i];
@@ -86,6 +61,8 @@ int Run(int argc, char** argv) {
       modes = std::atoi(argv[i + 1]);
     } else if (option == "--repeat") {
       repeat = std::atoi(argv[i + 1]);
+    } else if (option == "--parts") {
+      parts = std::atoi(argv[i + 1]) != 0;
     } else if (option == "--dir") {
       dir = argv[i + 1];
     } else {
@@ -103,6 +80,7 @@ int Run(int argc, char** argv) {
     fmt::print("{:>9} {:>6} {:>8.1f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f}\n", d, modes,
                static_cast<double>(fs::file_size(path)) / 1e6, write.wall, read.wall, write.cpu, read.cpu);
     fs::remove(path);
+    if (parts) PrintChecksumParts(body, dir, repeat);
   }
   return 0;
 }

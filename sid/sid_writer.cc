@@ -1,6 +1,9 @@
 // Writes a ReducedBody to `.sid.h5` (layout: docs/sid.md, names and units: sid_layout.h).
 #include <fmt/format.h>
 
+#include <future>
+#include <string>
+
 #include "core/error.h"
 #include "core/h5_file.h"
 #include "core/version.h"
@@ -79,6 +82,10 @@ void WriteVisualSurface(h5::Group& root, const VisualSurface& surface) {
 
 void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body) {
   CheckConsistent(body);
+  // The content digest (SHA-256 over every value, as long as the HDF5 writes themselves on a
+  // large body: docs/h5.md, "Cost of the checksums") runs on a thread of its own beside them;
+  // it only reads `body`, and HDF5 stays on this thread.
+  std::future<std::string> digest = std::async(std::launch::async, [&body] { return ContentDigest(body); });
   h5::File file = h5::File::Create(path);
   h5::Group root = file.root();
   root.SetStringAttribute("format", kSidFormat);
@@ -111,7 +118,7 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   if (!body.visual_surface.empty()) WriteVisualSurface(root, body.visual_surface);
 
   // Provenance as two parallel string lists, so that any key round-trips.
-  root.SetStringAttribute(layout::kDigestAttribute, ContentDigest(body));
+  root.SetStringAttribute(layout::kDigestAttribute, digest.get());
   std::map<std::string, std::string> provenance_entries = body.provenance;
   provenance_entries["tool_version"] = std::string(Version());
   std::vector<std::string> keys, values;
