@@ -183,11 +183,31 @@ void ReadIntegratorOptions(const YamlNode& node, double end_time, OdeOptions* in
   }
 }
 
+/// Fails at the first key of `simulation:` that `method` (0 explicit, 2 moreau_jean) would read
+/// and ignore: the Newton keys under the explicit method, the ODE integrator's keys under
+/// Moreau-Jean (event_driven's are refused by ReadEventDrivenOptions).
+void RejectKeysTheMethodDoesNotUse(const YamlNode& node, int method) {
+  if (method == 0) {
+    for (const std::string_view key : {"jacobian", "newton"}) {
+      if (node.Has(key)) {
+        node.Required(key).Fail("only for method implicit (the explicit method solves no Newton systems)");
+      }
+    }
+  }
+  if (method == 2) {
+    for (const std::string_view key : {"relative_tolerance", "absolute_tolerance", "max_step", "fixed_step",
+                                       "baumgarte_frequency", "jacobian", "newton"}) {
+      if (node.Has(key)) {
+        node.Required(key).Fail("not for method moreau_jean (fixed steps of size step, no ODE integrator)");
+      }
+    }
+  }
+}
+
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
                           "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot",
-                          "step", "theta", "impact_level", "rest_velocity", "stick_velocity", "gap_tolerance",
-                          "max_events"});
+                          "step", "theta", "impact_level", "rest_velocity", "gap_tolerance", "max_events"});
   SimulationOptions options;
   ReadOutputTimes(node, &options);
   const int method = node.Has("method")
@@ -197,13 +217,7 @@ SimulationOptions ReadSimulation(const YamlNode& node) {
   options.moreau_jean = ReadMoreauJeanOptions(node, method == 2);
   options.event_driven = ReadEventDrivenOptions(node, method == 3);
   ReadIntegratorOptions(node, options.end_time, &options.integrator);
-  if (method == 0) {
-    for (const std::string_view key : {"jacobian", "newton"}) {
-      if (node.Has(key)) {
-        node.Required(key).Fail("only for method implicit (the explicit method solves no Newton systems)");
-      }
-    }
-  }
+  RejectKeysTheMethodDoesNotUse(node, method);
   ReadPositive(node, "baumgarte_frequency", &options.baumgarte_frequency);
   if (node.Has("redundant_pivot")) {
     const YamlNode item = node.Required("redundant_pivot");
@@ -285,6 +299,11 @@ Scene LoadScene(const std::filesystem::path& file) {
     for (const YamlNode& item : contacts.AsList()) {
       std::unique_ptr<UnilateralContact> contact = ReadUnilateralContact(
           item, *scene.system, [&](const YamlNode& end) { return ReadMarkerRef(end, *scene.system); });
+      if (scene.options.event_driven && contact->law().friction > 0.0) {
+        item.Required("friction").Fail(fmt::format("{:g}: method event_driven integrates frictionless contacts only "
+                                                   "(friction 0); Coulomb friction under method moreau_jean",
+                                                   contact->law().friction));
+      }
       if (scene.options.moreau_jean && scene.options.moreau_jean->impact_level == ImpactLevel::kPosition &&
           contact->law().restitution > 0.0) {
         item.Required("restitution")

@@ -137,6 +137,19 @@ TEST_F(UnilateralSceneTest, UnilateralContactsNeedMoreauJeanAndMoreauJeanNeedsIt
   EXPECT_NE(message.find("simulation.step: only for method moreau_jean"), std::string::npos) << message;
 }
 
+// The ODE integrator's keys were read and ignored under Moreau-Jean (issue 22): each is refused
+// at its item, as event_driven refuses the keys it does not use.
+TEST_F(UnilateralSceneTest, OdeIntegratorKeysWithMoreauJeanAreRefused) {
+  const std::string scene = std::string(kBodies) + kContacts + kMoreauJean;
+  for (const std::string key : {"relative_tolerance: 1e-6", "absolute_tolerance: 1e-9", "max_step: 1e-3",
+                                "fixed_step: 1e-4", "baumgarte_frequency: 100", "jacobian: model", "newton: dense"}) {
+    const std::string message = Refused(scene, "theta: 0.6", "theta: 0.6, " + key);
+    EXPECT_NE(message.find("simulation." + key.substr(0, key.find(':')) + ": not for method moreau_jean"),
+              std::string::npos)
+        << message;
+  }
+}
+
 TEST_F(UnilateralSceneTest, BoxPlaneLoadsItsHalfExtentsAndRefusesAnEdgeOfZero) {
   const std::string box = std::string(kBodies) +
                           "contacts:\n  - {name: seat, type: box_plane, box: {body: other, marker: centre}, "
