@@ -82,7 +82,11 @@ GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, do
       const double tilt = max_tilt * unit(rng);
       const Eigen::Vector2d n(std::sin(tilt), std::cos(tilt));
       const Eigen::Vector2d t(n.y(), -n.x());
-      const Eigen::Vector2d p(unit(rng), -1.0 + 0.2 * unit(rng));
+      // Drawn one by one: the order of a call's arguments is unspecified (GCC draws the last
+      // first, clang the first: under clang these were other problems). This is GCC's order.
+      const double p_y = unit(rng);
+      const double p_x = unit(rng);
+      const Eigen::Vector2d p(p_x, -1.0 + 0.2 * p_y);
       Eigen::Matrix2d C;
       C << n, t;
       const auto point_rows = [&](const Eigen::Vector2d& x) {
@@ -99,7 +103,10 @@ GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, do
       const Eigen::Vector3d t1 = n.unitOrthogonal();
       Eigen::Matrix3d C;
       C << n, t1, n.cross(t1);
-      const Eigen::Vector3d p(unit(rng), unit(rng), -1.0 + 0.2 * unit(rng));
+      const double p_z = unit(rng);  // one by one, in GCC's order (see the planar case)
+      const double p_y = unit(rng);
+      const double p_x = unit(rng);
+      const Eigen::Vector3d p(p_x, p_y, -1.0 + 0.2 * p_z);
       // velocity of the point x (from the centre): v + w x x = v - Skew(x) w
       const auto point_rows = [&](const Eigen::Vector3d& x) {
         Eigen::Matrix<double, 3, 6> rows;
