@@ -2,8 +2,9 @@
 # Sets up a fresh machine and runs the main job: installs the Debian packages, builds
 # flexmbs, preprocesses the steel cantilever of cases/01_cantilever, preprocesses and simulates
 # the flexible slider-crank of cases/02_slider_crank, simulates the bouncing ball of
-# cases/03_bouncing_ball and reduces and simulates the sphere striking a rod of
-# cases/04_sphere_on_rod (see their READMEs).
+# cases/03_bouncing_ball, reduces and simulates the sphere striking a rod of
+# cases/04_sphere_on_rod and reduces the NAFEMS FV52 plate of cases/05_nafems_fv52 against
+# CalculiX and the published frequencies (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -12,4 +13,5 @@ cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/01_cantilever/run.sh build/bin/flexmbs
 ./cases/02_slider_crank/run.sh build/bin/flexmbs
 ./cases/03_bouncing_ball/run.sh build/bin/flexmbs
-exec ./cases/04_sphere_on_rod/run.sh build/bin/flexmbs
+./cases/04_sphere_on_rod/run.sh build/bin/flexmbs
+exec ./cases/05_nafems_fv52/run.sh build/bin/flexmbs
