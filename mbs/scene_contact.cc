@@ -134,7 +134,7 @@ std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::
                                                const MultibodySystem& system,
                                                const std::function<MarkerRef(const YamlNode&)>& read_marker) {
   if (type == "spur_gear_contact") return ReadSpurGearContact(node, name, read_marker);
-  if (type == "pcm_contact") return ReadPcmContact(node, name, read_marker);
+  if (type == "pcm_contact") return ReadPcmContact(node, name, system, read_marker);
   if (type == "sphere_plane_contact") {
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",
                             "restitution", "impact_speed", "materials", "friction"});

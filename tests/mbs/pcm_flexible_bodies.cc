@@ -98,6 +98,10 @@ namespace {
 /// The side's triangles in W, deformed: p_WBo + R (p_BoV_B + phi_V q).
 contact::PolygonMesh DeformedTriangles(const ReferenceSide& side) {
   contact::PolygonMesh mesh = side.triangles_B;
+  if (side.surface == nullptr) {
+    mesh.vertices_W = (side.R_WB * side.triangles_B.vertices_W).colwise() + side.p_WBo_W;
+    return mesh;
+  }
   const Index V = side.surface->vertices.rows();
   const Eigen::Matrix3Xd s_B = side.surface->vertices.transpose() + (side.surface->phi * side.q).reshaped(3, V);
   mesh.vertices_W = (side.R_WB * s_B).colwise() + side.p_WBo_W;
@@ -107,6 +111,7 @@ contact::PolygonMesh DeformedTriangles(const ReferenceSide& side) {
 /// Adds the force f_W [N] spread by `weights` over face `face`'s vertices to their FE nodes, in B.
 void Spread(const ReferenceSide& side, int face, const Eigen::Vector3d& weights, const Eigen::Vector3d& f_W,
             Eigen::VectorXd& f) {
+  if (side.surface == nullptr) return;
   for (int k = 0; k < 3; ++k) {
     const int vertex = side.triangles_B.face_vertices[static_cast<std::size_t>(3 * face + k)];
     const int node = side.surface->fe_nodes[static_cast<std::size_t>(vertex)];
@@ -123,7 +128,8 @@ std::array<Eigen::VectorXd, 2> ReferenceNodalLoads(const ReferenceSide& A, const
   for (int a = 0; a < static_cast<int>(mesh_A.face_sizes.size()); ++a) {
     for (int b = 0; b < static_cast<int>(mesh_B.face_sizes.size()); ++b) pairs.push_back({a, b});
   }
-  std::array<Eigen::VectorXd, 2> f{Eigen::VectorXd::Zero(A.box->fe.K.rows()), Eigen::VectorXd::Zero(B.box->fe.K.rows())};
+  const auto size = [](const ReferenceSide& side) { return side.box == nullptr ? Index{0} : side.box->fe.K.rows(); };
+  std::array<Eigen::VectorXd, 2> f{Eigen::VectorXd::Zero(size(A)), Eigen::VectorXd::Zero(size(B))};
   for (const contact::PcmElement& element : contact::ContactElements(mesh_A, mesh_B, pairs, max_depth)) {
     const Eigen::Vector3d F = contact::Evaluate(law, element, Eigen::Vector3d::Zero()).force_W;
     Spread(A, element.face_A, element.weights_A, F, f[0]);

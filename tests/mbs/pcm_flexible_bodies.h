@@ -52,11 +52,12 @@ int SolveStatics(const MultibodySystem& system, const std::vector<Unknown>& unkn
                  double step, double tolerance, Eigen::VectorXd& y);
 
 /// One side of a PCM pair for the reference: the reduced body's surface (its triangles as the
-/// element splits them), the body's frame in W, its modal coordinates and its FE model.
+/// element splits them), the body's frame in W, its modal coordinates and its FE model; or a rigid
+/// mesh (box and surface null, q empty).
 struct ReferenceSide {
   const ClampedBox* box;
   const sid::ContactSurface* surface;
-  contact::PolygonMesh triangles_B;  ///< the surface's triangles, undeformed, in B
+  contact::PolygonMesh triangles_B;  ///< the surface's triangles, undeformed, in B (a rigid mesh's in its frame)
   Eigen::Vector3d p_WBo_W;
   Eigen::Matrix3d R_WB;
   Eigen::VectorXd q;
@@ -65,7 +66,7 @@ struct ReferenceSide {
 /// The nodal loads (3 N, in B) [N] that the pair's elements put on each side: every element of
 /// A's triangles under B's (all pairs tried, no hierarchy) with its foundation force F at zero
 /// velocity, spread over its faces' vertices by the element's weights (F on A's, -F on B's),
-/// each vertex onto its FE node.
+/// each vertex onto its FE node (none for a rigid side).
 std::array<Eigen::VectorXd, 2> ReferenceNodalLoads(const ReferenceSide& A, const ReferenceSide& B,
                                                    const contact::ElasticFoundation& law, double max_depth);
 

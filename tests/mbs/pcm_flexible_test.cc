@@ -2,14 +2,19 @@
 // crossing at right angles and pressed into each other carry the force of the two beams and the
 // layers in series (Euler-Bernoulli's 192 E I / L^3 per beam), equal and opposite on both, and
 // deflect as their FE model does under the contact's nodal loads (K u = f solved here); the
-// Jacobian with its modal columns against central differences.
+// Jacobian with its modal columns against central differences; the scene entry with body sides and
+// its one-line errors.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <random>
+#include <string>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -17,7 +22,10 @@
 #include "mbs/multibody_system.h"
 #include "mbs/pcm_contact_force.h"
 #include "mbs/rigid_body.h"
+#include "mbs/scene.h"
+#include "sid/sid_file.h"
 #include "tests/contact/pcm_meshes.h"
+#include "tests/input_error.h"
 #include "tests/mbs/pcm_flexible_bodies.h"
 #include "tests/support/test_problems.h"
 
@@ -245,6 +253,78 @@ TEST(PcmFlexible, TheJacobianIsExactInVelocityAndInTheFramesTranslationsAndLumpe
     EXPECT_GT(errors.modes, 0.1);
     EXPECT_LT(errors.modes, 0.6);
   }
+}
+
+/// A scene folder with the two beams' body files and a scene of them (and a rigid block) whose
+/// forces are `forces` (YAML list items).
+class CrossingScene {
+ public:
+  CrossingScene() : dir_(std::filesystem::temp_directory_path() / ("flexmbs_pcm_scene_" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(dir_);
+    sid::WriteReducedBody(dir_ / "lower.sid.h5", LowerBeam().fe.body);
+    sid::WriteReducedBody(dir_ / "upper.sid.h5", UpperBeam().fe.body);
+  }
+  ~CrossingScene() { std::filesystem::remove_all(dir_); }
+  CrossingScene(const CrossingScene&) = delete;
+  CrossingScene& operator=(const CrossingScene&) = delete;
+
+  std::filesystem::path Write(const Vector3d& p_WUo_W, const std::string& forces) const {
+    const std::filesystem::path file = dir_ / "scene.yaml";
+    std::ofstream(file) << "gravity: [0, 0, 0]\nbodies:\n"
+                        << "  lower: {flexible: {file: lower.sid.h5, geometric_stiffening: false}}\n"
+                        << "  upper:\n    flexible: {file: upper.sid.h5, geometric_stiffening: false}\n"
+                        << "    initial: {position: [" << p_WUo_W.x() << ", " << p_WUo_W.y() << ", " << p_WUo_W.z()
+                        << "], rotation: {axis: [0, 0, 1], angle: 1.5707963267948966}}\n"
+                        << "  block:\n    rigid: {mass: 1, inertia: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n"
+                        << "    initial: {position: [0, 0, 1]}\n"
+                        << "forces:\n" << forces << "simulation: {end_time: 1e-3}\n";
+    return file;
+  }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+TEST(PcmFlexible, ASceneNamesABodysSurfaceAsASideAndBadSidesAreOneLineErrors) {
+  const Crossing direct(5e-4, 0.0, contact::RegularisedCoulomb{0.0, 1e-3});
+  const CrossingScene scene;
+  const std::string layer = "layer: {modulus: 1e8, thickness: 2e-3}";
+  const Scene loaded = LoadScene(scene.Write(direct.p_WUo_W, "  - name: cross\n    type: pcm_contact\n"
+                                                             "    a: {body: upper, surface: bottom, " + layer + "}\n"
+                                                             "    b: {body: lower, surface: top, " + layer + "}\n"
+                                                             "    max_depth: 2e-3\n"));
+  // The scene's element at the scene's state against the element built directly at that state.
+  const MultibodySystem& system = *loaded.system;
+  VectorXd y = direct.y;
+  for (const int b : {direct.lower, direct.upper}) {
+    direct.system.SetBodyState(b, system.BodyPositions(loaded.initial_state, b), system.BodyVelocities(loaded.initial_state, b), y);
+  }
+  VectorXd h_scene = VectorXd::Zero(system.num_velocities()), h_direct = VectorXd::Zero(direct.system.num_velocities());
+  system.force_element(0).AddForces(0.0, system, loaded.initial_state, h_scene);
+  direct.cross->AddForces(0.0, direct.system, y, h_direct);
+  EXPECT_GT(h_direct.norm(), 100.0);
+  EXPECT_EQ(h_scene.head(h_direct.size()), h_direct);
+  EXPECT_TRUE(h_scene.tail(6).isZero()) << "the block takes nothing";
+
+  const auto error = [&](const std::string& a) {
+    return flexmbs::testing::InputErrorMessage([&] {
+      LoadScene(scene.Write(direct.p_WUo_W, "  - name: cross\n    type: pcm_contact\n    a: " + a + "\n"
+                                            "    b: {body: lower, surface: top, " + layer + "}\n    max_depth: 2e-3\n"));
+    });
+  };
+  const auto expect = [](const std::string& message, const std::string& part) {
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+  };
+  expect(error("{body: middle, surface: bottom, " + layer + "}"), "forces[0].a.body: force element 'cross': no body 'middle'");
+  expect(error("{body: block, surface: bottom, " + layer + "}"),
+         "forces[0].a.body: force element 'cross': body 'block' is rigid; surfaces are a flexible body's");
+  expect(error("{body: upper, surface: side, " + layer + "}"),
+         "forces[0].a.surface: force element 'cross': body 'upper' carries no contact surface 'side' (it has: bottom)");
+  expect(error("{body: upper, surface: bottom, mesh: upper.stl, " + layer + "}"), "forces[0].a");
+  expect(error("{body: upper, surface: bottom, layer: {modulus: 0, thickness: 2e-3}}"),
+         "force element 'cross': layer modulus of surface 'bottom' 0 must be finite and > 0");
+  // The bottom patch is open: closed: true finds its rim.
+  expect(error("{body: upper, surface: bottom, closed: true, " + layer + "}"), "force element 'cross': surface 'bottom'");
 }
 
 }  // namespace
