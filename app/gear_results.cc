@@ -37,6 +37,8 @@ std::vector<mbs::ResultsLayout::ElementSeries> GearSeries(const mbs::MultibodySy
                       {{"active_pairs", 0, "1"},
                        {"mesh_force", 0, "N"},
                        {"pair_force", 2 * SlotsPerSide(gear->pair()), "N"},
+                       {"tooth1_deflection", 2 * SlotsPerSide(gear->pair()), "m"},
+                       {"tooth2_deflection", 2 * SlotsPerSide(gear->pair()), "m"},
                        {"transmission_error", 0, "rad"},
                        {"transmission_error_length", 0, "m"},
                        {"torque", 2, "N m"}}});
@@ -52,8 +54,10 @@ std::vector<std::vector<Eigen::VectorXd>> GearRows(const mbs::MultibodySystem& s
     const mbs::SpurGearContact::Readout mesh = gear->Read(t, system, y);
     const int slots = SlotsPerSide(pair);
     Eigen::VectorXd pair_force = Eigen::VectorXd::Zero(2 * slots);
+    Eigen::VectorXd deflection1 = pair_force, deflection2 = pair_force;
     double active = 0.0, total = 0.0;
-    for (const contact::ToothPairLoad& load : mesh.pairs) {
+    for (std::size_t i = 0; i < mesh.pairs.size(); ++i) {
+      const contact::ToothPairLoad& load = mesh.pairs[i];
       if (!(load.pair.gap < 0.0)) continue;
       active += 1.0;
       total += load.force;
@@ -63,6 +67,8 @@ std::vector<std::vector<Eigen::VectorXd>> GearRows(const mbs::MultibodySystem& s
                      slots - 1);
       const int side = load.pair.side == contact::FlankSide::kPositive ? 0 : slots;
       pair_force(side + slot) += load.force;
+      deflection1(side + slot) += mesh.deflections[i].tooth1;
+      deflection2(side + slot) += mesh.deflections[i].tooth2;
     }
     // Wheel 2's lag behind its rigid kinematic angle on the positive flanks (wheel 1 driving
     // about +z), as contact::StaticTransmissionError defines it.
@@ -70,7 +76,7 @@ std::vector<std::vector<Eigen::VectorXd>> GearRows(const mbs::MultibodySystem& s
         mesh.phi2 - contact::TouchingAngle2(pair, mesh.centre_distance, mesh.phi1, mesh.phi2,
                                             contact::FlankSide::kPositive);
     rows.push_back({Eigen::VectorXd::Constant(1, active), Eigen::VectorXd::Constant(1, total),
-                    pair_force, Eigen::VectorXd::Constant(1, error),
+                    pair_force, deflection1, deflection2, Eigen::VectorXd::Constant(1, error),
                     Eigen::VectorXd::Constant(1, pair.gear2.base_radius * error),
                     Eigen::Vector2d(mesh.torque1, mesh.torque2)});
   }

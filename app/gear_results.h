@@ -1,8 +1,8 @@
 #pragma once
 // The results file's gears/ groups (docs/results.md): per spur_gear_contact force element the
-// series an engineer looks at — tooth pairs in contact, mesh force in total and per pair,
-// transmission error, the wheels' torques — as neutral element series of mbs/results_file.h,
-// which knows no gear types.
+// series an engineer looks at — tooth pairs in contact, mesh force in total and per pair, the
+// elastic teeth's deflections per pair, transmission error, the wheels' torques — as neutral
+// element series of mbs/results_file.h, which knows no gear types.
 
 #include <Eigen/Core>
 #include <vector>

@@ -3,9 +3,13 @@
 #include <fmt/format.h>
 
 #include <numbers>
+#include <optional>
+#include <string_view>
+#include <vector>
 
 #include "contact/gears/gear_mesh_force.h"
 #include "contact/gears/spur_gear.h"
+#include "contact/gears/tooth_stiffness.h"
 #include "core/error.h"
 #include "mbs/spur_gear_contact.h"
 
@@ -29,13 +33,79 @@ contact::SpurGearSpec ReadWheel(const YamlNode& node) {
   return spec;
 }
 
+/// The numbers of the sequence `key` of `node`.
+std::vector<double> ReadNumbers(const YamlNode& node, std::string_view key) {
+  std::vector<double> numbers;
+  for (const YamlNode& item : node.Required(key).AsList()) numbers.push_back(item.AsDouble());
+  return numbers;
+}
+
+/// One wheel's tooth compliance table {roll, compliance, centre_depth}.
+contact::ToothCompliance ReadToothTable(const YamlNode& node) {
+  node.RejectUnknownKeys({"roll", "compliance", "centre_depth"});
+  return {ReadNumbers(node, "roll"), ReadNumbers(node, "compliance"),
+          ReadNumbers(node, "centre_depth")};
+}
+
+/// The `teeth` entry: both wheels' tables, the material and the flattening's reference load.
+contact::ElasticTeeth ReadTeeth(const YamlNode& node) {
+  node.RejectUnknownKeys({"gear1", "gear2", "youngs_modulus", "poisson_ratio", "reference_load"});
+  contact::ElasticTeeth teeth;
+  teeth.tooth1 = ReadToothTable(node.Required("gear1"));
+  teeth.tooth2 = ReadToothTable(node.Required("gear2"));
+  const auto optional = [&](std::string_view key, double fallback) {
+    return node.Has(key) ? node.Required(key).AsDouble() : fallback;
+  };
+  teeth.material.youngs_modulus = optional("youngs_modulus", teeth.material.youngs_modulus);
+  teeth.material.poisson_ratio = optional("poisson_ratio", teeth.material.poisson_ratio);
+  teeth.reference_load = optional("reference_load", teeth.reference_load);
+  return teeth;
+}
+
+/// What the entry says of the teeth' stiffness: elastic `teeth`, or c' from `mesh_stiffness` (a
+/// number [N/m^2], or `iso`: ISO 6336-1's c' of the pair), or neither (the default c').
+struct StiffnessEntry {
+  std::optional<contact::ElasticTeeth> teeth;
+  std::optional<double> stiffness;
+  bool iso = false;
+};
+
+StiffnessEntry ReadStiffness(const YamlNode& node) {
+  StiffnessEntry entry;
+  if (node.Has("teeth")) {
+    if (node.Has("mesh_stiffness")) {
+      node.Required("mesh_stiffness").Fail("give either mesh_stiffness or teeth, not both");
+    }
+    entry.teeth = ReadTeeth(node.Required("teeth"));
+  } else if (node.Has("mesh_stiffness")) {
+    const YamlNode stiffness = node.Required("mesh_stiffness");
+    entry.iso = stiffness.AsString() == "iso";
+    if (!entry.iso) entry.stiffness = stiffness.AsDouble();
+  }
+  return entry;
+}
+
+/// The mesh law of `entry` for `pair` (InputErrors of the values, unlocated).
+contact::MeshLaw MakeMeshLaw(const StiffnessEntry& entry, const contact::GearPairSpec& spec,
+                             const contact::GearPair& pair, double damping) {
+  if (entry.teeth) return contact::MeshLaw(pair, *entry.teeth, damping);
+  contact::GearMeshCompliance compliance{contact::GearMeshCompliance{}.single_pair_stiffness,
+                                         damping};
+  if (entry.iso) {
+    compliance.single_pair_stiffness =
+        contact::IsoSinglePairStiffness(spec.gear1, spec.gear2).single_pair;
+  }
+  if (entry.stiffness) compliance.single_pair_stiffness = *entry.stiffness;
+  return contact::ToothPairLaw(compliance, pair);
+}
+
 }  // namespace
 
 std::unique_ptr<ForceElement> ReadSpurGearContact(
     const YamlNode& node, const std::string& name,
     const std::function<MarkerRef(const YamlNode&)>& read_marker) {
   node.RejectUnknownKeys({"name", "type", "wheel1", "wheel2", "gear1", "gear2", "centre_distance",
-                          "backlash", "mesh_stiffness", "damping"});
+                          "backlash", "mesh_stiffness", "damping", "teeth"});
   const MarkerRef wheel1 = read_marker(node.Required("wheel1")),
                   wheel2 = read_marker(node.Required("wheel2"));
   contact::GearPairSpec spec{ReadWheel(node.Required("gear1")), ReadWheel(node.Required("gear2")),
@@ -45,13 +115,12 @@ std::unique_ptr<ForceElement> ReadSpurGearContact(
   };
   spec.centre_distance = optional("centre_distance", 0.0);
   spec.backlash = optional("backlash", 0.0);
-  const contact::GearMeshCompliance compliance{
-      optional("mesh_stiffness", contact::GearMeshCompliance{}.single_pair_stiffness),
-      optional("damping", 0.0)};
+  const double damping = optional("damping", 0.0);
+  const StiffnessEntry stiffness = ReadStiffness(node);
   try {
     const contact::GearPair pair = contact::MakeGearPair(spec);
-    const contact::NormalLaw law = contact::ToothPairLaw(compliance, pair);
-    return std::make_unique<SpurGearContact>(name, wheel1, wheel2, pair, law);
+    return std::make_unique<SpurGearContact>(name, wheel1, wheel2, pair,
+                                             MakeMeshLaw(stiffness, spec, pair, damping));
   } catch (const InputError& e) {
     node.Fail(fmt::format("force element '{}': {}", name, e.what()));
   }

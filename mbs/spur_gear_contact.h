@@ -71,6 +71,8 @@ class SpurGearContact final : public ForceElement {
   Readout Read(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
   /// The pair's geometry (its nominal centre distance; the element uses the markers' one).
   const contact::GearPair& pair() const { return pair_; }
+  /// The tooth pairs' laws.
+  const contact::MeshLaw& law() const { return law_; }
 
  private:
   /// The pair frame at state y: the markers, a, the axes x, y of the pair frame in W and the

@@ -10,6 +10,7 @@ the transmission error's range. Writes PNG files named after the results file:
   <stem>_modes_<body>.png      a flexible body's modal coordinates over time
   <stem>_contact_<c>.png       a contact's gap and its normal impulse per output interval (a force)
   <stem>_gear_<g>.png          a gear mesh's force, tooth pairs in contact, transmission error
+                               (and elastic teeth's deflections)
 
 Usage: /usr/bin/python3 scripts/plot_results.py results.h5 [--out DIR]
   --out DIR   where the PNG files go (default: the results file's folder)
@@ -188,14 +189,26 @@ def plot_contact(f, n, contact, path):
 
 
 def plot_gear(f, n, gear, path):
-    """A gear mesh's force, tooth pairs in contact and transmission error over time."""
+    """A gear mesh's force, tooth pairs in contact, transmission error and, with elastic teeth,
+    both wheels' tooth deflections per pair slot over time."""
     g = f["gears"][gear]
     t = series(f, "time", n)
-    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7.5))
-    for ax, (name, label) in zip(axes, (("mesh_force", "mesh force [N]"),
-                                        ("active_pairs", "pairs in contact"),
-                                        ("transmission_error", "transmission error [rad]"))):
-        ax.plot(t, series(g, name, n), drawstyle="steps-post" if name == "active_pairs" else "default")
+    panels = [("mesh_force", "mesh force [N]"), ("active_pairs", "pairs in contact"),
+              ("transmission_error", "transmission error [rad]")]
+    elastic = "tooth1_deflection" in g and np.any(series(g, "tooth1_deflection", n) != 0.0)
+    if elastic:
+        panels.append(("tooth1_deflection", "tooth deflection [um]"))
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(8, 2.5 * len(panels)))
+    for ax, (name, label) in zip(axes, panels):
+        if name == "tooth1_deflection":
+            for wheel, style in (("tooth1_deflection", "-"), ("tooth2_deflection", "--")):
+                slots = series(g, wheel, n) * 1e6
+                for k in range(slots.shape[1]):
+                    if np.any(slots[:, k] != 0.0):
+                        ax.plot(t, slots[:, k], style, label=f"wheel {wheel[5]}, slot {k}")
+            ax.legend(fontsize="small", ncol=2)
+        else:
+            ax.plot(t, series(g, name, n), drawstyle="steps-post" if name == "active_pairs" else "default")
         ax.set(ylabel=label)
         ax.grid(True)
     axes[0].set_title(f"gear {gear}")

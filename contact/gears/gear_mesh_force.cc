@@ -30,7 +30,9 @@ MeshLaw::MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping)
       teeth_(std::move(teeth)),
       pair_(pair),
       face_width_(std::min(pair.gear1.spec.face_width, pair.gear2.spec.face_width)),
-      damping_(damping) {}
+      damping_(damping) {
+  CheckElasticTeeth(*teeth_);
+}
 
 std::pair<double, double> MeshLaw::Rolls(const ToothPair& tp) const {
   return {std::max(tp.roll1, teeth_->tooth1.roll.front()),

@@ -44,7 +44,7 @@ class MeshLaw {
   /// Every tooth pair takes `law` (implicit: a NormalLaw is the constant-stiffness mesh).
   MeshLaw(NormalLaw law);  // NOLINT(google-explicit-constructor)
   /// Elastic teeth of `pair` with a damping c >= 0 [N s/m] per tooth pair in contact.
-  /// InputError from LinearLaw for a negative damping.
+  /// InputError from CheckElasticTeeth, or LinearLaw's for a negative damping.
   MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping);
   /// The law of tooth pair `tp`.
   NormalLaw PairLaw(const ToothPair& tp) const;

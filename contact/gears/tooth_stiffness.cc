@@ -1,10 +1,13 @@
 #include "contact/gears/tooth_stiffness.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 
+#include "contact/laws/law_checks.h"
 #include "core/error.h"
 
 namespace flexmbs::contact {
@@ -47,6 +50,42 @@ double WeberFlattening(double load_per_width, double rho1, double rho2, double h
   const double half_width = std::sqrt(8.0 * load_per_width * radius * soft);
   return 2.0 * load_per_width * soft *
          (std::log(2.0 * h1 / half_width) + std::log(2.0 * h2 / half_width) - nu / (1.0 - nu));
+}
+
+void CheckToothCompliance(const ToothCompliance& tooth, const char* item) {
+  const std::size_t n = tooth.roll.size();
+  if (n < 2 || tooth.compliance.size() != n || tooth.centre_depth.size() != n) {
+    throw InputError(fmt::format(
+        "{}: the compliance table needs two or more samples and as many of each column (roll {}, "
+        "compliance {}, centre_depth {})",
+        item, n, tooth.compliance.size(), tooth.centre_depth.size()));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const double previous = k == 0 ? 0.0 : tooth.roll[k - 1];
+    if (!(tooth.roll[k] > previous) || !std::isfinite(tooth.roll[k])) {
+      throw InputError(fmt::format("{}: roll[{}] {} rad must be finite, > 0 and above roll[{}]",
+                                   item, k, tooth.roll[k], k == 0 ? 0 : k - 1));
+    }
+    if (!(tooth.compliance[k] > 0.0 && std::isfinite(tooth.compliance[k]))) {
+      throw InputError(fmt::format("{}: compliance[{}] {} m^2/N must be finite and > 0", item, k,
+                                   tooth.compliance[k]));
+    }
+    if (!(tooth.centre_depth[k] > 0.0 && std::isfinite(tooth.centre_depth[k]))) {
+      throw InputError(fmt::format("{}: centre_depth[{}] {} m must be finite and > 0", item, k,
+                                   tooth.centre_depth[k]));
+    }
+  }
+}
+
+void CheckElasticTeeth(const ElasticTeeth& teeth) {
+  RequirePositive("Young's modulus [Pa]", teeth.material.youngs_modulus);
+  const double nu = teeth.material.poisson_ratio;
+  if (!(nu >= 0.0 && nu < 0.5)) {
+    throw InputError(fmt::format("Poisson's ratio {} must be in [0, 0.5)", nu));
+  }
+  RequirePositive("reference load [N/m]", teeth.reference_load);
+  CheckToothCompliance(teeth.tooth1, "gear 1 tooth");
+  CheckToothCompliance(teeth.tooth2, "gear 2 tooth");
 }
 
 ToothComplianceAt InterpolateCompliance(const ToothCompliance& tooth, double roll) {

@@ -57,6 +57,10 @@ struct ToothCompliance {
   std::vector<double> centre_depth;  ///< h_k [m]: from the flank point to the centre line
 };
 
+/// InputError (one line) unless `tooth` has two or more samples, as many in each column, finite
+/// roll angles > 0 that increase, and compliances and centre depths > 0; `item` names the tooth.
+void CheckToothCompliance(const ToothCompliance& tooth, const char* item);
+
 /// The compliance and centre depth of `tooth` at roll angle t [rad], linear between the samples and
 /// held beyond them. FLEXMBS_CHECK: at least two samples, increasing roll angles.
 struct ToothComplianceAt {
@@ -72,6 +76,10 @@ struct ElasticTeeth {
   ToothMaterial material;
   double reference_load = 3e5;  ///< w_ref [N/m] (300 N/mm, ISO 6336-1's 100 N/mm and above)
 };
+
+/// InputError unless E > 0, 0 <= nu < 0.5 and the reference load w_ref > 0 (all finite), and
+/// both tables pass CheckToothCompliance ("gear 1 tooth", "gear 2 tooth").
+void CheckElasticTeeth(const ElasticTeeth& teeth);
 
 /// The single-pair stiffness c(t1, t2) [N/m^2] (per face width) of the tooth pair at roll angles
 /// t1, t2 of `pair`: the two teeth's compliances and Weber's flattening at w_ref in series,

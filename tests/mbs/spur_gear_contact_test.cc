@@ -15,6 +15,7 @@
 
 #include "contact/gears/gear_mesh.h"
 #include "contact/gears/gear_mesh_force.h"
+#include "contact/gears/tooth_stiffness.h"
 #include "mbs/multibody_system.h"
 #include "mbs/rigid_body.h"
 #include "mbs/scene.h"
@@ -240,8 +241,7 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
   mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
   const ForceDifferences fd = CentralDifferences(system, mesh, y);
-  const double error_u =
-      (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
+  const double error_u = (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
   double error_x = 0.0;
   for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
     error_x = std::max(error_x, (dh_dx.col(c) - fd.dh_dx.col(c)).cwiseAbs().maxCoeff() /
@@ -305,7 +305,47 @@ TEST(SpurGearContact, BadGearEntriesAreOneLineErrorsAtTheirItem) {
       std::string::npos)
       << message;
   message = refused(std::string(kGearKeys) + "    teeth: 3\n");
-  EXPECT_NE(message.find("forces[1].teeth: unknown key 'teeth'"), std::string::npos) << message;
+  EXPECT_NE(message.find("teeth"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  const std::string table =
+      "{roll: [0.2, 0.5], compliance: [1e-11, 3e-11], centre_depth: [2e-3, 1e-3]}";
+  message =
+      refused(std::string(kGearKeys) + "    mesh_stiffness: 1.4e10\n    teeth: {gear1: " + table +
+              ", gear2: " + table + "}\n");
+  EXPECT_NE(message.find("forces[1].mesh_stiffness: give either mesh_stiffness or teeth, not both"),
+            std::string::npos)
+      << message;
+  message = refused(std::string(kGearKeys) +
+                    "    teeth: {gear1: {roll: [0.5, 0.2], compliance: [1e-11, 3e-11], "
+                    "centre_depth: [2e-3, 1e-3]}, gear2: " +
+                    table + "}\n");
+  EXPECT_NE(message.find("force element 'mesh': gear 1 tooth: roll[1] 0.2 rad must be finite, > 0 "
+                         "and above roll[0]"),
+            std::string::npos)
+      << message;
+  message = refused(std::string(kGearKeys) + "    teeth: {gear1: " + table + ", gear2: " + table +
+                    ", poisson_ratio: 0.5}\n");
+  EXPECT_NE(message.find("force element 'mesh': Poisson's ratio 0.5 must be in [0, 0.5)"),
+            std::string::npos)
+      << message;
+  message = refused(std::string(kGearKeys) +
+                    "    teeth: {gear1: {roll: [0.2, 0.5]}, gear2: " + table + "}\n");
+  EXPECT_NE(message.find("teeth.gear1"), std::string::npos) << message;
+  EXPECT_NE(message.find("compliance"), std::string::npos) << message;
+}
+
+// `mesh_stiffness: iso` takes ISO 6336-1's c' of the pair (contact::IsoSinglePairStiffness, its
+// own test in tests/contact/gear_teeth_test.cc) for every tooth pair, times the face width.
+TEST(SpurGearContact, IsoMeshStiffnessIsTheStandardsSinglePairStiffness) {
+  GearScene files;
+  const Scene scene =
+      LoadScene(files.Write(SceneText(0.0, std::string(kGearKeys) + "    mesh_stiffness: iso\n")));
+  const auto& mesh = dynamic_cast<const SpurGearContact&>(scene.system->force_element(1));
+  const contact::IsoMeshStiffness iso =
+      contact::IsoSinglePairStiffness(mesh.pair().gear1.spec, mesh.pair().gear2.spec);
+  const contact::ToothPair any;
+  EXPECT_DOUBLE_EQ(mesh.law().PairLaw(any).stiffness, iso.single_pair * 0.02);
+  EXPECT_FALSE(mesh.law().elastic());
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // mbs/spur_gear_contact: a free wheel rattling in the backlash of a held pinion. Between impacts
 // it crosses the backlash j_bn at constant speed; each impact on a side with n tooth pairs in
 // contact returns the speed times the restitution of the linear spring-dashpot n c' b, c on the
-// wheel's mass reduced to the line of action (closed form below, checked against SciPy).
+// wheel's mass reduced to the line of action (closed form below, checked against SciPy). With
+// elastic teeth the spring is the sum of the pairs' c(t1, t2) b where the impact happens.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 #include "mbs/scene.h"
 #include "mbs/simulation.h"
 #include "mbs/spur_gear_contact.h"
+#include "tests/support/driven_gear_pair.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -46,13 +48,15 @@ TEST(SpurGearRattle, ClosedFormRestitutionMatchesSciPy) {
   EXPECT_NEAR(Restitution(0.27, 2.8e8, 2e3), 0.713880065540117, 5e-10);
 }
 
-/// One sample of the run.
+/// One sample of the run; stiffness: the sum of the laws' stiffness [N/m] over the tooth pairs in
+/// contact.
 struct Sample {
-  double t, omega2, gap_positive, gap_negative;
+  double t, omega2, gap_positive, gap_negative, stiffness;
 };
 
-/// The scene: a held pinion and a free wheel at `angle` [rad] turning at `omega` [rad/s].
-std::string RattleSceneText(double angle, double omega) {
+/// The scene: a held pinion and a free wheel at `angle` [rad] turning at `omega` [rad/s]; with
+/// `teeth` (testing::kDrivenPairFeTeeth or "") the mesh's stiffness entry.
+std::string RattleSceneText(double angle, double omega, const std::string& teeth) {
   return "gravity: [0, 0, 0]\nbodies:\n"
          "  pinion:\n    rigid: {mass: 0.18, inertia: [[2e-5, 0, 0], [0, 2e-5, 0], [0, 0, "
          "3.4e-5]]}\n"
@@ -68,24 +72,28 @@ std::string RattleSceneText(double angle, double omega) {
          "  - {name: wheel_axis, type: revolute, i: {body: ground, position: [0.0505, 0, 0]}, "
          "j: {body: wheel, marker: axis}}\n"
          "forces:\n"
-         "  - {name: mesh, type: spur_gear_contact, wheel1: {body: pinion, marker: axis}, "
-         "wheel2: {body: wheel, marker: axis},\n"
-         "     gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02},\n"
-         "     gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02},\n"
-         "     centre_distance: 0.0505, damping: 2e3}\n"
+         "  - name: mesh\n"
+         "    type: spur_gear_contact\n"
+         "    wheel1: {body: pinion, marker: axis}\n"
+         "    wheel2: {body: wheel, marker: axis}\n"
+         "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+         "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02}\n"
+         "    centre_distance: 0.0505\n"
+         "    damping: 2e3\n" +
+         teeth +
          "simulation: {end_time: 0.012, output_interval: 1e-6, method: explicit, "
          "relative_tolerance: 1e-11, "
          "absolute_tolerance: 1e-14, max_step: 1e-6}\n";
 }
 
 /// The scene with the wheel kStartGap short of touching on the positive flanks, closing at
-/// kApproach (the touching angle found on a probe scene at rest).
-Scene LoadRattleScene() {
+/// kApproach (the touching angle found on a probe scene at rest); `teeth` as RattleSceneText.
+Scene LoadRattleScene(const std::string& teeth) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("flexmbs_rattle_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto load = [&](double angle, double omega) {
-    std::ofstream(dir / "scene.yaml") << RattleSceneText(angle, omega);
+    std::ofstream(dir / "scene.yaml") << RattleSceneText(angle, omega, teeth);
     return LoadScene(dir / "scene.yaml");
   };
   const Scene probe = load(0.0, 0.0);
@@ -113,26 +121,31 @@ RattleRun RunRattle(const Scene& scene) {
   const auto& gears = dynamic_cast<const SpurGearContact&>(system.force_element(0));
   const MarkerRef wheel = MarkerRef::OnBody(system.FindBody("wheel"), 0);
   RattleRun run;
-  Simulate(system, scene.options, scene.initial_state,
-           [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
-             const auto tooth_pairs = gears.ToothPairs(t, system, y);
-             int count[2] = {0, 0};
-             for (const contact::ToothPair& tp : tooth_pairs)
-               ++count[tp.side == contact::FlankSide::kPositive];
-             if (run.samples.empty()) run.pairs[0] = count[0], run.pairs[1] = count[1];
-             run.same_pairs =
-                 run.same_pairs && count[0] == run.pairs[0] && count[1] == run.pairs[1];
-             run.samples.push_back({t, system.MarkerState(wheel, y).w_WM_W.z(),
-                                    SmallestGap(tooth_pairs, contact::FlankSide::kPositive),
-                                    SmallestGap(tooth_pairs, contact::FlankSide::kNegative)});
-           });
+  Simulate(
+      system, scene.options, scene.initial_state,
+      [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
+        const auto tooth_pairs = gears.ToothPairs(t, system, y);
+        int count[2] = {0, 0};
+        for (const contact::ToothPair& tp : tooth_pairs)
+          ++count[tp.side == contact::FlankSide::kPositive];
+        if (run.samples.empty()) run.pairs[0] = count[0], run.pairs[1] = count[1];
+        run.same_pairs = run.same_pairs && count[0] == run.pairs[0] && count[1] == run.pairs[1];
+        double stiffness = 0.0;
+        for (const contact::ToothPair& tp : tooth_pairs)
+          if (tp.gap < 0.0) stiffness += gears.law().PairLaw(tp).stiffness;
+        run.samples.push_back({t, system.MarkerState(wheel, y).w_WM_W.z(),
+                               SmallestGap(tooth_pairs, contact::FlankSide::kPositive),
+                               SmallestGap(tooth_pairs, contact::FlankSide::kNegative), stiffness});
+      });
   return run;
 }
 
 /// A free flight across the backlash: its speed [m/s] along the line of action, its start
-/// (leaving a side) and end (reaching the other; -1 if the run ended first) [s].
+/// (leaving a side) and end (reaching the other; -1 if the run ended first) [s], and the contact
+/// stiffness [N/m] sampled in the middle of the impact that ended the flight before it (0 for the
+/// first).
 struct Flight {
-  double speed, start, end;
+  double speed, start, end, stiffness;
 };
 
 /// The flights: runs of samples with both gaps open, each crossing interpolated linearly (the
@@ -151,7 +164,13 @@ std::vector<Flight> Flights(const std::vector<Sample>& samples, double r_b2) {
       const bool from_positive = !(p.gap_positive > 0.0);
       const double start = from_positive ? crossing(p.t, p.gap_positive, s.t, s.gap_positive)
                                          : crossing(p.t, p.gap_negative, s.t, s.gap_negative);
-      flights.push_back({r_b2 * std::abs(s.omega2), start, -1.0});
+      double stiffness = 0.0;
+      if (!flights.empty() && flights.back().end > 0.0) {
+        const double middle = 0.5 * (flights.back().end + start);
+        for (const Sample& c : samples)
+          if (c.t <= middle) stiffness = c.stiffness;
+      }
+      flights.push_back({r_b2 * std::abs(s.omega2), start, -1.0, stiffness});
     }
     const Sample& n = samples[i + 1];
     if (open && !(n.gap_positive > 0.0 && n.gap_negative > 0.0) && !flights.empty() &&
@@ -170,8 +189,9 @@ struct RattleErrors {
   double restitution = 0.0, flight = 0.0;
 };
 
-/// Each impact's restitution against the closed form for its side's tooth pairs (pairs:
-/// negative, positive side) and each flight's time against j_bn / v, printed per impact.
+/// Each impact's restitution against the closed form for the stiffness its flight sampled (pairs:
+/// the tooth pairs on the negative, positive side, printed) and each flight's time against
+/// j_bn / v, printed per impact.
 RattleErrors CompareImpacts(const std::vector<Flight>& flights, const int pairs[2],
                             const contact::GearPair& pair) {
   const double r_b2 = pair.gear2.base_radius;
@@ -180,7 +200,7 @@ RattleErrors CompareImpacts(const std::vector<Flight>& flights, const int pairs[
   for (std::size_t k = 0; k + 1 < flights.size(); ++k) {
     // Flight k ends on the negative side when the wheel turns -z (positive side first).
     const int side = k % 2 == 0 ? 0 : 1;
-    const double e = Restitution(mass, pairs[side] * kStiffness, kDamping);
+    const double e = Restitution(mass, flights[k + 1].stiffness, kDamping);
     worst.restitution =
         std::max(worst.restitution, std::abs(flights[k + 1].speed / flights[k].speed - e));
     if (flights[k].end > 0.0) {
@@ -189,11 +209,11 @@ RattleErrors CompareImpacts(const std::vector<Flight>& flights, const int pairs[
           std::abs((flights[k].end - flights[k].start) * flights[k].speed / pair.backlash - 1.0));
     }
     std::printf(
-        "[measured] impact %zu on the %s side (%d pairs): speed %.6g -> %.6g m/s, e %.9f (closed "
-        "form %.9f), "
+        "[measured] impact %zu on the %s side (%d pairs, %.5g N/m): speed %.6g -> %.6g m/s, e "
+        "%.9f (closed form %.9f), "
         "energy lost %.4g J; flight %.6g s against j_bn / v = %.6g s\n",
-        k + 1, side == 0 ? "negative" : "positive", pairs[side], flights[k].speed,
-        flights[k + 1].speed, flights[k + 1].speed / flights[k].speed, e,
+        k + 1, side == 0 ? "negative" : "positive", pairs[side], flights[k + 1].stiffness,
+        flights[k].speed, flights[k + 1].speed, flights[k + 1].speed / flights[k].speed, e,
         0.5 * mass *
             (flights[k].speed * flights[k].speed - flights[k + 1].speed * flights[k + 1].speed),
         flights[k].end - flights[k].start, pair.backlash / flights[k].speed);
@@ -202,18 +222,51 @@ RattleErrors CompareImpacts(const std::vector<Flight>& flights, const int pairs[
 }
 
 TEST(SpurGearRattle, FreeWheelCrossesTheBacklashAndLosesWhatTheDampingSays) {
-  const Scene scene = LoadRattleScene();
+  const Scene scene = LoadRattleScene("");
   const contact::GearPair& pair =
       dynamic_cast<const SpurGearContact&>(scene.system->force_element(0)).pair();
   const RattleRun run = RunRattle(scene);
   ASSERT_TRUE(run.same_pairs);
   const std::vector<Flight> flights = Flights(run.samples, pair.gear2.base_radius);
   ASSERT_GE(flights.size(), 4u);
+  for (std::size_t k = 1; k < flights.size(); ++k) {  // n c' b on the side it hit
+    EXPECT_DOUBLE_EQ(flights[k].stiffness, run.pairs[k % 2 == 1 ? 0 : 1] * kStiffness) << k;
+  }
   const RattleErrors worst = CompareImpacts(flights, run.pairs, pair);
   std::printf("[measured] worst restitution error %.3g, worst flight time error %.3g (relative)\n",
               worst.restitution, worst.flight);
   EXPECT_LT(worst.restitution, 2e-8);  // measured 1.8e-9 (the integrator's tolerance)
   EXPECT_LT(worst.flight, 1e-6);       // measured 1.05e-7 (the crossings' interpolation at 1e-6 s)
+}
+
+// The same rattle with massless elastic teeth (FE tables, testing::kDrivenPairFeTeeth): the impacts
+// are counted, and each returns the speed times the restitution of the spring-dashpot of the pairs'
+// c(t1, t2) b where it happens (the wheel turns by ~1e-6 m along the line during an impact, so the
+// stiffness hardly changes), which the energy lost per impact, m v^2 (1 - e^2) / 2, follows.
+TEST(SpurGearRattle, ElasticTeethLoseWhatTheDampingSaysAtTheStiffnessWhereTheyHit) {
+  const Scene scene = LoadRattleScene(testing::kDrivenPairFeTeeth);
+  const auto& gears = dynamic_cast<const SpurGearContact&>(scene.system->force_element(0));
+  ASSERT_TRUE(gears.law().elastic());
+  const contact::GearPair& pair = gears.pair();
+  const RattleRun run = RunRattle(scene);
+  const std::vector<Flight> flights = Flights(run.samples, pair.gear2.base_radius);
+  std::printf("[measured] elastic teeth: %zu impacts in %.3g s\n", flights.size() - 1,
+              run.samples.back().t);
+  ASSERT_GE(flights.size(), 4u);
+  double lowest = 1e30, highest = 0.0;
+  for (std::size_t k = 1; k < flights.size(); ++k) {
+    lowest = std::min(lowest, flights[k].stiffness);
+    highest = std::max(highest, flights[k].stiffness);
+  }
+  const RattleErrors worst = CompareImpacts(flights, run.pairs, pair);
+  std::printf(
+      "[measured] contact stiffness %.5g ... %.5g N/m; worst restitution error %.3g, flight "
+      "%.3g\n",
+      lowest, highest, worst.restitution, worst.flight);
+  EXPECT_GT(lowest, 1e8);  // measured 3.68e8 N/m
+  // Measured 2.0e-6: the stiffness changes along the path during an impact (3e-5 between them).
+  EXPECT_LT(worst.restitution, 2e-5);
+  EXPECT_LT(worst.flight, 1e-6);  // measured 1.4e-7
 }
 
 }  // namespace
