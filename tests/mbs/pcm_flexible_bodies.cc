@@ -38,7 +38,7 @@ ClampedBox MakeClampedBox(const std::string& name, const Eigen::Vector3i& cells,
   const reduction::FeModel model{fe.K, fe.M, fe.mesh.nodes};
   const reduction::ReducedBasis modes = reduction::FixedInterfaceModalBasis(model, conditions, eigen, *solver);
   const reduction::LoadSet patch{"patch", loaded(fe.mesh), std::nullopt, reduction::LoadDistribution::kPerNode, {}};
-  fe.basis = reduction::AddStaticCorrectionModes(model, modes, std::span(&patch, 1)).basis;
+  fe.basis = patch.nodes.empty() ? modes : reduction::AddStaticCorrectionModes(model, modes, std::span(&patch, 1)).basis;
   fe.body = Reduce(fe, fe.basis);
   fe.body.name = name;
   return box;

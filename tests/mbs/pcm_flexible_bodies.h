@@ -20,8 +20,8 @@ namespace flexmbs::mbs::testing {
 /// A steel hex8 box [0, size] of `cells` clamped at the nodes `clamped(mesh)` returns, with the
 /// contact surface `surface` (the boundary faces of the node set `surface_nodes(mesh)`), reduced
 /// to `normal_modes` fixed-interface modes and the attachment modes (a unit force along x, y and
-/// z at each node alone, reduction::LoadDistribution::kPerNode) of the nodes `loaded(mesh)`: the
-/// static response to any load on those nodes is then the FE model's. `fe.body` is the reduced
+/// z at each node alone, reduction::LoadDistribution::kPerNode) of the nodes `loaded(mesh)` (none
+/// if it returns none): the static response to any load on those nodes is then the FE model's. `fe.body` is the reduced
 /// body, named `name`.
 struct ClampedBox {
   FeReducedBody fe;
