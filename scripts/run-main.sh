@@ -3,8 +3,9 @@
 # flexmbs, preprocesses the steel cantilever of cases/01_cantilever, preprocesses and simulates
 # the flexible slider-crank of cases/02_slider_crank, simulates the bouncing ball of
 # cases/03_bouncing_ball, reduces and simulates the sphere striking a rod of
-# cases/04_sphere_on_rod and reduces the NAFEMS FV52 plate of cases/05_nafems_fv52 against
-# CalculiX and the published frequencies (see their READMEs).
+# cases/04_sphere_on_rod, reduces the NAFEMS FV52 plate of cases/05_nafems_fv52 against
+# CalculiX and the published frequencies and runs the beam on a stop of cases/06_beam_on_stop
+# against its full FE model (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -14,4 +15,5 @@ cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/02_slider_crank/run.sh build/bin/flexmbs
 ./cases/03_bouncing_ball/run.sh build/bin/flexmbs
 ./cases/04_sphere_on_rod/run.sh build/bin/flexmbs
-exec ./cases/05_nafems_fv52/run.sh build/bin/flexmbs
+./cases/05_nafems_fv52/run.sh build/bin/flexmbs
+exec ./cases/06_beam_on_stop/run.sh build/bin/flexmbs

@@ -1,0 +1,140 @@
+#!/usr/bin/python3
+"""The reduced beam on the stop against the full FE model (full_model.py): the table and plot.
+
+Reads OUT/full_<formulation>.npy and .json (full_model.py) and, for each reduced run
+OUT/<formulation>_<modes>[c].h5 with its `simulate --json` report .json, the per-step contact
+impulse: for the unilateral (LCP) runs `contacts/stop/normal_impulse`; for the penalty, the
+beam's momentum change m (v_Cm,k - v_Cm,k+1) along y, v_Cm = v_WBo + R_WB (w_WB_B x p_BoCm_B)
+(the modes kept are free-free, so the centre of mass moves with the frame; checked on the LCP
+runs, where both exist, to MOMENTUM_CHECK). Prints per formulation and run: total impulse error, impulse-history
+error (the largest difference of the impulse transferred up to a step, in m v), peak force error
+(the largest impulse of a step over h), wall time; checks the limits README.md gives; writes a
+plot with --plot.
+
+Usage: /usr/bin/python3 compare.py OUT --runs 4,8c,... [--plot PNG]
+"""
+import argparse
+import json
+import pathlib
+import sys
+
+import h5py
+import numpy as np
+
+MASS, SPEED, STEP = 7.536, 1.0, 1e-6     # the beam [kg] (rho V), its speed [m/s], the step [s]
+P_CM_B = np.array([0.3, 0.02, 0.02])       # its centre of mass in B [m]
+FORMULATIONS = ("velocity", "position", "penalty")
+# What README.md promises (measured beside each; the LCP floors are the full model's nodal
+# impacts, docs/contact.md).
+LIMITS = {
+    ("penalty", "peak", "4c"): 0.08,       # measured -7.9e-3
+    ("penalty", "peak", "16c"): 0.008,     # measured +8.2e-4
+    ("penalty", "peak", "32c"): 5e-4,      # measured -4.7e-5
+    ("penalty", "history", "16c"): 7e-4,   # [m v], measured 7.2e-5
+    ("penalty", "history", "32c"): 7e-4,   # [m v], measured 6.6e-5
+    ("velocity", "history", "32c"): 0.1,   # [m v], measured 0.076 (the floor)
+    ("position", "history", "32c"): 0.1,   # [m v], measured 0.065
+}
+# The momentum change against the LCP runs' own impulses, history difference: measured up to
+# 3.4e-7 m v (4 and 16 modes with the correction mode), 200 times below the penalty's errors.
+MOMENTUM_CHECK = 3e-6
+
+
+def rotation(e):
+    """R_WB of Euler parameters (e0, e1, e2, e3)."""
+    e0, e1, e2, e3 = e
+    return np.array([
+        [1 - 2 * (e2 * e2 + e3 * e3), 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2)],
+        [2 * (e1 * e2 + e0 * e3), 1 - 2 * (e1 * e1 + e3 * e3), 2 * (e2 * e3 - e0 * e1)],
+        [2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), 1 - 2 * (e1 * e1 + e2 * e2)]])
+
+
+def momentum_impulses(f):
+    """Per output interval, the beam's momentum gained along +y: the stop's impulse [N s]."""
+    v = f["bodies/beam/velocity"][:]
+    w = f["bodies/beam/angular_velocity"][:]
+    e = f["bodies/beam/orientation"][:]
+    v_cm = np.array([v[k] + rotation(e[k]) @ np.cross(w[k], P_CM_B) for k in range(len(v))])
+    return MASS * np.diff(v_cm[:, 1])
+
+
+def history_error(a, b):
+    return np.abs(np.cumsum(a) - np.cumsum(b)).max() / (MASS * SPEED)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("out", type=pathlib.Path)
+    p.add_argument("--runs", required=True, help="comma-separated mode counts, 'c' for the correction mode")
+    p.add_argument("--plot")
+    a = p.parse_args()
+    runs = a.runs.split(",")
+    failures, table = [], {}
+    for formulation in FORMULATIONS:
+        full = np.load(a.out / f"full_{formulation}.npy")
+        info = json.loads((a.out / f"full_{formulation}.json").read_text())
+        print(f"{formulation}: full FE model ({info['dofs']} DOF, SciPy) impulse {full.sum():.6g} N s, "
+              f"peak force {full.max() / STEP:.6g} N, {info['wall_seconds']:.2f} s")
+        print(f"  {'modes':>6} {'impulse':>11} {'history [m v]':>14} {'peak force':>11} {'wall [s]':>9}")
+        for run in runs:
+            with h5py.File(a.out / f"{formulation}_{run}.h5", "r") as f:
+                impulses = momentum_impulses(f)
+                if formulation != "penalty":
+                    own = f["contacts/stop/normal_impulse"][1:]
+                    drift = history_error(impulses, own)
+                    if drift > MOMENTUM_CHECK:
+                        failures.append(f"{formulation} {run}: momentum against impulses {drift:.1e}")
+                    impulses = own
+            seconds = json.loads((a.out / f"{formulation}_{run}.json").read_text())["wall_seconds"]
+            row = {"impulse": impulses.sum() / full.sum() - 1.0, "history": history_error(impulses, full),
+                   "peak": impulses.max() / full.max() - 1.0, "seconds": seconds}
+            table[(formulation, run)] = row
+            print(f"  {run:>6} {row['impulse']:+11.3e} {row['history']:14.3e} {row['peak']:+11.3e} {seconds:9.3f}")
+    for (formulation, measure, run), limit in LIMITS.items():
+        if (formulation, run) not in table:
+            continue
+        value = table[(formulation, run)][measure]
+        ok = abs(value) <= limit
+        print(f"{'ok  ' if ok else 'FAIL'} {formulation} {run}: {measure} error {value:+.2e} (limit {limit:g})")
+        if not ok:
+            failures.append(f"{formulation} {run} {measure}")
+    if a.plot:
+        plot(a.plot, a.out, runs, table)
+        print(f"wrote {a.plot}")
+    if failures:
+        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
+        sys.exit(1)
+
+
+def plot(path, out, runs, table):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    t = 1e3 * STEP * np.arange(1, 1001)
+    full = np.load(out / "full_penalty.npy")
+    left.plot(t, full / STEP / 1e3, "k", linewidth=2, label="full FE model (SciPy)")
+    for run in runs[-2:]:
+        with h5py.File(out / f"penalty_{run}.h5", "r") as f:
+            left.plot(t, momentum_impulses(f) / STEP / 1e3, "--", label=f"reduced, {run}")
+    left.set_xlabel("t [ms]")
+    left.set_ylabel("stop force [kN] (penalty 1e7 N/m per vertex)")
+    left.legend(fontsize=8)
+    left.grid(alpha=0.3)
+    for formulation, marker in zip(FORMULATIONS, "os^"):
+        seconds = [table[(formulation, run)]["seconds"] for run in runs]
+        errors = [table[(formulation, run)]["history"] for run in runs]
+        right.loglog(seconds, errors, marker, label=formulation)
+        for s, e, run in zip(seconds, errors, runs):
+            right.annotate(run, (s, e), fontsize=7)
+    right.set_xlabel("wall time of flexmbs simulate [s]")
+    right.set_ylabel("impulse-history error [m v]")
+    right.legend(fontsize=8)
+    right.grid(alpha=0.3, which="both")
+    fig.suptitle("beam on a stop: reduced (modes, c = pad correction mode) against the full FE model")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+if __name__ == "__main__":
+    main()
