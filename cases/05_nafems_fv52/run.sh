@@ -9,10 +9,10 @@
 set -euo pipefail
 source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 
-# CalculiX on mesh GEO (ccx_fv52.py), the plate's material, with the given modes and supports.
+# CalculiX on mesh GEO (cases/ccx_modes.py), the plate's material, the given modes and supports.
 ccx() {
   local geo="$1"; shift
-  /usr/bin/python3 ccx_fv52.py "$here/../../meshes/$geo" --order 2 --youngs-modulus 2.0e11 --poisson-ratio 0.3 \
+  /usr/bin/python3 ../ccx_modes.py "$here/../../meshes/$geo" --order 2 --youngs-modulus 2.0e11 --poisson-ratio 0.3 \
     --density 8000 "$@"
 }
 

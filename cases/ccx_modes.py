@@ -1,17 +1,17 @@
 #!/usr/bin/python3
 """The natural frequencies of a body held by supports by component, computed by CalculiX (ccx).
 
-The peer of cases/05_nafems_fv52: meshes a geometry with gmsh exactly as flexmbs does
-(Mesh.MeshSizeMax, Mesh.ElementOrder, Mesh.SecondOrderIncomplete = 1), writes a CalculiX deck
-(C3D20, one linear isotropic material, each --hold node set's nodes held
-in its components by *BOUNDARY, *FREQUENCY), runs ccx and prints JSON:
+The peer of cases 05_nafems_fv52 and 07_bracket_modes: meshes a geometry with gmsh exactly as
+flexmbs does (Mesh.MeshSizeMax, Mesh.ElementOrder, Mesh.SecondOrderIncomplete = 1), writes a
+CalculiX deck (C3D20, one linear isotropic material, each --hold node set's nodes held in its
+components by *BOUNDARY, *FREQUENCY), runs ccx and prints JSON:
 
   {"peer": "CalculiX", "element": "C3D20", "nodes": ..., "elements": ...,
    "held_dofs": ..., "frequencies_hz": [...], "seconds": ...}
 
-Usage: /usr/bin/python3 ccx_fv52.py GEOMETRY --order 2 --youngs-modulus 2e11 --poisson-ratio 0.3
+Usage: /usr/bin/python3 ccx_modes.py GEOMETRY --order 2 --youngs-modulus 2e11 --poisson-ratio 0.3
            --density 8000 --modes 6 --hold bottom_edges:z --hold mid_x:x [--keep DIR] [--ccx ccx]
-(run.sh passes what the case's body files say.) Needs python3-gmsh and calculix-ccx (Debian).
+(a case's run.sh passes what its body files say.) Needs python3-gmsh and calculix-ccx (Debian).
 
 CalculiX integrates C3D20 stiffness and mass with 3 x 3 x 3 Gauss points, as flexmbs does
 for hex20 (docs/elements.md), so on an undistorted structured mesh both matrices are the same
@@ -42,7 +42,7 @@ NO_SIZE_LIMIT = 1e22  # flexmbs' Mesh.MeshSizeMax without a mesh_size (fem/gmsh_
 
 
 def fail(message):
-    print(f"ccx_fv52.py: {message}", file=sys.stderr)
+    print(f"ccx_modes.py: {message}", file=sys.stderr)
     sys.exit(1)
 
 
@@ -86,7 +86,7 @@ def mesh(body):
 
 
 def write_deck(f, xyz, blocks, held, material, modes):
-    f.write("** written by flexmbs cases/05_nafems_fv52/ccx_fv52.py\n*NODE, NSET=NALL\n")
+    f.write("** written by flexmbs cases/ccx_modes.py\n*NODE, NSET=NALL\n")
     for tag in sorted(xyz):
         f.write(f"{tag}, " + ", ".join(f"{c:.17g}" for c in xyz[tag]) + "\n")
     for t, tags, conn in blocks:
@@ -145,7 +145,7 @@ def main():
     body = {"geometry": a.geometry, "mesh_size": a.mesh_size, "order": a.order, "supports": a.hold, "modes": a.modes,
             "material": {"youngs_modulus": a.youngs_modulus, "poisson_ratio": a.poisson_ratio, "density": a.density}}
     xyz, blocks, held = mesh(body)
-    workdir = a.keep or tempfile.mkdtemp(prefix="ccx_fv52_")
+    workdir = a.keep or tempfile.mkdtemp(prefix="ccx_modes_")
     os.makedirs(workdir, exist_ok=True)
     with open(os.path.join(workdir, "modal.inp"), "w") as f:
         write_deck(f, xyz, blocks, held, body["material"], body["modes"])
