@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "contact/complementarity/friction_newton.h"
 #include "contact/complementarity/lcp_problem.h"
 #include "contact/complementarity/lcp_solver.h"
 #include "core/error.h"
@@ -73,8 +74,8 @@ struct Reactions {
 };
 
 /// The reactions of U = W r + q with d rows per point: the LCP (W, q) (d = 1; contact::SolveLcp) or
-/// the friction-contact problem (d = 3; SolveContactReactions). A solve that does not converge is a
-/// SimulationError at t naming `what`.
+/// the friction-contact problem (d = 3; contact::SolveFrictionNewton, then SolveContactReactions).
+/// A solve that does not converge is a SimulationError at t naming `what`.
 Reactions SolveOrStop(const MatrixXd& W, const VectorXd& q, const VectorXd& mu, Index d, double tolerance, double t,
                       std::string_view what) {
   Reactions reactions;
@@ -84,7 +85,16 @@ Reactions SolveOrStop(const MatrixXd& W, const VectorXd& q, const VectorXd& mu, 
     reactions.r = std::move(lcp.z);
     status = lcp;
   } else {
-    status = SolveContactReactions(W, q, mu, tolerance, kNsgsSweeps, &reactions.r);
+    // The proximal Newton solver first: its proximal centre starts at r = 0, so of statically
+    // indeterminate reactions (two feet squeezing each other along a cylinder's axis) it returns
+    // one near the least; NSGS drifts along W's null space to the edge of the cones, where the
+    // sticking points' margins vanish and their roots chatter. NSGS and Newton behind it if not.
+    contact::FrictionNewtonOptions newton;
+    newton.tolerance = tolerance;
+    contact::FrictionContactSolution solution = contact::SolveFrictionNewton({3, W, q, mu}, newton);
+    reactions.r = std::move(solution.r);
+    status = solution;
+    if (!status.converged) status = SolveContactReactions(W, q, mu, tolerance, kNsgsSweeps, &reactions.r);
   }
   if (!status.converged) {
     throw SimulationError(

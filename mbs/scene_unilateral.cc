@@ -137,6 +137,18 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] { return std::make_unique<BoxPlaneUnilateral>(name, box, 0.5 * size, plane, law); });
   }
+  if (kind == "cylinder_plane") {
+    node.RejectUnknownKeys({"name", "type", "cylinder", "radius", "length", "plane", "law", "restitution", "friction"});
+    const MarkerRef cylinder = read_marker(node.Required("cylinder"));
+    const std::string owner = fmt::format("contact '{}'", name);
+    const double radius = ReadPositiveLength(node, "radius", owner);
+    const double length = ReadPositiveLength(node, "length", owner);
+    const MarkerRef plane = read_marker(node.Required("plane"));
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] {
+      return std::make_unique<CylinderPlaneUnilateral>(name, cylinder, radius, length, plane, law);
+    });
+  }
   if (kind == "surface_surface") {
     node.RejectUnknownKeys({"name", "type", "surface1", "surface2", "law", "restitution", "friction"});
     const std::string owner = fmt::format("contact '{}'", name);
@@ -148,8 +160,8 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                         b.num_modes, law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, box_plane, surface_plane, "
-                        "sphere_surface, surface_surface",
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, box_plane, cylinder_plane, "
+                        "surface_plane, sphere_surface, surface_surface",
                         name, kind));
 }
 

@@ -71,6 +71,25 @@ void UnilateralContact::AddModalJacobian(Eigen::Index column, const Eigen::Matri
   k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * modal_W;
 }
 
+template <std::size_t N>
+std::vector<UnilateralContactKinematics> UnilateralContact::PointsOnPlane(
+    const MultibodySystem& system, const ConstVectorRef& y, const std::array<Eigen::Vector3d, N>& points_A) const {
+  const MarkerKinematics a = system.MarkerState(marker_a(), y), plane = system.MarkerState(marker_b(), y);
+  std::vector<UnilateralContactKinematics> points;
+  points.reserve(N);
+  for (const Eigen::Vector3d& point_A : points_A) {
+    UnilateralContactKinematics k;
+    static_cast<contact::PointContactKinematics&>(k) =
+        contact::PointPlane(a.p_WM_W + a.R_WM * point_A, {plane.p_WM_W, plane.R_WM.col(2)});
+    k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
+    k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
+    AddPointJacobian(system, marker_a(), a, k.p_WA_W, 1.0, &k);
+    AddPointJacobian(system, marker_b(), plane, k.p_WB_W, -1.0, &k);
+    points.push_back(std::move(k));
+  }
+  return points;
+}
+
 std::vector<UnilateralContactKinematics> ShapePairUnilateral::EvaluatePoints(const MultibodySystem& system,
                                                                              const ConstVectorRef& y) const {
   const MarkerKinematics a = system.MarkerState(marker_a(), y), b = system.MarkerState(marker_b(), y);
@@ -117,20 +136,25 @@ BoxPlaneUnilateral::BoxPlaneUnilateral(std::string name, MarkerRef box, const Ei
 
 std::vector<UnilateralContactKinematics> BoxPlaneUnilateral::EvaluatePoints(const MultibodySystem& system,
                                                                             const ConstVectorRef& y) const {
-  const MarkerKinematics box = system.MarkerState(marker_a(), y), plane = system.MarkerState(marker_b(), y);
-  std::vector<UnilateralContactKinematics> points;
-  points.reserve(corners_C_.size());
-  for (const Eigen::Vector3d& corner_C : corners_C_) {
-    UnilateralContactKinematics k;
-    static_cast<contact::PointContactKinematics&>(k) =
-        contact::PointPlane(box.p_WM_W + box.R_WM * corner_C, {plane.p_WM_W, plane.R_WM.col(2)});
-    k.W_N = Eigen::RowVectorXd::Zero(system.num_velocities());
-    k.W_T = Eigen::MatrixXd::Zero(2, system.num_velocities());
-    AddPointJacobian(system, marker_a(), box, k.p_WA_W, 1.0, &k);
-    AddPointJacobian(system, marker_b(), plane, k.p_WB_W, -1.0, &k);
-    points.push_back(std::move(k));
+  return PointsOnPlane(system, y, corners_C_);
+}
+
+CylinderPlaneUnilateral::CylinderPlaneUnilateral(std::string name, MarkerRef cylinder, double radius, double length,
+                                                 MarkerRef plane, UnilateralLaw law)
+    : UnilateralContact(std::move(name), std::move(cylinder), std::move(plane), law),
+      radius_(radius),
+      half_length_(0.5 * length) {
+  if (!(radius > 0.0) || !std::isfinite(radius) || !(length > 0.0) || !std::isfinite(length)) {
+    throw InputError(fmt::format("contact '{}': the cylinder's radius {:g} m and length {:g} m must be finite and > 0",
+                                 this->name(), radius, length));
   }
-  return points;
+}
+
+std::vector<UnilateralContactKinematics> CylinderPlaneUnilateral::EvaluatePoints(const MultibodySystem& system,
+                                                                                 const ConstVectorRef& y) const {
+  const MarkerKinematics cylinder = system.MarkerState(marker_a(), y), plane = system.MarkerState(marker_b(), y);
+  const Eigen::Vector3d n_C = cylinder.R_WM.transpose() * plane.R_WM.col(2);
+  return PointsOnPlane(system, y, contact::CylinderSupportPoints(radius_, half_length_, n_C));
 }
 
 }  // namespace flexmbs::mbs

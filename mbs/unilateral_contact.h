@@ -80,6 +80,11 @@ class UnilateralContact {
   /// point moving with its modal velocities by modal_W (3 x n) [m/q] (mbs/surface_state.h).
   static void AddModalJacobian(Eigen::Index column, const Eigen::Matrix3Xd& modal_W, double sign,
                                UnilateralContactKinematics* k);
+  /// Points p_A given in the frame of marker a (A's), each against the plane through the origin
+  /// of marker b with outward normal b's z axis (contact::PointPlane), with their Jacobians.
+  template <std::size_t N>
+  std::vector<UnilateralContactKinematics> PointsOnPlane(const MultibodySystem& system, const ConstVectorRef& y,
+                                                         const std::array<Eigen::Vector3d, N>& points_A) const;
 
  private:
   std::string name_;
@@ -150,6 +155,27 @@ class BoxPlaneUnilateral final : public UnilateralContact {
   std::vector<UnilateralContactKinematics> EvaluatePoints(const MultibodySystem& system,
                                                           const ConstVectorRef& y) const override;
   std::array<Eigen::Vector3d, 8> corners_C_;  ///< in C's frame [m]
+};
+
+/// A cylinder of radius r and length l [m] centred on marker C (body A; its axis C's z axis) against
+/// the plane through the origin of marker P (body B) with outward normal P's z axis: its 6 support
+/// points (contact::CylinderSupportPoints: on each end circle the lowest point and the two 120
+/// degrees from it), each with g_N = n . (p - p_P) (contact::PointPlane) and W_N the material
+/// point's velocity less the plane's at its foot. It rolls on the lowest points of its two rims and
+/// stands on three points of an end face.
+class CylinderPlaneUnilateral final : public UnilateralContact {
+ public:
+  /// radius, length > 0 and finite [m]; InputError naming the contact otherwise (and as
+  /// UnilateralContact).
+  CylinderPlaneUnilateral(std::string name, MarkerRef cylinder, double radius, double length, MarkerRef plane,
+                          UnilateralLaw law);
+  std::string_view type() const override { return "cylinder_plane"; }
+  int num_points() const override { return 6; }
+
+ private:
+  std::vector<UnilateralContactKinematics> EvaluatePoints(const MultibodySystem& system,
+                                                          const ConstVectorRef& y) const override;
+  double radius_, half_length_;
 };
 
 }  // namespace flexmbs::mbs

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "core/error.h"
 
@@ -56,6 +57,24 @@ std::array<Eigen::Vector3d, 8> BoxCorners(const Eigen::Vector3d& half_extents) {
         half_extents.cwiseProduct(Eigen::Vector3d(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0));
   }
   return corners;
+}
+
+std::array<Eigen::Vector3d, 6> CylinderSupportPoints(double radius, double half_length, const Eigen::Vector3d& n_C) {
+  FLEXMBS_CHECK(radius > 0.0 && half_length > 0.0, "CylinderSupportPoints: radius and half length must be > 0");
+  const Eigen::Vector3d down(-n_C.x(), -n_C.y(), 0.0);  // -n_C projected onto the circles' plane
+  constexpr double kAlongAxis = 1e-12;
+  const Eigen::Vector3d d = down.norm() > kAlongAxis ? Eigen::Vector3d(down.normalized()) : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d e(-d.y(), d.x(), 0.0);  // z x d
+  constexpr double kThird = 2.0 * std::numbers::pi / 3.0;
+  std::array<Eigen::Vector3d, 6> points;
+  for (int end = 0; end < 2; ++end) {
+    const Eigen::Vector3d centre(0.0, 0.0, end == 0 ? -half_length : half_length);
+    for (int k = 0; k < 3; ++k) {
+      const double angle = (k == 0 ? 0.0 : (k == 1 ? kThird : -kThird));
+      points[static_cast<std::size_t>(3 * end + k)] = centre + radius * (std::cos(angle) * d + std::sin(angle) * e);
+    }
+  }
+  return points;
 }
 
 PointContactKinematics SphereSphere(const Sphere& a, const Sphere& b) {

@@ -63,6 +63,16 @@ PointContactKinematics PointPlane(const Eigen::Vector3d& p_WA_W, const Plane& pl
 /// frame: (±h_x, ±h_y, ±h_z), x changing fastest, then y, then z (the first four the -z face).
 std::array<Eigen::Vector3d, 8> BoxCorners(const Eigen::Vector3d& half_extents);
 
+/// The support points of a cylinder of radius r and half length h [m] (> 0) about its frame C's
+/// origin, its axis C's z axis, against a plane whose unit normal is n_C in C's components: on
+/// each end circle (z = -h, then z = +h) the point lowest along n_C, r d with d the unit
+/// projection of -n_C onto the circle's plane, then the two 120 degrees on either side of it,
+/// in C [m]. Rolling on its side the lowest points are the contact line's ends; standing on an
+/// end face (n_C along the axis, where d is C's x axis) the three points of that face hold it.
+/// The lowest point moves along the rim perpendicular to n: its velocity along n is that of the
+/// material point there.
+std::array<Eigen::Vector3d, 6> CylinderSupportPoints(double radius, double half_length, const Eigen::Vector3d& n_C);
+
 /// Sphere A against sphere B: with d = p_SA - p_SB, l = |d|: g_N = l - r_A - r_B, n_W = d / l,
 /// p_WA_W = p_SA - r_A n, p_WB_W = p_SB + r_B n. Throws DegenerateContactError if l <= 1e-12
 /// (r_A + r_B): coincident centres have no normal. Precondition (InternalError): radii > 0.

@@ -103,9 +103,9 @@ TEST_F(UnilateralSceneTest, BadContactsAreNamedWithTheirItemAndValue) {
   message = Refused(text, "law: unilateral", "law: hertz");
   EXPECT_NE(message.find("contacts[0].law: contact 'floor': law 'hertz' must be unilateral"), std::string::npos)
       << message;
-  message = Refused(text, "type: sphere_sphere", "type: cylinder_plane");
-  EXPECT_NE(message.find("contacts[1].type: contact 'pair': 'cylinder_plane' must be one of: sphere_plane, "
-                         "sphere_sphere, box_plane"),
+  message = Refused(text, "type: sphere_sphere", "type: cone_plane");
+  EXPECT_NE(message.find("contacts[1].type: contact 'pair': 'cone_plane' must be one of: sphere_plane, "
+                         "sphere_sphere, box_plane, cylinder_plane"),
             std::string::npos)
       << message;
   message = Refused(text, "name: pair", "name: floor");
