@@ -2,16 +2,19 @@
 // per step for two deforming icospheres of 1.3e3 to 3.3e5 triangles each, flexmbs' AABB tree
 // refitted (SAH), flexmbs' tree rebuilt (median and SAH splits), and FCL 0.7's BVHModel<AABB> refitted and BVHModel<OBBRSS>
 // rebuilt, each followed by its tree-vs-tree query, on the same meshes in one run; then the
-// degradation of a refitted tree against its query time, which sets the rebuild threshold; and a
-// whole PCM step (refit, pairs, elements, loads) on the same pair.
+// degradation of a refitted tree against its query time, which sets the rebuild threshold; a
+// whole PCM step (refit, pairs, elements, loads) on the same pair; and the force element on two
+// reduced bodies' deforming surfaces (clamped plates of n x n x 1 hex8 cells, one turned over onto
+// the other), its trees refitted against rebuilt, its broad phase against FCL's on the same meshes.
 //
-//   bench_pcm [levels, default 3,4,5,6,7]
+//   bench_pcm [levels, default 3,4,5,6,7] [plate cells n, default 16,32,64]
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -23,7 +26,13 @@
 #include "contact/pcm/candidate_pairs.h"
 #include "contact/pcm/contact_element.h"
 #include "contact/pcm/foundation.h"
+#include "mbs/flexible_body.h"
+#include "mbs/multibody_system.h"
+#include "mbs/pcm_contact_force.h"
+#include "mbs/pcm_surface.h"
 #include "tests/contact/pcm_meshes.h"
+#include "tests/mbs/pcm_flexible_bodies.h"
+#include "tests/support/test_problems.h"
 
 namespace {
 
@@ -74,6 +83,15 @@ std::shared_ptr<fcl::BVHModel<Bv>> FclModel(const PolygonMesh& mesh) {
   return model;
 }
 
+/// Refits FCL's model to the mesh's moved vertices (bottom-up).
+template <typename Bv>
+void FclRefit(fcl::BVHModel<Bv>& model, const PolygonMesh& mesh) {
+  std::vector<fcl::Vector3d> points = Points(mesh);
+  model.beginUpdateModel();
+  model.updateSubModel(points);
+  model.endUpdateModel(true, true);
+}
+
 /// FCL's collide of two models at rest in W: the number of intersecting triangle pairs (all of
 /// them: the request asks for up to 1e9 contacts).
 template <typename Bv>
@@ -117,12 +135,8 @@ void CompareBroadPhases(const std::vector<int>& levels) {
       sah_rebuild += Seconds(start);
 
       start = std::chrono::steady_clock::now();
-      for (const auto& [model, mesh] : {std::pair{&fcl_A, &scene.A}, std::pair{&fcl_B, &scene.B}}) {
-        std::vector<fcl::Vector3d> points = Points(*mesh);
-        (*model)->beginUpdateModel();
-        (*model)->updateSubModel(points);
-        (*model)->endUpdateModel(true, true);
-      }
+      FclRefit(*fcl_A, scene.A);
+      FclRefit(*fcl_B, scene.B);
       fcl_pairs = FclCollide(fcl_A, fcl_B);
       fcl_refit += Seconds(start);
 
@@ -219,6 +233,110 @@ void Degradation(int level) {
   }
 }
 
+/// Two clamped steel plates 0.2 x 0.2 x 0.01 m of n x n x 1 hex8 cells (6 fixed-interface
+/// modes each; their top faces, 2 n^2 triangles, the contact surfaces), the upper turned over,
+/// 0.1 rad about z and a third of a cell aside, pressing its top face 0.1 mm into the lower's;
+/// at every step both deformed anew (each mode 2e-5 m at most, phases moving). Per step: the
+/// force element's AddForces with its trees refitted and rebuilt, and, on the same placed
+/// meshes, flexmbs' refit and query against FCL's AABB refit and collide.
+void FlexiblePair(const std::vector<int>& cells) {
+  namespace mbs = flexmbs::mbs;
+  using Eigen::Vector3d;
+  constexpr double kSide = 0.2, kThickness = 0.01, kInterference = 1e-4, kMaxDepth = 1e-3;
+  const flexmbs::contact::ElasticLayer layer{1e8, 2e-3};
+  std::printf("\nflexible pair, two deforming plates' top faces (seconds per step; ratios to the refitted element)\n");
+  std::printf("%9s %6s %9s %9s %10s %11s %11s %8s %10s %10s %10s %9s\n", "triangles", "modes", "pairs", "fcl pairs",
+              "elements", "refit elem.", "rebuild el.", "rebuild/", "refit+pairs", "fcl refit", "fcl/", "steps/s");
+  for (const int n : cells) {
+    const mbs::testing::ClampedBox box = mbs::testing::MakeClampedBox(
+        "plate", Eigen::Vector3i(n, n, 1), Vector3d(kSide, kSide, kThickness),
+        [](const flexmbs::fem::Mesh& mesh) {
+          std::vector<int> sides;
+          for (int axis : {0, 1}) {
+            for (double at : {0.0, kSide}) {
+              for (int node : flexmbs::testing::NodesOnPlane(mesh, axis, at)) sides.push_back(node);
+            }
+          }
+          std::sort(sides.begin(), sides.end());
+          sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
+          return sides;
+        },
+        "top", [](const flexmbs::fem::Mesh& mesh) { return flexmbs::testing::NodesOnPlane(mesh, 2, kThickness); },
+        [](const flexmbs::fem::Mesh&) { return std::vector<int>(); }, 6);
+    mbs::MultibodySystem system(Vector3d::Zero());
+    const int lower = system.AddBody(std::make_unique<mbs::FlexibleBody>("lower", box.fe.body, false));
+    const int upper = system.AddBody(std::make_unique<mbs::FlexibleBody>("upper", box.fe.body, false));
+    const Eigen::Index modes = system.body(lower).num_modes();
+    const auto side = [&](int b) {
+      return mbs::ModalPcmSurface(mbs::MarkerRef::OnBody(b, system.body(b).FindMarker(mbs::FlexibleBody::kOriginMarker)),
+                                  box.fe.body.surfaces.at(0), modes, layer, false);
+    };
+    const flexmbs::contact::RegularisedCoulomb friction{0.3, 1e-3};
+    const mbs::PcmContactForce refitted("press", side(upper), side(lower), 1e5, friction, kMaxDepth);
+    const mbs::PcmContactForce rebuilt("press", side(upper), side(lower), 1e5, friction, kMaxDepth,
+                                       mbs::PcmTreeUpdate::kRebuild);
+    const Eigen::Matrix3d R_WU = (Eigen::AngleAxisd(0.1, Vector3d::UnitZ()) * Eigen::AngleAxisd(M_PI, Vector3d::UnitX()))
+                                     .toRotationMatrix();
+    const Vector3d centre(0.5 * kSide + kSide / n / 3.0, 0.5 * kSide + kSide / n / 3.0, 0.0);
+    const Vector3d p_WUo_W = centre - R_WU * Vector3d(0.5 * kSide, 0.5 * kSide, 0.0) +
+                             Vector3d(0.0, 0.0, 2.0 * kThickness - kInterference);
+    Eigen::VectorXd y = system.NeutralState(), x_upper = Eigen::VectorXd::Zero(7 + modes);
+    const Eigen::Quaterniond e(R_WU);
+    x_upper.head<7>() << p_WUo_W, e.w(), e.x(), e.y(), e.z();
+    system.SetBodyState(upper, x_upper, Eigen::VectorXd::Zero(6 + modes), y);
+    const int steps = n >= 64 ? 10 : 30;
+    double refit = 0.0, rebuild = 0.0, broad = 0.0, fcl = 0.0;
+    std::size_t elements = 0, num_pairs = 0, fcl_pairs = 0;
+    std::unique_ptr<Bvh> tree_A, tree_B;
+    std::shared_ptr<fcl::BVHModel<fcl::AABBd>> fcl_A, fcl_B;
+    for (int k = 0; k <= steps; ++k) {  // step 0 builds the trees, untimed
+      for (const int b : {lower, upper}) {
+        Eigen::VectorXd x = system.BodyPositions(y, b);
+        for (Eigen::Index j = 0; j < modes; ++j) {
+          x(7 + j) = 2e-5 * std::sin(0.7 * k + 1.3 * j + b) / box.fe.basis.Phi.col(j).cwiseAbs().maxCoeff();
+        }
+        system.SetBodyState(b, x, 0.01 * Eigen::VectorXd::Ones(6 + modes), y);
+      }
+      const mbs::PlacedPcmSurface A(system, refitted.A(), y), B(system, refitted.B(), y);
+      Eigen::VectorXd h = Eigen::VectorXd::Zero(system.num_velocities());
+      auto start = std::chrono::steady_clock::now();
+      refitted.AddForces(0.0, system, y, h);
+      const double refit_step = Seconds(start);
+      start = std::chrono::steady_clock::now();
+      rebuilt.AddForces(0.0, system, y, h);
+      const double rebuild_step = Seconds(start);
+      if (k == 0) {
+        tree_A = std::make_unique<Bvh>(A.mesh());
+        tree_B = std::make_unique<Bvh>(B.mesh(), kMaxDepth);
+        fcl_A = FclModel<fcl::AABBd>(A.mesh());
+        fcl_B = FclModel<fcl::AABBd>(B.mesh());
+        continue;
+      }
+      refit += refit_step;
+      rebuild += rebuild_step;
+      start = std::chrono::steady_clock::now();
+      tree_A->Refit(A.mesh());
+      tree_B->Refit(B.mesh());
+      const std::vector<flexmbs::contact::FacePair> pairs = CandidatePairs(*tree_A, *tree_B);
+      broad += Seconds(start);
+      start = std::chrono::steady_clock::now();
+      FclRefit(*fcl_A, A.mesh());
+      FclRefit(*fcl_B, B.mesh());
+      fcl_pairs = FclCollide(fcl_A, fcl_B);
+      fcl += Seconds(start);
+      num_pairs = pairs.size();
+      elements = flexmbs::contact::ContactElements(A.mesh(), B.mesh(), pairs, kMaxDepth).size();
+    }
+    refit /= steps;
+    rebuild /= steps;
+    broad /= steps;
+    fcl /= steps;
+    std::printf("%9zu %6ld %9zu %9zu %10zu %11.3e %11.3e %8.2f %10.3e %10.3e %10.2f %9.0f\n",
+                box.fe.body.surfaces.at(0).face_sizes.size() * 2, static_cast<long>(modes), num_pairs, fcl_pairs, elements,
+                refit, rebuild, rebuild / refit, broad, fcl, fcl / broad, 1.0 / refit);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -226,5 +344,6 @@ int main(int argc, char** argv) {
   CompareBroadPhases(levels);
   Degradation(5);
   FullStep(levels);
+  FlexiblePair(argc > 2 ? flexmbs::bench::ParseIntList(argv[2]) : std::vector<int>{16, 32, 64});
   return 0;
 }

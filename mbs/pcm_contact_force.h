@@ -70,6 +70,9 @@ class PcmContactForce final : public ForceElement {
   std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
   /// How many times the element has built a hierarchy (both sides counted) since construction.
   int tree_builds() const;
+  /// The pressing surface and the one pressed (its normals the contact normals).
+  const PcmSurface& A() const { return A_; }
+  const PcmSurface& B() const { return B_; }
 
  private:
   /// Both sides placed at y and the elements between them.
