@@ -4,8 +4,9 @@
 # the flexible slider-crank of cases/02_slider_crank, simulates the bouncing ball of
 # cases/03_bouncing_ball, reduces and simulates the sphere striking a rod of
 # cases/04_sphere_on_rod, reduces the NAFEMS FV52 plate of cases/05_nafems_fv52 against
-# CalculiX and the published frequencies and runs the beam on a stop of cases/06_beam_on_stop
-# against its full FE model (see their READMEs).
+# CalculiX and the published frequencies, runs the beam on a stop of cases/06_beam_on_stop
+# against its full FE model and reduces the L-bracket of cases/07_bracket_modes two ways against
+# its full FE model and CalculiX (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -16,4 +17,5 @@ cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/03_bouncing_ball/run.sh build/bin/flexmbs
 ./cases/04_sphere_on_rod/run.sh build/bin/flexmbs
 ./cases/05_nafems_fv52/run.sh build/bin/flexmbs
-exec ./cases/06_beam_on_stop/run.sh build/bin/flexmbs
+./cases/06_beam_on_stop/run.sh build/bin/flexmbs
+exec ./cases/07_bracket_modes/run.sh build/bin/flexmbs
