@@ -5,8 +5,9 @@
 # cases/03_bouncing_ball, reduces and simulates the sphere striking a rod of
 # cases/04_sphere_on_rod, reduces the NAFEMS FV52 plate of cases/05_nafems_fv52 against
 # CalculiX and the published frequencies, runs the beam on a stop of cases/06_beam_on_stop
-# against its full FE model and reduces the L-bracket of cases/07_bracket_modes two ways against
-# its full FE model and CalculiX (see their READMEs).
+# against its full FE model, reduces the L-bracket of cases/07_bracket_modes two ways against
+# its full FE model and CalculiX and spins up the beam of cases/08_spin_up_beam (see their
+# READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -18,4 +19,5 @@ cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/04_sphere_on_rod/run.sh build/bin/flexmbs
 ./cases/05_nafems_fv52/run.sh build/bin/flexmbs
 ./cases/06_beam_on_stop/run.sh build/bin/flexmbs
-exec ./cases/07_bracket_modes/run.sh build/bin/flexmbs
+./cases/07_bracket_modes/run.sh build/bin/flexmbs
+exec ./cases/08_spin_up_beam/run.sh build/bin/flexmbs

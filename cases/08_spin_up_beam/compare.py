@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""The spin-up runs against the 1-D rotating beam (tests/validation/spin_up_reference.py).
+
+For each results file RUN.h5 (`flexmbs simulate`, scene.yaml or a variant run.sh writes), the
+tip deflection in the hub frame, the y_B component of R_WB^T (p_WTip - p_WBo) (the tip face's
+averaging marker; its rest position (10, 0, 0)), against the reference computed by the script
+with the run's spin rate and stiffening at the same output times: the largest difference over
+the run (or up to --until), relative to the reference's largest |deflection| there. Prints
+both histories; exits 1 if the difference exceeds --limit or, with --diverges-past, if the
+deflection stays below that [m] at the end. Writes a plot with --plot (all runs given).
+
+Usage: /usr/bin/python3 compare.py --run RUN.h5 SPIN STIFFENING(0|1) LIMIT [UNTIL] ... [--plot PNG]
+"""
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "spin_up_reference.py"
+
+
+def rotation(e):
+    """R_WB of Euler parameters (e0, e1, e2, e3)."""
+    e0, e1, e2, e3 = e
+    return np.array([
+        [1 - 2 * (e2 * e2 + e3 * e3), 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2)],
+        [2 * (e1 * e2 + e0 * e3), 1 - 2 * (e1 * e1 + e3 * e3), 2 * (e2 * e3 - e0 * e1)],
+        [2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), 1 - 2 * (e1 * e1 + e2 * e2)]])
+
+
+def tip_deflection(path):
+    with h5py.File(path, "r") as f:
+        t = f["time"][:]
+        p_o, e = f["bodies/beam/position"][:], f["bodies/beam/orientation"][:]
+        tip = f["bodies/beam/markers/tip"][:]
+    return t[1:], np.array([(rotation(e[k]).T @ (tip[k] - p_o[k]))[1] for k in range(1, len(t))])
+
+
+def reference(spin, stiffening, times):
+    command = ["/usr/bin/python3", str(REFERENCE), repr(spin), str(stiffening)] + [repr(t) for t in times]
+    out = subprocess.run(command, capture_output=True, text=True, check=True,
+                         env={"PYTHONDONTWRITEBYTECODE": "1", "PATH": "/usr/bin:/bin"}).stdout
+    return np.array(json.loads(out)["tip"])
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--run", nargs="+", action="append", required=True, metavar="ARG",
+                   help="RUN.h5 SPIN STIFFENING LIMIT [UNTIL]")
+    p.add_argument("--diverges-past", type=float, help="[m]: the unstiffened runs' end deflection exceeds this")
+    p.add_argument("--plot")
+    a = p.parse_args()
+    failures, curves = [], []
+    for args in a.run:
+        path, spin, stiffening, limit = args[0], float(args[1]), int(args[2]), float(args[3])
+        until = float(args[4]) if len(args) > 4 else np.inf
+        t, tip = tip_deflection(path)
+        ref = reference(spin, stiffening, t)
+        within = t <= until + 1e-9
+        error = np.abs(tip - ref)[within].max() / np.abs(ref[within]).max()
+        name = f"{spin:g} rad/s, {'with' if stiffening else 'without'} stiffening"
+        print(f"{name} ({path}):")
+        for tk, a_k, r_k in zip(t, tip, ref):
+            print(f"  t = {tk:4.1f} s: tip {a_k:+.5f} m, 1-D {r_k:+.5f} m ({a_k - r_k:+.1e} m)")
+        ok = error <= limit
+        print(f"{'ok  ' if ok else 'FAIL'} {name}: largest difference / largest |deflection| {error:.1e}"
+              f"{'' if np.isinf(until) else f' up to {until:g} s'} (limit {limit:g})")
+        if not ok:
+            failures.append(name)
+        if not stiffening and a.diverges_past is not None:
+            ok = abs(tip[-1]) > a.diverges_past
+            print(f"{'ok  ' if ok else 'FAIL'} {name}: diverges, |tip| {abs(tip[-1]):.3g} m at {t[-1]:g} s "
+                  f"(> {a.diverges_past:g} m)")
+            if not ok:
+                failures.append(f"{name} diverges")
+        curves.append((name, t, tip, ref))
+    if a.plot:
+        plot(a.plot, curves)
+        print(f"wrote {a.plot}")
+    if failures:
+        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
+        sys.exit(1)
+
+
+def plot(path, curves):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for name, t, tip, ref in curves:
+        line, = ax.plot(t, tip, "o", label=f"flexmbs, {name}")
+        ax.plot(t, ref, "-", color=line.get_color(), label=f"1-D beam, {name}")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("tip deflection in the hub frame [m]")
+    ax.set_ylim(-1.5, 0.5)
+    ax.set_title("Kane's spin-up beam: reduced 3-D body (4 modes) against the 1-D rotating beam")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+if __name__ == "__main__":
+    main()
