@@ -21,6 +21,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
+
 MASS, SPEED, STEP = 7.536, 1.0, 1e-6     # the beam [kg] (rho V), its speed [m/s], the step [s]
 P_CM_B = np.array([0.3, 0.02, 0.02])       # its centre of mass in B [m]
 FORMULATIONS = ("velocity", "position", "penalty")
@@ -38,15 +41,6 @@ LIMITS = {
 # The momentum change against the LCP runs' own impulses, history difference: measured up to
 # 3.4e-7 m v (4 and 16 modes with the correction mode), 200 times below the penalty's errors.
 MOMENTUM_CHECK = 3e-6
-
-
-def rotation(e):
-    """R_WB of Euler parameters (e0, e1, e2, e3)."""
-    e0, e1, e2, e3 = e
-    return np.array([
-        [1 - 2 * (e2 * e2 + e3 * e3), 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2)],
-        [2 * (e1 * e2 + e0 * e3), 1 - 2 * (e1 * e1 + e3 * e3), 2 * (e2 * e3 - e0 * e1)],
-        [2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), 1 - 2 * (e1 * e1 + e2 * e2)]])
 
 
 def momentum_impulses(f):

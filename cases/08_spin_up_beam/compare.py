@@ -20,16 +20,10 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
+
 REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "spin_up_reference.py"
-
-
-def rotation(e):
-    """R_WB of Euler parameters (e0, e1, e2, e3)."""
-    e0, e1, e2, e3 = e
-    return np.array([
-        [1 - 2 * (e2 * e2 + e3 * e3), 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2)],
-        [2 * (e1 * e2 + e0 * e3), 1 - 2 * (e1 * e1 + e3 * e3), 2 * (e2 * e3 - e0 * e1)],
-        [2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), 1 - 2 * (e1 * e1 + e2 * e2)]])
 
 
 def tip_deflection(path):
