@@ -12,6 +12,16 @@
 
 namespace flexmbs::mbs {
 
+/// The impact law of event-driven impacts (docs/contact.md, "Event-driven integration").
+enum class ImpactLaw {
+  /// Newton's: U_N+ + e min(U_N-, 0) >= 0 _|_ P_N >= 0, one problem (with friction: De Saxce's).
+  kNewton,
+  /// Poisson's: a compression phase to U_N,C >= 0 _|_ P_C >= 0 and an expansion phase with
+  /// P_E = e P_C + Lambda, U_N+ >= 0 _|_ Lambda >= 0 (Pfeiffer & Glocker 1996; Glocker 2001);
+  /// frictionless contacts only.
+  kPoisson,
+};
+
 /// Settings of event-driven integration (the smooth phases take SimulationOptions::integrator).
 struct EventDrivenOptions {
   /// A contact point whose normal velocity after an impact is below this [m/s] is closed
@@ -31,6 +41,7 @@ struct EventDrivenOptions {
   /// rest_velocity does not end).
   long max_events = 1000000;
   double lcp_tolerance = 1e-10;  ///< the LCP solves' error (contact::LcpError)
+  ImpactLaw impact_law = ImpactLaw::kNewton;
 };
 
 /// Throws InputError "simulation: ..." unless rest_velocity > 0, stick_velocity > 0, gap

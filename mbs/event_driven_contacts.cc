@@ -269,12 +269,24 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y, const
   const Index d = k > 0 && mu.maxCoeff() > 0.0 ? 3 : 1;
   const MatrixXd rows = LocalRows(Evaluate(t, y, points), nu, d);
   const ConstrainedResponse response = Respond(system_, t, y, rows.transpose());
+  const MatrixXd W = rows * response.dv;
   const VectorXd U_before = rows * y.tail(nu);
-  VectorXd q = U_before;
-  // Newton's law acts on approaching points; a touching point already separating (U_N- > 0) only
-  // must not be pushed into the surface: U_N+ >= 0.
-  for (Index i = 0; i < k; ++i) q(d * i) += e(i) * std::min(0.0, q(d * i));
-  const Reactions reactions = SolveOrStop(rows * response.dv, q, mu, d, options_.lcp_tolerance, t, "impact");
+  Reactions reactions;
+  if (options_.impact_law == ImpactLaw::kPoisson) {
+    FLEXMBS_CHECK(d == 1, "event-driven: Poisson's impact law takes frictionless contacts only");
+    const Reactions compression = SolveOrStop(W, U_before, mu, d, options_.lcp_tolerance, t, "compression");
+    const VectorXd P_E = e.cwiseProduct(compression.r);  // the expansion's impulse before Lambda
+    const VectorXd U_C = U_before + W * compression.r;
+    reactions = SolveOrStop(W, U_C + W * P_E, mu, d, options_.lcp_tolerance, t, "expansion");
+    reactions.r += compression.r + P_E;
+    reactions.status.error = std::max(reactions.status.error, compression.status.error);
+  } else {
+    VectorXd q = U_before;
+    // Newton's law acts on approaching points; a touching point already separating (U_N- > 0)
+    // only must not be pushed into the surface: U_N+ >= 0.
+    for (Index i = 0; i < k; ++i) q(d * i) += e(i) * std::min(0.0, q(d * i));
+    reactions = SolveOrStop(W, q, mu, d, options_.lcp_tolerance, t, "impact");
+  }
   y.tail(nu) += response.dv * reactions.r;
   const VectorXd U_after = rows * y.tail(nu);
   ImpactResult result;

@@ -101,12 +101,14 @@ class EventDrivenContacts {
   ClosedContactForces Derivative(double t, const ConstVectorRef& y, const std::vector<ClosedPoint>& closed,
                                  Eigen::Ref<Eigen::VectorXd> y_dot) const;
 
-  /// The impact problem over `points` at (t, y): U_N+ = U_N- + W_NN P_N, U_N+ + e min(U_N-, 0) >= 0
-  /// _|_ P_N >= 0 (Newton's law on the approaching points, e per contact; a touching point that
+  /// The impact problem over `points` at (t, y) by options.impact_law. Newton's: U_N+ = U_N- +
+  /// W_NN P_N, U_N+ + e min(U_N-, 0) >= 0 _|_ P_N >= 0 (e per contact; a touching point that
   /// already separates only keeps U_N+ >= 0; the joints hold: G u+ = G u-); where a point has
   /// friction, the friction-contact problem of the same velocities with P_T in the Coulomb cone
-  /// against U_T+ (as a Moreau-Jean step without the step's forces). y's velocities become u+.
-  /// Throws SimulationError at t when the problem is not solved.
+  /// against U_T+ (as a Moreau-Jean step without the step's forces). Poisson's (frictionless): the
+  /// compression LCP U_C = U_N- + W_NN P_C >= 0 _|_ P_C >= 0, then the expansion LCP U_N+ = U_C +
+  /// W_NN (e P_C + Lambda) >= 0 _|_ Lambda >= 0, P_N = P_C + e P_C + Lambda. y's velocities
+  /// become u+. Throws SimulationError at t when a problem is not solved.
   ImpactResult Impact(double t, Eigen::Ref<Eigen::VectorXd> y, const std::vector<int>& points) const;
 
   /// Moves the positions of y onto g_N = 0 of the closed points (Gauss-Newton in the constrained

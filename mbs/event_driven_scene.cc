@@ -32,6 +32,10 @@ std::optional<EventDrivenOptions> ReadEventDrivenOptions(const YamlNode& simulat
   };
   positive("rest_velocity", &options.rest_velocity);
   positive("stick_velocity", &options.stick_velocity);
+  if (simulation.Has("impact_law")) {
+    const int law = simulation.Required("impact_law").AsChoice({"newton", "poisson"});
+    options.impact_law = law == 1 ? ImpactLaw::kPoisson : ImpactLaw::kNewton;
+  }
   positive("gap_tolerance", &options.gap_tolerance);
   if (simulation.Has("max_events")) {
     const YamlNode item = simulation.Required("max_events");

@@ -419,6 +419,14 @@ SimulationStatistics SimulateEventDriven(MultibodySystem& system, const Simulati
   const auto wall_start = std::chrono::steady_clock::now();
   FLEXMBS_CHECK(options.event_driven.has_value(), "SimulateEventDriven: no event-driven options");
   CheckEventDrivenOptions(*options.event_driven);
+  if (options.event_driven->impact_law == ImpactLaw::kPoisson) {
+    for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
+      if (system.unilateral_contact(k).law().friction > 0.0) {
+        throw InputError(fmt::format("contact '{}': friction {:g}: impact_law poisson takes frictionless contacts",
+                                     system.unilateral_contact(k).name(), system.unilateral_contact(k).law().friction));
+      }
+    }
+  }
   SimulationStatistics statistics;
   statistics.baumgarte_frequency = BaumgarteFrequency(options);
   system.set_constraint_settings({statistics.baumgarte_frequency, options.singular_pivot});

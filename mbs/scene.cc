@@ -207,8 +207,8 @@ void RejectKeysTheMethodDoesNotUse(const YamlNode& node, int method) {
 SimulationOptions ReadSimulation(const YamlNode& node) {
   node.RejectUnknownKeys({"end_time", "output_interval", "method", "relative_tolerance", "absolute_tolerance",
                           "max_step", "fixed_step", "baumgarte_frequency", "jacobian", "newton", "redundant_pivot",
-                          "step", "theta", "impact_level", "rest_velocity", "stick_velocity", "gap_tolerance",
-                          "max_events"});
+                          "step", "theta", "impact_level", "rest_velocity", "stick_velocity", "impact_law",
+                          "gap_tolerance", "max_events"});
   SimulationOptions options;
   ReadOutputTimes(node, &options);
   const int method = node.Has("method")
@@ -300,6 +300,12 @@ Scene LoadScene(const std::filesystem::path& file) {
     for (const YamlNode& item : contacts.AsList()) {
       std::unique_ptr<UnilateralContact> contact = ReadUnilateralContact(
           item, *scene.system, [&](const YamlNode& end) { return ReadMarkerRef(end, *scene.system); });
+      if (scene.options.event_driven && scene.options.event_driven->impact_law == ImpactLaw::kPoisson &&
+          contact->law().friction > 0.0) {
+        item.Required("friction").Fail(fmt::format("{:g}: impact_law poisson takes frictionless contacts (friction 0); "
+                                                   "Coulomb friction with impact_law newton",
+                                                   contact->law().friction));
+      }
       if (scene.options.moreau_jean && scene.options.moreau_jean->impact_level == ImpactLevel::kPosition &&
           contact->law().restitution > 0.0) {
         item.Required("restitution")

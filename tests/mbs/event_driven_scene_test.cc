@@ -66,6 +66,7 @@ TEST_F(EventDrivenSceneTest, TheDocumentedSceneLoadsItsKeys) {
   EXPECT_FALSE(scene.options.moreau_jean.has_value());
   EXPECT_EQ(scene.options.event_driven->rest_velocity, 1e-4);
   EXPECT_EQ(scene.options.event_driven->stick_velocity, 1e-6);
+  EXPECT_EQ(scene.options.event_driven->impact_law, ImpactLaw::kNewton);
   EXPECT_EQ(scene.options.event_driven->gap_tolerance, 1e-9);
   EXPECT_EQ(scene.options.event_driven->max_events, 10000);
   EXPECT_EQ(scene.options.integrator.relative_tolerance, 1e-10);
@@ -144,6 +145,9 @@ TEST_F(EventDrivenSceneTest, KeysItDoesNotTakeAreOneLocatedLineAndExit2) {
       {"  method: event_driven\n", "  method: event_driven\n  jacobian: model\n",
        "simulation.jacobian: not for method event_driven"},
       {"stick_velocity: 1.0e-6", "stick_velocity: 0", "simulation.stick_velocity: 0 must be finite and > 0"},
+      {"impact_law: newton", "impact_law: poison", "simulation.impact_law: 'poison' must be one of: newton, poisson"},
+      {"friction: 0 ", "friction: 0.3 ",
+       "contacts[0].friction: 0.3: impact_law poisson takes frictionless contacts"},
       {"rest_velocity: 1.0e-4", "rest_velocity: -1",
        "simulation.rest_velocity: -1 must be finite and > 0"},
       {"max_events: 10000", "max_events: 2.5",
@@ -156,7 +160,10 @@ TEST_F(EventDrivenSceneTest, KeysItDoesNotTakeAreOneLocatedLineAndExit2) {
        "event_driven"},
   };
   for (const Case& c : cases) {
-    const std::string text = Changed(c.from, c.to);
+    std::string text = Changed(c.from, c.to);
+    if (c.from == "friction: 0 ") {  // friction is refused under Poisson's law
+      text.replace(text.find("impact_law: newton"), 18, "impact_law: poisson");
+    }
     const std::string message =
         flexmbs::testing::InputErrorMessage([&] { LoadScene(Write(text)); });
     EXPECT_NE(message.find("scene.yaml:"), std::string::npos) << message;

@@ -42,7 +42,7 @@ ContactScene BallOnFloor(double mass, double radius, double gap0, double g, doub
   return scene;
 }
 
-ContactScene BlockOnIncline(double angle, double friction, double g) {
+ContactScene BlockOnIncline(double angle, double friction, double g, double restitution) {
   constexpr double kMass = 1.0, kLength = 0.2, kHeight = 0.1, kFoot = 0.01;
   // All four feet 1e-12 m into the plane, so that every one is in the first step's index set: at
   // a gap of exactly 0 the round-off of the tilted pose (+-1e-17 m) decides, and a foot found
@@ -65,7 +65,7 @@ ContactScene BlockOnIncline(double angle, double friction, double g) {
   for (int k = 0; k < 4; ++k) {
     system.AddUnilateralContact(std::make_unique<SpherePlaneUnilateral>(
         Numbered("c", k), system.Marker("block", Numbered("foot", k)),
-        MarkerRef::Ground(Vector3d::Zero(), R_WP), kFoot, UnilateralLaw{0.0, friction}));
+        MarkerRef::Ground(Vector3d::Zero(), R_WP), kFoot, UnilateralLaw{restitution, friction}));
   }
   scene.y0 = system.NeutralState();
   VectorXd x(7);

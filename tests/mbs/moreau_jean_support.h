@@ -30,9 +30,9 @@ ContactScene BallOnFloor(double mass, double radius, double gap0, double g, doub
 
 /// A block of mass 1 kg, 0.2 x 0.2 x 0.1 m, at rest on (1e-12 m into) a plane through W's origin tilted
 /// by `angle` [rad] about W's y axis, on four small spheres (radius 0.01 m) at its bottom corners
-/// (contacts "c0".."c3", restitution 0, friction mu); gravity (0, 0, -g). Down the slope is
-/// (cos a, 0, -sin a).
-ContactScene BlockOnIncline(double angle, double friction, double g);
+/// (contacts "c0".."c3", the given restitution, friction mu); gravity (0, 0, -g). Down the slope
+/// is (cos a, 0, -sin a).
+ContactScene BlockOnIncline(double angle, double friction, double g, double restitution = 0.0);
 
 /// Every step of a Moreau-Jean run: time, state and contact report.
 struct StepHistory {
