@@ -1,9 +1,9 @@
 #pragma once
 
-// How a body is held and where it connects: supports (clamped node sets) and interfaces (node
-// sets, or markers coupled to node sets rigidly or by averaging), turned into one linear
-// transformation of the FE displacements that every reduction (fixed-interface modes,
-// Craig-Bampton, static correction modes) works with.
+// How a body is held and where it connects: supports (node sets held in all or some of x, y, z)
+// and interfaces (node sets, or markers coupled to node sets rigidly or by averaging), turned
+// into one linear transformation of the FE displacements that every reduction (fixed-interface
+// modes, Craig-Bampton, static correction modes) works with.
 //
 // Equations. DOF 3 n + i is node n along axis i of the body frame B (fem::Mesh). A marker at
 // x_m has the six coordinates q = [t; theta] (translation [m], small rotation [rad], in B). A
@@ -32,10 +32,11 @@
 //
 //     u = B q_b + G u_o,
 //
-// with u = 0 on supports, u_c = T q_b on node-set and rigid interfaces (T = I or the stacked
-// S(r_n)), and W u = q_b on averaging interfaces. For an averaging interface the constraint
-// W u = q_b is solved for six of its node DOF ("dependent" DOF, chosen by column-pivoted QR of
-// W so that the 6 x 6 block W_d is well conditioned): u_d = W_d^-1 (q_b - W_o u_o). This is
+// with u = 0 on the supports' held components, u_c = T q_b on node-set and rigid interfaces
+// (T = I or the stacked S(r_n)), and W u = q_b on averaging interfaces. For an averaging
+// interface the constraint W u = q_b is solved for six of its node DOF ("dependent" DOF, chosen
+// by column-pivoted QR of W so that the 6 x 6 block W_d is well conditioned):
+// u_d = W_d^-1 (q_b - W_o u_o). This is
 // Nastran's RBE3 with the dependent DOF moved to independent nodes ("UM" option); the interior
 // problem G^T K G, G^T M G stays symmetric positive definite (no Lagrange multipliers), at the
 // cost of a dense block over the averaging interface's node DOF.
