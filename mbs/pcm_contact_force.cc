@@ -129,25 +129,47 @@ void PcmContactForce::AddForceJacobian(double, const MultibodySystem& system, co
   for (const contact::PcmElement& element : e.elements) {
     const auto [load, p_WA_W] = StateOf(e, element);
     if (!(load.normal_force > 0.0)) continue;
-    // The load acts at the pressure centre (rows; a modal side's modes through its material
-    // point's weights); the relative velocity is that of A's point under it against B's point at
-    // it (columns).
+    // Side i's material point of the element as a function of the point x in the patch:
+    // J_i(x) = J_i(x_p) + sum_d G_i,d (x - x_p)_d (rows: the load's point; the relative velocity
+    // is that of A's point under x against B's point at x, the columns J'_i).
     const std::array<int, 2> faces{element.face_A, element.face_B};
     const std::array<Eigen::Vector3d, 2> weights{element.weights_A, element.weights_B};
+    const std::array<Eigen::Matrix3d, 2> gradients{element.weight_gradients_A, element.weight_gradients_B};
     const std::array<Eigen::Vector3d, 2> moving_points{p_WA_W, load.point_W};
     std::array<Eigen::MatrixXd, 2> J, J_moving;
+    std::array<std::array<Eigen::MatrixXd, 3>, 2> G;
     for (int i = 0; i < 2; ++i) {
       J[i] = placed[i]->PointJacobian(load.point_W, faces[i], weights[i]);
       J_moving[i] = placed[i]->PointJacobian(moving_points[i], faces[i], weights[i]);
+      for (int d = 0; d < 3; ++d) G[i][d] = placed[i]->PointJacobianGradient(faces[i], gradients[i], d);
     }
+    const Eigen::Vector3d& n = element.normal_W;
+    const Eigen::Vector3d& m = element.first_moment_W;
+    const Eigen::Matrix3d& S = element.second_moment_W;
     for (int i = 0; i < 2; ++i) {
       if (sides[i]->marker.is_ground()) continue;
+      // G_i,e^T F: how the load's virtual work moves with its point, per coordinate e of x_p.
+      std::array<Eigen::VectorXd, 3> lever;
+      for (int d = 0; d < 3; ++d) lever[d] = G[i][d].transpose() * load.force_W;
       for (int j = 0; j < 2; ++j) {
         if (sides[j]->marker.is_ground()) continue;
+        // A displacement dz of side j changes the depth at x by -s_j n^T J'_j(x) dz: the volume by
+        // -s_j n^T (A J'_j + sum_d m_d G_j,d) dz and the pressure centre by -s_j (m n^T J'_j +
+        // sum_d S_:d n^T G_j,d) dz / V. The load's derivative is then the consistent
+        // c integral(J_i(x)^T d_F n^T J'_j(x) dA) over the patch.
+        Eigen::RowVectorXd volume_rate = element.area * n.transpose() * J_moving[j];
+        Eigen::MatrixXd centre_rate = m * (n.transpose() * J_moving[j]);
+        for (int d = 0; d < 3; ++d) {
+          const Eigen::RowVectorXd normal_gradient = n.transpose() * G[j][d];
+          volume_rate += m(d) * normal_gradient;
+          centre_rate += S.col(d) * normal_gradient;
+        }
+        Eigen::MatrixXd block = -law_.stiffness * J[i].transpose() * load.d_normal_force * volume_rate;
+        for (int d = 0; d < 3; ++d) block -= lever[d] * centre_rate.row(d) / element.volume;
         const Eigen::Index row = system.velocity_offset(sides[i]->marker.body);
         const Eigen::Index column = system.velocity_offset(sides[j]->marker.body);
         const double sign = signs[i] * signs[j];
-        dh_dx.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_displacement * J_moving[j];
+        dh_dx.block(row, column, J[i].cols(), J[j].cols()) += sign * block;
         dh_du.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_velocity * J_moving[j];
       }
     }

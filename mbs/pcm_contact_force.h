@@ -55,13 +55,15 @@ class PcmContactForce final : public ForceElement {
   void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                  Eigen::Ref<Eigen::VectorXd> h) const override;
   double PotentialEnergy(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
-  /// Per element, sum_ij s_i s_j J_i^T K J'_j over the two sides (s_A = 1, s_B = -1; J the
-  /// jacobian of the side's material point at the pressure centre, J' at the point whose velocity
-  /// enters: A's point under the pressure centre, B's at it; on a modal side both with the modal
-  /// columns R sum_k w_k phi_k of that point) with K the element's d_displacement (dh/dx) and
-  /// d_velocity (dh/du) (contact::ElementLoad). Exact in u; in x with the patches' areas, pressure
-  /// centres and normals held and without the levers' and the mode shapes' rotation (the load
-  /// times the rotation, as the other contact elements).
+  /// Per element and pair of sides i, j (s_A = 1, s_B = -1): dh/du += s_i s_j J_i^T (dF/dv) J'_j
+  /// (J_i side i's material point at the pressure centre, with its modal columns R sum_k w_k
+  /// phi_k; J'_j side j's point whose velocity enters: A's point under the pressure centre, B's
+  /// at it), exact; dh/dx the lumped load's consistent derivative s_i s_j c integral(J_i(x)^T d_F
+  /// n^T J'_j(x) dA) over the patch (d_F = dF/dF_N; J linear over the patch through the weights'
+  /// gradients; the patch's moments about the pressure centre: the force's change and the
+  /// pressure centre's shift), with the normals, the areas' change by in-plane motion, the
+  /// damping's area and the levers' and mode shapes' rotation held (of order depth / element size;
+  /// docs/contact.md).
   void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                         Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
   bool is_contact() const override { return true; }

@@ -73,4 +73,12 @@ Eigen::MatrixXd PlacedPcmSurface::PointJacobian(const Eigen::Vector3d& p_W, int 
   return J;
 }
 
+Eigen::MatrixXd PlacedPcmSurface::PointJacobianGradient(int face, const Eigen::Matrix3d& weight_gradients, int axis) const {
+  if (surface_.marker.is_ground()) return Eigen::MatrixXd();
+  const MarkerKinematics& M = frame();
+  Eigen::MatrixXd G = -Skew(Eigen::Vector3d::Unit(axis)) * M.jacobian.bottomRows<3>();
+  if (modal_) G.rightCols(surface_.modal.phi.cols()) += ModalJacobian(face, weight_gradients.col(axis));
+  return G;
+}
+
 }  // namespace flexmbs::mbs

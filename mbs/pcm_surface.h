@@ -64,6 +64,11 @@ class PlacedPcmSurface {
   /// point of `face` with weights w: J_v - (p_W - p_M)~ J_w of the marker, plus ModalJacobian on the
   /// body's modal columns. Empty for the ground.
   Eigen::MatrixXd PointJacobian(const Eigen::Vector3d& p_W, int face, const Eigen::Vector3d& weights) const;
+  /// The derivative of PointJacobian by the point's coordinate `axis` (0, 1, 2) of W as it moves
+  /// over `face`, whose weights change by the column `axis` of `weight_gradients` (row k: weight
+  /// k's gradient [1/m]): -e_axis~ J_w plus ModalJacobian of those changes [1/m per body velocity].
+  /// PointJacobian is linear in the point, so this is constant over the face. Empty for the ground.
+  Eigen::MatrixXd PointJacobianGradient(int face, const Eigen::Matrix3d& weight_gradients, int axis) const;
   /// Where the body's modal velocities start in the system's velocities (modal side only).
   Eigen::Index modal_column() const { return modal_->modal_column(); }
 

@@ -40,6 +40,18 @@ Eigen::Vector3d Barycentric(const Eigen::Vector2d& x, const Eigen::Vector2d& p0,
   return {1.0 - w1 - w2, w1, w2};
 }
 
+/// The gradients of Barycentric's weights by x (row k: weight k's, 3 x 2).
+Eigen::Matrix<double, 3, 2> BarycentricGradients(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1,
+                                                 const Eigen::Vector2d& p2) {
+  const Eigen::Vector2d e1 = p1 - p0, e2 = p2 - p0;
+  const double twice_area = e1.x() * e2.y() - e1.y() * e2.x();
+  Eigen::Matrix<double, 3, 2> gradients;
+  gradients.row(1) << e2.y() / twice_area, -e2.x() / twice_area;
+  gradients.row(2) << -e1.y() / twice_area, e1.x() / twice_area;
+  gradients.row(0) = -gradients.row(1) - gradients.row(2);
+  return gradients;
+}
+
 }  // namespace
 
 std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
@@ -72,6 +84,7 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
   // + sum f_i sum g_i); the areas carry the patch's orientation (clockwise: A faces B), fixed below.
   double area = 0.0, volume = 0.0, depth_squared = 0.0;
   Eigen::Vector2d first_moment = Eigen::Vector2d::Zero(), depth_moment = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d second_moment = Eigen::Matrix2d::Zero();  // integral of x x^T dA about (u, v) = 0
   const Eigen::Vector3d& p0 = patch.vertices[0];
   for (int k = 1; k + 1 < patch.count; ++k) {
     const Eigen::Vector3d &p1 = patch.vertices[k], &p2 = patch.vertices[k + 1];
@@ -83,6 +96,9 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
     volume += s * delta_sum / 3.0;
     depth_squared += s / 12.0 * (p0.z() * p0.z() + p1.z() * p1.z() + p2.z() * p2.z() + delta_sum * delta_sum);
     first_moment += s * x_sum / 3.0;
+    second_moment += s / 12.0 *
+                     (p0.head<2>() * p0.head<2>().transpose() + p1.head<2>() * p1.head<2>().transpose() +
+                      p2.head<2>() * p2.head<2>().transpose() + x_sum * x_sum.transpose());
     depth_moment += s / 12.0 * (p0.z() * p0.head<2>() + p1.z() * p1.head<2>() + p2.z() * p2.head<2>() + delta_sum * x_sum);
   }
   if (!(volume / area > 0.0)) return std::nullopt;  // touching only, or a sliver with no area
@@ -98,6 +114,20 @@ std::optional<PcmElement> TriangleElement(const Eigen::Vector3d& a0, const Eigen
   element.pressure_centre_W = world(pressure_centre);
   element.weights_B = Barycentric(pressure_centre, corners[0].head<2>(), corners[1].head<2>(), corners[2].head<2>());
   element.weights_A = Barycentric(pressure_centre, local(a0).head<2>(), local(a1).head<2>(), local(a2).head<2>());
+  Eigen::Matrix<double, 3, 2> tangents;  // (u, v) to W
+  tangents << t1, t2;
+  element.weight_gradients_B =
+      BarycentricGradients(corners[0].head<2>(), corners[1].head<2>(), corners[2].head<2>()) * tangents.transpose();
+  element.weight_gradients_A =
+      BarycentricGradients(local(a0).head<2>(), local(a1).head<2>(), local(a2).head<2>()) * tangents.transpose();
+  // About the pressure centre, with the patch's orientation's sign taken out as for the area.
+  const double sign = area < 0.0 ? -1.0 : 1.0;
+  const Eigen::Vector2d moment_p = sign * (first_moment - area * pressure_centre);
+  const Eigen::Matrix2d inertia_p =
+      sign * (second_moment - pressure_centre * first_moment.transpose() - first_moment * pressure_centre.transpose() +
+              area * pressure_centre * pressure_centre.transpose());
+  element.first_moment_W = tangents * moment_p;
+  element.second_moment_W = tangents * inertia_p * tangents.transpose();
   return element;
 }
 

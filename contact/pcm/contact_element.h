@@ -32,6 +32,16 @@ struct PcmElement {
   /// vertices' velocities (a deforming surface's too) to the element.
   Eigen::Vector3d weights_A = Eigen::Vector3d::Zero();
   Eigen::Vector3d weights_B = Eigen::Vector3d::Zero();
+  /// The gradients of those weights along B's plane: row k is the gradient of vertex k's weight as
+  /// the point moves in the plane, in W [1/m] (the weights are linear over the patch).
+  Eigen::Matrix3d weight_gradients_A = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d weight_gradients_B = Eigen::Matrix3d::Zero();
+  /// The patch's first and second moments of area about the pressure centre, in W: integral of
+  /// (x - x_p) dA [m^3] and of (x - x_p)(x - x_p)^T dA [m^4]. With them the integral of a product
+  /// of linear functions over the patch follows from their values and gradients at x_p (the
+  /// consistent Jacobian of a lumped load, mbs/pcm_contact_force.h).
+  Eigen::Vector3d first_moment_W = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second_moment_W = Eigen::Matrix3d::Zero();
 };
 
 /// The element of triangle (a0, a1, a2) of A under triangle (b0, b1, b2) of B (both

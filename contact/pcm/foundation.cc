@@ -48,6 +48,7 @@ ElementLoad Evaluate(const ElasticFoundation& law, const PcmElement& element, co
   }
   load.d_velocity -= law.areal_damping * element.area * d_normal * n.transpose();
   load.d_displacement = -law.stiffness * element.area * d_normal * n.transpose();
+  load.d_normal_force = d_normal;
   return load;
 }
 

@@ -49,6 +49,8 @@ struct ElementLoad {
   /// held: -(n + dF_T/dF_N) c A n^T (dV = -A n . u; exact for the sum over a flat B's elements
   /// without damping; the damping's d_A v_N dA/du is left out); 0 where F_N is clipped.
   Eigen::Matrix3d d_displacement = Eigen::Matrix3d::Zero();
+  /// dF/dF_N = n + dF_T/dF_N [1]: how the force turns with the normal force; 0 where F_N is clipped.
+  Eigen::Vector3d d_normal_force = Eigen::Vector3d::Zero();
 };
 
 /// The element's load at relative velocity v = v_A - v_B [m/s] of A's point against B's at the
