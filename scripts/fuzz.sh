@@ -8,7 +8,8 @@
 # corpus is kept in build-fuzz/corpus/<target>, crashing inputs in build-fuzz/artifacts/<target>/,
 # each run's log in build-fuzz/logs/<target>.log. -malloc_limit_mb: HDF5 asks malloc for what a
 # damaged size field claims (scripts/clang-env.sh); libFuzzer would call any malloc above
-# -rss_limit_mb an out-of-memory crash. FLEXMBS_JOBS sets build parallelism (default: nproc).
+# -rss_limit_mb an out-of-memory crash. FLEXMBS_JOBS sets build parallelism (default: nproc);
+# FLEXMBS_FUZZ_RUNS=N stops each target after N executions (the time still bounds it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -17,6 +18,7 @@ shift || true
 targets=("$@")
 [[ ${#targets[@]} -gt 0 ]] || targets=(body_spec scene sid_reader results_reader mesh_arrays)
 jobs=${FLEXMBS_JOBS:-$(nproc)}
+runs=${FLEXMBS_FUZZ_RUNS:-}
 
 # The libraries get coverage instrumentation (fuzzer-no-link); the targets link libFuzzer.
 source scripts/clang-env.sh
@@ -38,7 +40,7 @@ for t in "${targets[@]}"; do
   echo "== fuzz_$t for ${seconds} s"
   leaks=1
   [[ -z ${no_leak_check[$t]:-} ]] || leaks=0
-  if ! "build-fuzz/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1048576 -print_final_stats=1 \
+  if ! "build-fuzz/bin/fuzz_$t" -max_total_time="$seconds" ${runs:+-runs="$runs"} -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1048576 -print_final_stats=1 \
       -detect_leaks=$leaks -artifact_prefix="build-fuzz/artifacts/$t/" "build-fuzz/corpus/$t" "fuzz/corpus/$t" > "$log" 2>&1; then
     status=1
     tail -n 40 "$log"
