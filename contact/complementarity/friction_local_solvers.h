@@ -21,8 +21,13 @@ struct SpatialContactOptions {
 /// One spatial contact: u = W r + q with W 3 x 3 symmetric positive definite, (u, r) obeying
 /// Coulomb's law. Take-off and stick are tested exactly first; otherwise Alart-Curnier's function
 /// is solved by a semi-smooth Newton method with Armijo backtracking on ||Phi||^2 from r
-/// (Alart & Curnier 1991; Siconos' ONECONTACT_NSN). Returns whether Newton met its tolerance; r is
-/// the last iterate either way.
+/// (Alart & Curnier 1991; Siconos' ONECONTACT_NSN). Where Newton stalls short of its tolerance (a
+/// kink of ||Phi||^2 with no descent along the Newton direction), the sliding solutions are
+/// enumerated instead: r = r_N (1, -mu t) with u_N = 0 fixes r_N for each direction t = (cos a,
+/// sin a), and u_T parallel to t is a root in a, bracketed on 64 samples of [0, 2 pi) and bisected
+/// to round-off; the root with the least natural-map error replaces r if it is better (the role
+/// of the projection fallback in Siconos' ONECONTACT_NSN_GP_HYBRID). Returns whether the
+/// tolerance was met; r is the last Newton iterate or the better sliding root either way.
 bool SolveSpatialContact(const Eigen::Matrix3d& W, const Eigen::Vector3d& q, double mu, Eigen::Vector3d& r,
                          const SpatialContactOptions& options = {});
 

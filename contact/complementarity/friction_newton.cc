@@ -13,6 +13,11 @@
 namespace flexmbs::contact {
 namespace {
 
+// The shortest Armijo step that still counts as progress on a subproblem (1/32 measured best
+// among 1/32 and 1/512 on the stacks of tests/contact: 14 and 135 Newton steps against 19 and 161
+// on the two problems the old rule failed on).
+constexpr double kShortStep = 1.0 / 32.0;
+
 // Alart-Curnier's function of the proximal subproblem (W + sigma I, q - sigma c) at r: its
 // velocities are u + sigma (r - c) with u = W r + q. D holds the Jacobian blocks D_i.
 struct ProximalFunction {
@@ -76,20 +81,28 @@ FrictionContactSolution SolveFrictionNewton(const FrictionContactProblem& proble
     const Eigen::VectorXd step = Jacobian(problem, rho, sigma, f).partialPivLu().solve(-f.phi);
     bool accepted = false;
     double alpha = 1.0;
-    for (int halving = 0; halving < 20 && !accepted && step.allFinite(); ++halving, alpha *= 0.5) {
+    for (int halving = 0; halving < 20 && !accepted && step.allFinite(); ++halving) {
       const Eigen::VectorXd trial = s.r + alpha * step;
       ProximalFunction trial_f = Evaluate(problem, rho, sigma, centre, trial);
       if (trial_f.merit <= (1.0 - 1e-4 * alpha) * f.merit) {
         s.r = trial;
         f = std::move(trial_f);
         accepted = true;
+      } else {
+        alpha *= 0.5;
       }
     }
     s.error = FrictionContactError(problem, s.r);
-    // Subproblem solved well enough (or Newton stuck on it): move the centre, adapt sigma.
-    const bool solved = accepted && f.merit <= options.subproblem_reduction * merit_at_centre;
-    if (solved || !accepted) {
-      if (!accepted) sigma_floor = 10.0 * sigma;  // Newton stalls at this sigma: stay above it
+    // Subproblem solved well enough (or Newton stuck on it): move the centre, adapt sigma. A step
+    // cut below kShortStep counts as stuck: at a kink of ||Phi||^2 the Armijo steps shrink to
+    // nothing one after another (measured: 1e-5 for ten steps) instead of failing at once.
+    const bool stuck = !accepted || alpha < kShortStep;
+    const bool solved = !stuck && f.merit <= options.subproblem_reduction * merit_at_centre;
+    if (solved || stuck) {
+      // Newton stalls at this sigma: stay above it for a while; each solved subproblem lowers
+      // that floor tenfold again, so a stall far from the solution does not hold sigma (and the
+      // proximal point method's linear rate) for good.
+      sigma_floor = stuck ? 10.0 * sigma : std::max(0.1 * sigma_floor, options.min_proximal * w_scale);
       sigma = solved ? std::max(0.1 * sigma, sigma_floor) : sigma_floor;
       centre = s.r;
       f = Evaluate(problem, rho, sigma, centre, s.r);

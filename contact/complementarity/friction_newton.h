@@ -12,7 +12,8 @@ struct FrictionNewtonOptions {
   double tolerance = 1e-10;     ///< stop when FrictionContactError <= tolerance
   int max_iterations = 200;     ///< most Newton steps (rejected steps included)
   /// First proximal weight sigma, relative to the mean diagonal of W. Divided by 10 each time a
-  /// subproblem is solved (down to min_proximal), multiplied by 10 when Newton stalls on one.
+  /// subproblem is solved (down to min_proximal and a floor left by stalls), multiplied by 10 when
+  /// Newton stalls on one.
   double proximal = 1e-2;
   double min_proximal = 1e-6;  ///< the least sigma, relative to the mean diagonal of W
   /// A subproblem counts as solved when Newton has reduced ||Phi||^2 by this factor from its centre.
@@ -27,9 +28,11 @@ struct FrictionNewtonOptions {
 ///   J = I - D + rho D (W + sigma I)
 /// stays regular on rank-deficient Delassus operators (more contacts than degrees of freedom);
 /// once ||Phi||^2 has dropped by subproblem_reduction the centre moves to r and sigma shrinks
-/// tenfold. Where Newton stalls (Armijo backtracking on ||Phi||^2 finds no descent) the centre
-/// moves too and sigma grows tenfold and never again falls below that value. rho = 1 / ||W_ii||_F
-/// per contact. Dense LU: O((d n)^3) per step. iterations counts Newton steps.
+/// tenfold. Where Newton stalls (Armijo backtracking on ||Phi||^2 finds no descent, or only a
+/// step shorter than 1/32) the centre moves too and sigma grows tenfold; sigma stays above that
+/// value until a subproblem is solved, and each solved one lowers the floor tenfold (down to
+/// min_proximal). rho = 1 / ||W_ii||_F per contact. Dense LU: O((d n)^3) per step. iterations
+/// counts Newton steps.
 FrictionContactSolution SolveFrictionNewton(const FrictionContactProblem& problem,
                                             const FrictionNewtonOptions& options = {});
 

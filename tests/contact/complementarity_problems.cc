@@ -18,6 +18,14 @@ Eigen::MatrixXd Gaussian(int rows, int cols, std::mt19937& rng) {
   return Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return normal(rng); });
 }
 
+// k numbers from `unit`, drawn one by one: the last entry first or the first entry first.
+template <int k>
+Eigen::Matrix<double, k, 1> Draw(std::uniform_real_distribution<double>& unit, std::mt19937& rng, DrawOrder order) {
+  Eigen::Matrix<double, k, 1> x;
+  for (int j = 0; j < k; ++j) x(order == DrawOrder::kLastFirst ? k - 1 - j : j) = unit(rng);
+  return x;
+}
+
 }  // namespace
 
 LcpProblem RandomPositiveDefiniteLcp(int n, unsigned seed) {
@@ -55,7 +63,8 @@ KnownLcp DegenerateLcp(int n, unsigned seed) {
   return {{M, w - M * z}, z};
 }
 
-GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, double mu, unsigned seed) {
+GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, double mu, unsigned seed,
+                                     DrawOrder order) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_real_distribution<double> mass(1.0, 10.0);
@@ -83,10 +92,9 @@ GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, do
       const Eigen::Vector2d n(std::sin(tilt), std::cos(tilt));
       const Eigen::Vector2d t(n.y(), -n.x());
       // Drawn one by one: the order of a call's arguments is unspecified (GCC draws the last
-      // first, clang the first: under clang these were other problems). This is GCC's order.
-      const double p_y = unit(rng);
-      const double p_x = unit(rng);
-      const Eigen::Vector2d p(p_x, -1.0 + 0.2 * p_y);
+      // first, clang the first: under clang these were other problems); `order` says which.
+      const Eigen::Vector2d drawn = Draw<2>(unit, rng, order);
+      const Eigen::Vector2d p(drawn.x(), -1.0 + 0.2 * drawn.y());
       Eigen::Matrix2d C;
       C << n, t;
       const auto point_rows = [&](const Eigen::Vector2d& x) {
@@ -103,10 +111,8 @@ GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, do
       const Eigen::Vector3d t1 = n.unitOrthogonal();
       Eigen::Matrix3d C;
       C << n, t1, n.cross(t1);
-      const double p_z = unit(rng);  // one by one, in GCC's order (see the planar case)
-      const double p_y = unit(rng);
-      const double p_x = unit(rng);
-      const Eigen::Vector3d p(p_x, p_y, -1.0 + 0.2 * p_z);
+      const Eigen::Vector3d drawn = Draw<3>(unit, rng, order);  // one by one (see the planar case)
+      const Eigen::Vector3d p(drawn.x(), drawn.y(), -1.0 + 0.2 * drawn.z());
       // velocity of the point x (from the centre): v + w x x = v - Skew(x) w
       const auto point_rows = [&](const Eigen::Vector3d& x) {
         Eigen::Matrix<double, 3, 6> rows;

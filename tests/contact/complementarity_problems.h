@@ -29,12 +29,18 @@ KnownLcp DegenerateLcp(int n, unsigned seed);
 /// ground for even c and on body c mod bodies + 1 (if any) for odd c, with its normal tilted up to 30 degrees from
 /// vertical; W = G M^-1 G^T, q = G v_free with a free velocity pointing down and sideways. More
 /// contact coordinates than DOF (d contacts > DOF) makes W rank-deficient. G and M are kept to
-/// compare the generalised impulse G^T r.
+/// compare the generalised impulse G^T r. `order` picks the order a contact point's coordinates are
+/// drawn in: two families of problems from the same seeds (kLastFirst is the original family).
 struct GeometricProblem {
   FrictionContactProblem problem;
   Eigen::MatrixXd G;  ///< d n x DOF contact Jacobian
   Eigen::MatrixXd M;  ///< DOF x DOF block-diagonal mass matrix
 };
-GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, double mu, unsigned seed);
+/// The order RigidBodiesOnGround draws a contact point's coordinates in: last coordinate first (the
+/// original family, as GCC evaluated the constructor's arguments) or first coordinate first (as
+/// clang did; commit fcb6076). Each gives other valid problems from the same seed.
+enum class DrawOrder { kLastFirst, kFirstFirst };
+GeometricProblem RigidBodiesOnGround(int dimension, int bodies, int contacts, double mu, unsigned seed,
+                                     DrawOrder order = DrawOrder::kLastFirst);
 
 }  // namespace flexmbs::contact::testing
