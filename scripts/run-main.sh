@@ -6,8 +6,9 @@
 # cases/04_sphere_on_rod, reduces the NAFEMS FV52 plate of cases/05_nafems_fv52 against
 # CalculiX and the published frequencies, runs the beam on a stop of cases/06_beam_on_stop
 # against its full FE model, reduces the L-bracket of cases/07_bracket_modes two ways against
-# its full FE model and CalculiX, spins up the beam of cases/08_spin_up_beam and presses the
-# sphere into the plate of cases/09_sphere_on_plate against its full FE model (see their READMEs).
+# its full FE model and CalculiX, spins up the beam of cases/08_spin_up_beam, presses the
+# sphere into the plate of cases/09_sphere_on_plate against its full FE model and drives the
+# gear pair of cases/10_gear_pair on elastic teeth (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -21,4 +22,5 @@ cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/06_beam_on_stop/run.sh build/bin/flexmbs
 ./cases/07_bracket_modes/run.sh build/bin/flexmbs
 ./cases/08_spin_up_beam/run.sh build/bin/flexmbs
-exec ./cases/09_sphere_on_plate/run.sh build/bin/flexmbs
+./cases/09_sphere_on_plate/run.sh build/bin/flexmbs
+exec ./cases/10_gear_pair/run.sh build/bin/flexmbs

@@ -1,0 +1,167 @@
+#!/usr/bin/python3
+"""Checks cases/10_gear_pair's two runs against closed forms computed here (no flexmbs code).
+
+Reads out/fe.h5 (massless FE teeth) and out/iso.h5 (ISO 6336-1's constant c'), the gears/mesh
+series of docs/results.md, and checks, from 0.1 s on (start-up settled) over whole mesh periods
+2 pi / (z1 omega1):
+- the transmission error is 0 at t = 0 (the wheel's start angle from gear_geometry.py's
+  involutes: the positive flanks touch);
+- the mean mesh force is T / r_b2, the share of double contact epsilon_alpha - 1 (ISO 21771);
+- the transmission error repeats one mesh period later;
+- ISO run: along the line of action F / (c' b) in single and F / (2 c' b) in double contact,
+  c' = gear_geometry.iso_stiffness() (samples 1 ms or more after a pair switch: the mesh rings
+  at each switch);
+- FE run, single contact: F / (c(t1, t2) b) with 1 / c = q1(t1) + q2(t2) + Weber's flattening
+  at 300 N/mm / 300 N/mm (docs/contact.md "Elastic teeth"; the tables of scene.yaml read here,
+  linear between samples), the pair's roll angles from the driven pinion's angle 2 t; and the
+  pinion's tooth deflection q1(t1) F / b.
+Prints a table, one headline line; asserts the limits below; plots out/gear_pair.png.
+
+Usage: /usr/bin/python3 compare.py OUT [--plot FILE.png]
+"""
+import argparse
+import json
+import math
+import sys
+
+import h5py
+import numpy as np
+import yaml
+
+import gear_geometry as gg
+
+TORQUE, SPEED, START, RING = 10.0, 2.0, 0.1, 1e-3  # load [N m], pinion [rad/s], from [s], after a switch [s]
+E, NU, W_REF = 2.1e11, 0.3, 3e5                    # steel, the flattening's reference load [N/m]
+LIMITS = {  # measured in the comments
+    "start_error_m": 1e-15,       # 5.2e-18 m
+    "mean_force": 1e-3,           # FE 1.3e-4, ISO 5.4e-5 (three whole periods from 0.1 s)
+    "double_share": 3e-3,         # 3.6e-4 (sampling 1e-4 s of 0.165 s)
+    "periodic": 0.1,              # of the range, 2e-4 s or more from a switch: FE 1.0e-2, ISO 6.6e-3 (the ring)
+    "iso_levels": 1e-5,           # 7.9e-7 (what the ringing leaves 1 ms after a switch)
+    "fe_single": 2e-3,            # 1.6e-4 (the dashpot as c changes along the path)
+    "fe_tooth_deflection": 1e-10,  # 4.6e-14
+}
+
+
+def read(path):
+    with h5py.File(path, "r") as f:
+        m = f["gears/mesh"]
+        return {"t": f["time"][:], "te": m["transmission_error_length"][:], "n": m["active_pairs"][:],
+                "force": m["mesh_force"][:], "d1": m["tooth1_deflection"][:].sum(axis=1),
+                "d2": m["tooth2_deflection"][:].sum(axis=1)}
+
+
+def pair_stiffness(t1, t2, teeth, g):
+    """c(t1, t2) [N/m^2]: both teeth's compliance and Weber's flattening in series."""
+    one, two = teeth["gear1"], teeth["gear2"]
+    rho1, rho2 = g["rb"][0] * t1, g["rb"][1] * t2
+    half_width = math.sqrt(8 * W_REF * rho1 * rho2 / (rho1 + rho2) * (1 - NU ** 2) / (math.pi * E))
+    h1, h2 = np.interp(t1, one["roll"], one["centre_depth"]), np.interp(t2, two["roll"], two["centre_depth"])
+    flattening = 2 * W_REF * (1 - NU ** 2) / (math.pi * E) * (
+        math.log(2 * h1 / half_width) + math.log(2 * h2 / half_width) - NU / (1 - NU))
+    return 1 / (np.interp(t1, one["roll"], one["compliance"]) + np.interp(t2, two["roll"], two["compliance"])
+                + flattening / W_REF)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("out")
+    parser.add_argument("--plot")
+    args = parser.parse_args()
+    g = gg.geometry()
+    force = TORQUE / g["rb"][1]
+    width = gg.FACE_WIDTH
+    period = 2 * math.pi / (gg.TEETH[0] * SPEED)
+    with open("scene.yaml") as f:
+        teeth = yaml.safe_load(f.read().replace("WHEEL_ANGLE", "0"))["forces"][1]["teeth"]
+    runs = {name: read(f"{args.out}/{name}.h5") for name in ("fe", "iso")}
+    measured, failures = {}, []
+    for name, r in runs.items():
+        t = r["t"]
+        whole = (t >= START) & (t < START + period * math.floor((t[-1] - START) / period))
+        switches = t[np.r_[0, np.flatnonzero(np.diff(r["n"]) != 0) + 1]]
+        settled = whole & (t - switches[np.searchsorted(switches, t, side="right") - 1] >= RING)
+        later = np.interp(t[whole] + period, t, r["te"])
+        # Away from the switches by two samples at t and t + period (the error jumps there).
+        near = np.minimum(np.min(np.abs(t[whole][:, None] - switches[None, :]), axis=1),
+                          np.min(np.abs(t[whole][:, None] + period - switches[None, :]), axis=1))
+        apart = (near >= 2e-4) & (t[whole] + period <= t[-1])
+        span = np.ptp(r["te"][whole])
+        measured[name] = {
+            "start_error_m": abs(r["te"][0]),
+            "mean_force": abs(r["force"][whole].mean() / force - 1),
+            "double_share": abs((r["n"][whole] == 2).mean() - (g["contact_ratio"] - 1)),
+            "periodic": np.max(np.abs(later - r["te"][whole])[apart]) / span,
+        }
+        single, double = settled & (r["n"] == 1), settled & (r["n"] == 2)
+        if name == "iso":
+            c = gg.iso_stiffness()
+            measured[name]["iso_levels"] = max(np.max(np.abs(r["te"][single] * c * width / r["force"][single] - 1)),
+                                               np.max(np.abs(r["te"][double] * 2 * c * width / r["force"][double] - 1)))
+        else:
+            s = g["rb"][0] * (g["alpha_w"] + g["psi_b"][0] + SPEED * t[single])
+            s -= g["p_b"] * np.floor((s - g["s_e"] + g["p_b"]) / g["p_b"])  # the pair in single contact
+            t1, t2 = s / g["rb"][0], (g["line"] - s) / g["rb"][1]
+            c = np.array([pair_stiffness(a, b, teeth, g) for a, b in zip(t1, t2)])
+            f = r["force"][single]
+            measured[name]["fe_single"] = np.max(np.abs(r["te"][single] * c * width / f - 1))
+            q1 = np.interp(t1, teeth["gear1"]["roll"], teeth["gear1"]["compliance"])
+            measured[name]["fe_tooth_deflection"] = np.max(np.abs(r["d1"][single] / (q1 * f / width) - 1))
+            measured[name]["levels_um"] = (r["te"][single].min() * 1e6, r["te"][single].max() * 1e6,
+                                           r["te"][double].max() * 1e6)
+            measured[name]["teeth_share"] = (np.min((r["d1"] + r["d2"])[single] / r["te"][single]),
+                                             np.max((r["d1"] + r["d2"])[single] / r["te"][single]))
+    print(f"pair: epsilon_alpha = {g['contact_ratio']:.6f}, T / r_b2 = {force:.4f} N, "
+          f"ISO 6336-1 c' = {gg.iso_stiffness() / 1e9:.3f} N/(mm um), mesh period {period * 1e3:.2f} ms")
+    print("| check | FE teeth | ISO c' | limit |")
+    print("|---|---:|---:|---:|")
+    for key, limit in LIMITS.items():
+        cells = []
+        for name in ("fe", "iso"):
+            value = measured[name].get(key)
+            cells.append("" if value is None else f"{value:.2e}")
+            if value is not None and not value <= limit:
+                failures.append(f"{name}: {key} {value:.3e} > {limit}")
+        print(f"| {key} | {cells[0]} | {cells[1]} | {limit:g} |")
+    lo, hi, dbl = measured["fe"]["levels_um"]
+    share = measured["fe"]["teeth_share"]
+    print(f"FE teeth: transmission error {lo:.3f} ... {hi:.3f} um in single contact, <= {dbl:.3f} um in double; "
+          f"the teeth take {share[0]:.3f} ... {share[1]:.3f} of it in single contact (the flattening the rest); "
+          f"ISO c': {force / (gg.iso_stiffness() * width) * 1e6:.3f} and {force / (2 * gg.iso_stiffness() * width) * 1e6:.3f} um")
+    with open(f"{args.out}/fe.json") as f:
+        wall = json.load(f)["wall_seconds"]
+    print("headline " + json.dumps({
+        "case": "10_gear_pair", "error": measured["fe"]["fe_single"],
+        "error_of": "FE teeth' single-contact transmission error against F / (c(t1, t2) b), teeth and Weber in series",
+        "runtime_s": wall, "peer": "ISO 6336-1 c' (closed form)", "peer_runtime_s": None}))
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+        for name, label in (("fe", "FE teeth"), ("iso", "ISO 6336-1 c'")):
+            r = runs[name]
+            cycles = r["t"] / period
+            axes[0].plot(cycles, r["te"] * 1e6, label=label)
+            axes[1].plot(cycles, r["force"], label=label)
+        r = runs["fe"]
+        axes[0].set(ylabel="transmission error [um]", title="spur pair z 19/31 driven at 2 rad/s against 10 N m")
+        axes[0].legend(fontsize=8)
+        axes[1].axhline(force, color="k", ls="--", lw=0.8, label="T / r_b2")
+        axes[1].set(ylabel="mesh force [N]", ylim=(0, 2 * force))
+        axes[1].legend(fontsize=8)
+        axes[2].plot(r["t"] / period, r["d1"] * 1e6, label="pinion tooth")
+        axes[2].plot(r["t"] / period, r["d2"] * 1e6, label="wheel tooth")
+        axes[2].plot(r["t"] / period, r["n"], "k", lw=0.6, label="pairs in contact")
+        axes[2].set(xlabel="mesh periods", ylabel="FE teeth deflection [um], summed over the pairs")
+        axes[2].legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=110)
+    if failures:
+        print("FAILED: " + "; ".join(failures))
+        sys.exit(1)
+    print("all checks passed")
+
+
+if __name__ == "__main__":
+    main()
