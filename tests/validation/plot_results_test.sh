@@ -48,7 +48,7 @@ summary="$out/event_driven.txt"
 /usr/bin/python3 "$root/scripts/plot_results.py" "$out/event_driven.h5" | tee "$summary"
 expect "termination:" "end time reached (complete 1)"
 expect "duration:" "0 .. 9.5 s, 9501 samples"
-expect "events:" "102 (impact 102, separation 0)"  # the 102 impacts of cases/03's README
+expect "events:" "102 (impact 102, separation 0, stick 0, slip 0)"  # the 102 impacts of cases/03's README
 expect "contact floor" "sliding in 0,"             # frictionless
 near "energy total:" start 10.791 1e-9             # m g h = 10.791 J at rest, 1.1 m up
 near "energy total:" end 0.981 1e-8                # m g r at rest on the floor (measured 0.981)
