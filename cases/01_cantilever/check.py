@@ -16,6 +16,9 @@ import math
 import pathlib
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
+
 E, RHO, LENGTH, SIDE = 2.1e11, 7850.0, 1.0, 0.01
 # beta_n L of a clamped-free Euler-Bernoulli beam (roots of cos(x) cosh(x) = -1).
 BETA_L = [1.8751040687, 4.6940911330, 7.8547574382, 10.9955407349]
@@ -70,6 +73,8 @@ def main():
         check(f"bending {n + 1} as the README prints it", round(f[2 * n], digits) == printed,
               f"{f[2 * n]:.6g} Hz, README {printed}")
 
+    print_headline("01_cantilever", max(abs(f[k] / euler_bernoulli_hz(k // 2) - 1.0) for k in range(8)),
+                   "bending frequencies 1-4 against Euler-Bernoulli", peer="Euler-Bernoulli (closed form)")
     check("beam_cb.sid.h5 modes", cb["modes"]["total"] == 14, f"{cb['modes']}")
     tip = [m for m in cb["nodes"] if m["name"] == "tip"]
     check("tip marker", len(tip) == 1 and tip[0]["coupling"] == "rigid"

@@ -18,6 +18,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
+
 REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "slider_crank_exact.json"
 
 
@@ -48,6 +51,8 @@ def main():
     print(f"midpoint deflection: flexmbs peak {1e3 * np.max(np.abs(w)):.4g} mm at {t[np.argmax(np.abs(w))]:.4g} s, "
           f"reference peak {1e3 * peak_ref:.4g} mm at {t_ref[np.argmax(np.abs(w_ref))]:.4g} s; largest difference "
           f"{1e3 * difference:.3g} mm = {difference / peak_ref:.3g} of the reference's peak (limit {args.limit:g})")
+    print_headline("02_slider_crank", difference / peak_ref, "midpoint deflection history / its peak",
+                   peer="planar beam model (tests/validation/slider_crank_exact.json)")
     return 0 if difference <= args.limit * peak_ref else 1
 
 

@@ -11,10 +11,14 @@ Prints the measured errors; exits 1 if one exceeds its limit in LIMITS.
 """
 import argparse
 import math
+import pathlib
 import sys
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
 
 H0, G, E, RADIUS, MASS = 1.0, 9.81, 0.9, 0.1, 1.0
 V1, T1 = math.sqrt(2.0 * G * H0), math.sqrt(2.0 * H0 / G)
@@ -129,6 +133,8 @@ def main():
         ok = value <= LIMITS[name]
         failed |= not ok
         print(f"{name:42s} {value:10.3e}   limit {LIMITS[name]:.0e}   {'ok' if ok else 'EXCEEDED'}")
+    print_headline("03_bouncing_ball", errors["event-driven impact times [s]"],
+                   "event-driven impact times against the closed form [s]", peer="closed form")
     if args.plot:
         plot(event_driven, moreau_jean, args.plot)
         print(f"wrote {args.plot}")

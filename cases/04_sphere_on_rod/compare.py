@@ -16,11 +16,15 @@ Usage: /usr/bin/python3 compare.py results.h5 [--plot out.png]
 """
 import argparse
 import math
+import pathlib
 import sys
 
 import h5py
 import numpy as np
 from scipy.integrate import solve_ivp
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
 
 E, NU, RHO = 2.1e11, 0.3, 7850.0          # steel, as rod.yaml and scene.yaml
 RADIUS, V0, GAP = 0.01, 1.0, 1e-6          # the sphere [m], its speed [m/s], the initial gap [m]
@@ -86,6 +90,8 @@ def main():
         ok = value <= LIMITS[name]
         failed |= not ok
         print(f"{name:40s} {value:.3e}  (limit {LIMITS[name]:.1e}) {'ok' if ok else 'FAILED'}")
+    print_headline("04_sphere_on_rod", measured["peak force, relative difference"], "peak contact force",
+                   peer="Goldsmith's sphere on a long rod (SciPy)")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")

@@ -24,6 +24,9 @@ import json
 import pathlib
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline, reduce_seconds  # noqa: E402 (cases/headline.py)
+
 # NAFEMS, Selected Benchmarks for Natural Frequency Analysis (R0015, 1987), test FV52, modes
 # 4-10 (the first three are the in-plane rigid motions). Bending: (1,1), (1,2) twice, (2,2);
 # in-plane: the last three.
@@ -101,6 +104,10 @@ def main():
         check("bottom edges held: softer on the finer mesh", all(f < c for f, c in zip(held, coarse_held)),
               f"20 x 20 x 4 {[f'{f:.5g}' for f in held]} Hz, 8 x 8 x 2 {[f'{c:.5g}' for c in coarse_held]} Hz")
 
+    print_headline("05_nafems_fv52", max(abs(f / c - 1.0) for v in BENDING_INDEX for f, c in zip(ours[v], ccx[v])),
+                   "frequencies against CalculiX on the same mesh (NAFEMS: the table)",
+                   runtime_s=reduce_seconds(load(a.out, "plate.reduce.json")), peer="CalculiX (C3D20)",
+                   peer_runtime_s=load(a.out, "plate.ccx.json")["seconds"])
     if a.plot:
         plot(a.plot, held, faces, in_plane, a.mesh)
         print(f"wrote {a.plot}")

@@ -22,6 +22,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
 from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
 
 MASS, SPEED, STEP = 7.536, 1.0, 1e-6     # the beam [kg] (rho V), its speed [m/s], the step [s]
@@ -92,6 +93,9 @@ def main():
         print(f"{'ok  ' if ok else 'FAIL'} {formulation} {run}: {measure} error {value:+.2e} (limit {limit:g})")
         if not ok:
             failures.append(f"{formulation} {run} {measure}")
+    print_headline("06_beam_on_stop", abs(table[("penalty", runs[-1])]["peak"]), f"penalty peak force, {runs[-1]} modes",
+                   runtime_s=table[("penalty", runs[-1])]["seconds"], peer="full FE model (SciPy)",
+                   peer_runtime_s=json.loads((a.out / "full_penalty.json").read_text())["wall_seconds"])
     if a.plot:
         plot(a.plot, a.out, runs, table)
         print(f"wrote {a.plot}")

@@ -18,6 +18,9 @@ import json
 import pathlib
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline, reduce_seconds  # noqa: E402 (cases/headline.py)
+
 # CalculiX prints 7 significant digits: measured 3.8e-7.
 CALCULIX = 1e-6
 # A modal body's system modes are its eigenpairs: measured 3.7e-12 (frequency), 1 - MAC < 1e-12.
@@ -57,6 +60,9 @@ def main():
           and min(pair["mac"] for pair in cb[:5]) >= CB_FIRST_FIVE_MAC,
           f"largest error {100 * max(errors[:5]):.3f} %, smallest MAC {min(pair['mac'] for pair in cb[:5]):.5f}")
     check("Craig-Bampton: mode 6", errors[5] <= CB_SIXTH, f"{100 * errors[5]:+.2f} %")
+    print_headline("07_bracket_modes", max(abs(e) for e in errors[:5]), "Craig-Bampton frequencies 1-5 against the full model",
+                   runtime_s=reduce_seconds(json.loads((a.out / "bracket_cb.reduce.json").read_text())),
+                   peer="CalculiX (C3D20), full model", peer_runtime_s=json.loads((a.out / "full.ccx.json").read_text())["seconds"])
     if a.plot:
         plot(a.plot, modal, cb)
         print(f"wrote {a.plot}")

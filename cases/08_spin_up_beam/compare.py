@@ -21,6 +21,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
 from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
 
 REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "spin_up_reference.py"
@@ -48,7 +49,7 @@ def main():
     p.add_argument("--diverges-past", type=float, help="[m]: the unstiffened runs' end deflection exceeds this")
     p.add_argument("--plot")
     a = p.parse_args()
-    failures, curves = [], []
+    failures, curves, stiffened = [], [], []
     for args in a.run:
         path, spin, stiffening, limit = args[0], float(args[1]), int(args[2]), float(args[3])
         until = float(args[4]) if len(args) > 4 else np.inf
@@ -72,6 +73,11 @@ def main():
             if not ok:
                 failures.append(f"{name} diverges")
         curves.append((name, t, tip, ref))
+        if stiffening:
+            stiffened.append(error)
+    if stiffened:
+        print_headline("08_spin_up_beam", max(stiffened), "tip deflection / its largest value, stiffened runs",
+                       peer="1-D rotating beam (SciPy)")
     if a.plot:
         plot(a.plot, curves)
         print(f"wrote {a.plot}")

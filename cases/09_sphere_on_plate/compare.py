@@ -13,10 +13,14 @@ Usage: /usr/bin/python3 compare.py OUT --runs 4,5,6,7,6m [--plot FILE.png]
 """
 import argparse
 import json
+import pathlib
 import sys
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
 
 CENTRE_XY = (0.1013, 0.1007)  # the sphere's axis (scene.yaml)
 SECOND_ORDER = (3.5, 4.5)      # error ratio per level: measured 3.88, 3.97, 4.02
@@ -90,10 +94,10 @@ def main():
         if abs(extrapolated) > RICHARDSON:
             failures.append(f"Richardson extrapolation off by {extrapolated:.2e}")
     finest = max(errors)
-    print("headline " + json.dumps({
-        "case": "09_sphere_on_plate", "error": abs(errors[finest]),
-        "error_of": f"contact force, sphere level {finest}, against the full FE model's static contact",
-        "runtime_s": values[str(finest)][2], "peer": "SciPy full FE model", "peer_runtime_s": ref["wall_seconds"]}))
+    print_headline("09_sphere_on_plate", abs(errors[finest]),
+                   f"contact force, sphere level {finest}, against the full FE model's static contact",
+                   runtime_s=values[str(finest)][2], peer="full FE model, exact sphere (SciPy)",
+                   peer_runtime_s=ref["wall_seconds"])
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")

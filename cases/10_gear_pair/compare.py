@@ -12,7 +12,7 @@ series of docs/results.md, and checks, from 0.1 s on (start-up settled) over who
   c' = gear_geometry.iso_stiffness() (samples 1 ms or more after a pair switch: the mesh rings
   at each switch);
 - FE run, single contact: F / (c(t1, t2) b) with 1 / c = q1(t1) + q2(t2) + Weber's flattening
-  at 300 N/mm / 300 N/mm (docs/contact.md "Elastic teeth"; the tables of scene.yaml read here,
+  at w_ref = 300 N/mm, divided by w_ref (docs/contact.md "Elastic teeth"; the tables of scene.yaml read here,
   linear between samples), the pair's roll angles from the driven pinion's angle 2 t; and the
   pinion's tooth deflection q1(t1) F / b.
 Prints a table, one headline line; asserts the limits below; plots out/gear_pair.png.
@@ -22,6 +22,7 @@ Usage: /usr/bin/python3 compare.py OUT [--plot FILE.png]
 import argparse
 import json
 import math
+import pathlib
 import sys
 
 import h5py
@@ -29,6 +30,9 @@ import numpy as np
 import yaml
 
 import gear_geometry as gg
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
 
 TORQUE, SPEED, START, RING = 10.0, 2.0, 0.1, 1e-3  # load [N m], pinion [rad/s], from [s], after a switch [s]
 E, NU, W_REF = 2.1e11, 0.3, 3e5                    # steel, the flattening's reference load [N/m]
@@ -130,10 +134,9 @@ def main():
           f"ISO c': {force / (gg.iso_stiffness() * width) * 1e6:.3f} and {force / (2 * gg.iso_stiffness() * width) * 1e6:.3f} um")
     with open(f"{args.out}/fe.json") as f:
         wall = json.load(f)["wall_seconds"]
-    print("headline " + json.dumps({
-        "case": "10_gear_pair", "error": measured["fe"]["fe_single"],
-        "error_of": "FE teeth' single-contact transmission error against F / (c(t1, t2) b), teeth and Weber in series",
-        "runtime_s": wall, "peer": "ISO 6336-1 c' (closed form)", "peer_runtime_s": None}))
+    print_headline("10_gear_pair", measured["fe"]["fe_single"],
+                   "FE teeth' single-contact transmission error against the teeth and Weber's flattening in series",
+                   runtime_s=wall, peer="closed forms, ISO 6336-1 c'")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
