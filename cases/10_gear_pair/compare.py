@@ -176,7 +176,8 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+        rows = 4 if shaft.exists() else 3
+        fig, axes = plt.subplots(rows, 1, figsize=(9, 2.7 * rows), sharex=True)
         for name, label in (("fe", "FE teeth"), ("iso", "ISO 6336-1 c'")):
             r = runs[name]
             cycles = r["t"] / period
@@ -191,8 +192,17 @@ def main():
         axes[2].plot(r["t"] / period, r["d1"] * 1e6, label="pinion tooth")
         axes[2].plot(r["t"] / period, r["d2"] * 1e6, label="wheel tooth")
         axes[2].plot(r["t"] / period, r["n"], "k", lw=0.6, label="pairs in contact")
-        axes[2].set(xlabel="mesh periods", ylabel="FE teeth deflection [um], summed over the pairs")
+        axes[2].set(ylabel="FE teeth, summed [um]")
+        axes[-1].set_xlabel("mesh periods")
         axes[2].legend(fontsize=8)
+        if shaft.exists():
+            on_shaft = read(shaft, g)
+            for r, label in ((runs["iso"], "rigid pinion"), (on_shaft, "pinion on its shaft")):
+                axes[3].plot(r["t"] / period, r["lag"] * 1e6, label=label)
+            axes[3].axhline((force / (gg.iso_stiffness() * width) + force * shaft_compliance(g)) * 1e6, color="k",
+                            ls="--", lw=0.8, label="single contact: F/(c' b) + Timoshenko's shaft")
+            axes[3].set(ylabel="wheel lag on the line [um]", ylim=(0, None))
+            axes[3].legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)
     if failures:
