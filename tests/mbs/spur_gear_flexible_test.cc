@@ -227,7 +227,8 @@ TEST(SpurGearOnFlexibleBody, MeshExcitesTheBeamAtTheNaturalFrequenciesOfBeamAndM
   }
   double worst = 0.0;
   int kept = 0;
-  for (const auto& [f, a] : peaks) {
+  for (const std::pair<double, double>& peak : peaks) {
+    const double f = peak.first, a = peak.second;  // not a structured binding: clang 14 cannot capture one
     if (std::any_of(peaks.begin(), peaks.end(), [&](const std::pair<double, double>& other) {
           return other.second > a && std::abs(other.first - f) < lobes;
         }))
