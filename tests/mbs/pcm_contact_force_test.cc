@@ -25,6 +25,7 @@
 #include "mbs/simulation.h"
 #include "tests/contact/pcm_meshes.h"
 #include "tests/input_error.h"
+#include "tests/mbs/force_jacobian_differences.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -125,24 +126,10 @@ JacobianErrors CompareJacobian(double areal_damping, const VectorXd& u) {
   const Eigen::Index n = system.num_velocities();
   Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
   press.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
-  const auto forces = [&](const VectorXd& state) {
-    VectorXd h = VectorXd::Zero(n);
-    press.AddForces(0.0, system, state, h);
-    return h;
-  };
-  const double step = 1e-7;  // [m/s], [m]
-  Eigen::MatrixXd fd_u(n, n), fd_x(n, n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    VectorXd plus = y, minus = y;
-    plus(system.num_positions() + k) += step;
-    minus(system.num_positions() + k) -= step;
-    fd_u.col(k) = (forces(plus) - forces(minus)) / (2.0 * step);
-    plus = y;
-    minus = y;
-    system.DisplacePositions(VectorXd::Unit(n, k) * step, plus);
-    system.DisplacePositions(-VectorXd::Unit(n, k) * step, minus);
-    fd_x.col(k) = (forces(plus) - forces(minus)) / (2.0 * step);
-  }
+  constexpr double kStep = 1e-7;  // [m/s], [m]
+  const flexmbs::testing::DifferenceJacobian fd = flexmbs::testing::ForceJacobianByDifferences(system, press, y, kStep);
+  const Eigen::MatrixXd& fd_u = fd.dh_du;
+  const Eigen::MatrixXd& fd_x = fd.dh_dx;
   const std::array<Eigen::Index, 6> translation{0, 1, 2, 6, 7, 8};
   Eigen::MatrixXd analytic(6, 6), central(6, 6);
   for (int i = 0; i < 6; ++i) {

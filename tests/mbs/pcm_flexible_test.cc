@@ -27,6 +27,7 @@
 #include "sid/sid_file.h"
 #include "tests/contact/pcm_meshes.h"
 #include "tests/input_error.h"
+#include "tests/mbs/force_jacobian_differences.h"
 #include "tests/mbs/pcm_flexible_bodies.h"
 #include "tests/support/test_problems.h"
 
@@ -180,24 +181,10 @@ JacobianErrors CompareJacobian(const MultibodySystem& system, const ForceElement
   const Index n = system.num_velocities();
   Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
   element.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
-  const auto forces = [&](const VectorXd& state) {
-    VectorXd h = VectorXd::Zero(n);
-    element.AddForces(0.0, system, state, h);
-    return h;
-  };
-  const double step = 1e-7;
-  Eigen::MatrixXd fd_u(n, n), fd_x(n, n);
-  for (Index k = 0; k < n; ++k) {
-    VectorXd plus = y, minus = y;
-    plus(system.num_positions() + k) += step;
-    minus(system.num_positions() + k) -= step;
-    fd_u.col(k) = (forces(plus) - forces(minus)) / (2.0 * step);
-    plus = y;
-    minus = y;
-    system.DisplacePositions(VectorXd::Unit(n, k) * step, plus);
-    system.DisplacePositions(-VectorXd::Unit(n, k) * step, minus);
-    fd_x.col(k) = (forces(plus) - forces(minus)) / (2.0 * step);
-  }
+  constexpr double kStep = 1e-7;  // [m/s], [m]
+  const flexmbs::testing::DifferenceJacobian fd = flexmbs::testing::ForceJacobianByDifferences(system, element, y, kStep);
+  const Eigen::MatrixXd& fd_u = fd.dh_du;
+  const Eigen::MatrixXd& fd_x = fd.dh_dx;
   std::vector<Index> translations, modes;
   for (int b = 0; b < system.num_bodies(); ++b) {
     for (Index k = 0; k < system.body(b).num_velocities(); ++k) {
