@@ -25,6 +25,8 @@ def run_case(folder, flexmbs, reuse):
     out = folder / "out"
     log, record = out / "summary.log", out / "summary.json"
     if reuse:
+        if not record.exists():
+            sys.exit(f"cases_summary.py: {record}: no earlier run to reuse (run without --reuse first)")
         status, seconds = json.loads(record.read_text()).values()
         text = log.read_text()
     else:
@@ -45,7 +47,7 @@ def seconds_cell(value):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--flexmbs", default=str(ROOT / "build" / "bin" / "flexmbs"))
+    parser.add_argument("--flexmbs", default=str(ROOT / "build" / "bin" / "flexmbs"), help="the flexmbs binary")
     parser.add_argument("--cases", help="comma-separated case numbers (default: all)")
     parser.add_argument("--reuse", action="store_true", help="read the logs of an earlier run")
     args = parser.parse_args()
