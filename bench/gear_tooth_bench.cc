@@ -12,7 +12,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "contact/gears/tooth_fe/tooth_model.h"
+#include "gear_tooth_fe/tooth_model.h"
 #include "contact/gears/tooth_stiffness.h"
 
 namespace flexmbs {

@@ -1,7 +1,7 @@
 #pragma once
 // One tooth's outline as the generating rack cuts it (docs/contact.md, "Elastic teeth"): the
 // involute flank and the root fillet, the trochoidal envelope of the rack's rounded tip. The FE
-// tooth (contact/gears/tooth_fe/) is built on it.
+// tooth (gear_tooth_fe/) is built on it.
 
 #include <Eigen/Core>
 #include <vector>

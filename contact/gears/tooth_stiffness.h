@@ -2,7 +2,7 @@
 // The stiffness of a spur pair's elastic teeth (docs/contact.md, "Spur gears", "Elastic teeth"):
 // ISO 6336-1's closed-form single-pair stiffness, and a tooth pair's stiffness at its place on
 // the path of contact from two teeth's compliances along their flanks (an FE tooth,
-// contact/gears/tooth_fe/) in series with Weber's Hertzian flattening.
+// gear_tooth_fe/) in series with Weber's Hertzian flattening.
 
 #include <vector>
 
@@ -45,7 +45,7 @@ struct ToothMaterial {
 double WeberFlattening(double load_per_width, double rho1, double rho2, double h1, double h2,
                        const ToothMaterial& material);
 
-/// One tooth's compliance along its flank: the table an FE tooth gives (tooth_fe/tooth_model.h).
+/// One tooth's compliance along its flank: the table an FE tooth gives (gear_tooth_fe/tooth_model.h).
 /// Sample k is a load on the flank at roll angle roll[k] (FlankPoint's t, increasing), along the
 /// line of action (the flank's normal), per face width.
 struct ToothCompliance {

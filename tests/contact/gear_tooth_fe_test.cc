@@ -1,4 +1,4 @@
-// contact/gears/tooth_fe: the FE tooth's compliance along its flank and the single-pair mesh
+// gear_tooth_fe/: the FE tooth's compliance along its flank and the single-pair mesh
 // stiffness it gives in series with Weber's flattening, against ISO 6336-1 and the expected shape
 // along the path of contact. A coarse mesh (edge 0.4 m, hex20, 0.4 s); bench_gear_tooth prints the
 // same numbers on finer meshes (edge 0.1 m: c at the pitch point 0.09 % lower) and for other rim
@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "contact/gears/gear_mesh_force.h"
-#include "contact/gears/tooth_fe/tooth_model.h"
+#include "gear_tooth_fe/tooth_model.h"
 #include "contact/gears/tooth_stiffness.h"
 #include "tests/input_error.h"
 

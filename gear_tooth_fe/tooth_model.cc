@@ -1,4 +1,4 @@
-#include "contact/gears/tooth_fe/tooth_model.h"
+#include "gear_tooth_fe/tooth_model.h"
 
 #include <fmt/format.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "contact/gears/tooth_fe/tooth_geo.h"
+#include "gear_tooth_fe/tooth_geo.h"
 
 #include <fmt/format.h>
 

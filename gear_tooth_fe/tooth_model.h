@@ -5,7 +5,7 @@
 // at each load point of the flank.
 
 #include "contact/gears/spur_gear.h"
-#include "contact/gears/tooth_fe/tooth_geo.h"
+#include "gear_tooth_fe/tooth_geo.h"
 #include "contact/gears/tooth_stiffness.h"
 
 namespace flexmbs::gear_tooth_fe {
