@@ -233,37 +233,114 @@ void Degradation(int level) {
   }
 }
 
-/// Two clamped steel plates 0.2 x 0.2 x 0.01 m of n x n x 1 hex8 cells (6 fixed-interface
-/// modes each; their top faces, 2 n^2 triangles, the contact surfaces), the upper turned over,
-/// 0.1 rad about z and a third of a cell aside, pressing its top face 0.1 mm into the lower's;
-/// at every step both deformed anew (each mode 2e-5 m at most, phases moving). Per step: the
-/// force element's AddForces with its trees refitted and rebuilt, and, on the same placed
-/// meshes, flexmbs' refit and query against FCL's AABB refit and collide.
+constexpr double kPlateSide = 0.2, kPlateThickness = 0.01;  // [m]
+
+/// A steel plate kPlateSide x kPlateSide x kPlateThickness of n x n x 1 hex8 cells clamped at its
+/// four side faces, 6 fixed-interface modes, its top face the contact surface "top".
+flexmbs::mbs::testing::ClampedBox SideClampedPlate(int n) {
+  return flexmbs::mbs::testing::MakeClampedBox(
+      "plate", Eigen::Vector3i(n, n, 1), Eigen::Vector3d(kPlateSide, kPlateSide, kPlateThickness),
+      [](const flexmbs::fem::Mesh& mesh) { return flexmbs::mbs::testing::SideFaceNodes(mesh, kPlateSide, kPlateSide); },
+      "top", [](const flexmbs::fem::Mesh& mesh) { return flexmbs::testing::NodesOnPlane(mesh, 2, kPlateThickness); },
+      [](const flexmbs::fem::Mesh&) { return std::vector<int>(); }, 6);
+}
+
+/// The system's state with body `upper` turned over onto the lower plate (at the origin), 0.1 rad
+/// about z and a third of a cell aside, its top face `interference` [m] into the lower's.
+Eigen::VectorXd PressedPairState(const flexmbs::mbs::MultibodySystem& system, int upper, int n, double interference) {
+  using Eigen::Vector3d;
+  const Eigen::Matrix3d R_WU =
+      (Eigen::AngleAxisd(0.1, Vector3d::UnitZ()) * Eigen::AngleAxisd(M_PI, Vector3d::UnitX())).toRotationMatrix();
+  const Vector3d centre(0.5 * kPlateSide + kPlateSide / n / 3.0, 0.5 * kPlateSide + kPlateSide / n / 3.0, 0.0);
+  const Vector3d p_WUo_W = centre - R_WU * Vector3d(0.5 * kPlateSide, 0.5 * kPlateSide, 0.0) +
+                           Vector3d(0.0, 0.0, 2.0 * kPlateThickness - interference);
+  Eigen::VectorXd y = system.NeutralState();
+  Eigen::VectorXd x_upper = system.BodyPositions(y, upper);
+  const Eigen::Quaterniond e(R_WU);
+  x_upper.head<7>() << p_WUo_W, e.w(), e.x(), e.y(), e.z();
+  system.SetBodyState(upper, x_upper, Eigen::VectorXd::Zero(system.body(upper).num_velocities()), y);
+  return y;
+}
+
+/// Deforms both plates for step k: each mode 2e-5 m at most, phases moving; velocities 0.01.
+void DeformPlates(const flexmbs::mbs::MultibodySystem& system, const flexmbs::mbs::testing::ClampedBox& box, int k,
+                  Eigen::VectorXd& y) {
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    Eigen::VectorXd x = system.BodyPositions(y, b);
+    const Eigen::Index modes = system.body(b).num_modes();
+    for (Eigen::Index j = 0; j < modes; ++j) {
+      x(7 + j) = 2e-5 * std::sin(0.7 * k + 1.3 * j + b) / box.fe.basis.Phi.col(j).cwiseAbs().maxCoeff();
+    }
+    system.SetBodyState(b, x, 0.01 * Eigen::VectorXd::Ones(system.body(b).num_velocities()), y);
+  }
+}
+
+/// Seconds per step of the flexible pair's parts, and the sizes of its last step.
+struct FlexiblePairTimes {
+  double refit = 0.0, rebuild = 0.0, broad = 0.0, fcl = 0.0;  ///< element refitted, rebuilt; our broad phase; FCL's
+  std::size_t elements = 0, pairs = 0, fcl_pairs = 0;
+};
+
+/// Times `steps` steps of the pair: the force element's AddForces with its trees refitted and
+/// rebuilt, and on the same placed meshes flexmbs' refit and query against FCL's AABB refit and
+/// collide (step 0 builds the trees, untimed).
+FlexiblePairTimes TimeFlexiblePair(const flexmbs::mbs::MultibodySystem& system,
+                                   const flexmbs::mbs::testing::ClampedBox& box,
+                                   const flexmbs::mbs::PcmContactForce& refitted,
+                                   const flexmbs::mbs::PcmContactForce& rebuilt, Eigen::VectorXd y, int steps,
+                                   double max_depth) {
+  namespace mbs = flexmbs::mbs;
+  FlexiblePairTimes times;
+  std::unique_ptr<Bvh> tree_A, tree_B;
+  std::shared_ptr<fcl::BVHModel<fcl::AABBd>> fcl_A, fcl_B;
+  for (int k = 0; k <= steps; ++k) {
+    DeformPlates(system, box, k, y);
+    const mbs::PlacedPcmSurface A(system, refitted.A(), y), B(system, refitted.B(), y);
+    Eigen::VectorXd h = Eigen::VectorXd::Zero(system.num_velocities());
+    auto start = std::chrono::steady_clock::now();
+    refitted.AddForces(0.0, system, y, h);
+    const double refit_step = Seconds(start);
+    start = std::chrono::steady_clock::now();
+    rebuilt.AddForces(0.0, system, y, h);
+    const double rebuild_step = Seconds(start);
+    if (k == 0) {
+      tree_A = std::make_unique<Bvh>(A.mesh());
+      tree_B = std::make_unique<Bvh>(B.mesh(), max_depth);
+      fcl_A = FclModel<fcl::AABBd>(A.mesh());
+      fcl_B = FclModel<fcl::AABBd>(B.mesh());
+      continue;
+    }
+    times.refit += refit_step / steps;
+    times.rebuild += rebuild_step / steps;
+    start = std::chrono::steady_clock::now();
+    tree_A->Refit(A.mesh());
+    tree_B->Refit(B.mesh());
+    const std::vector<flexmbs::contact::FacePair> pairs = CandidatePairs(*tree_A, *tree_B);
+    times.broad += Seconds(start) / steps;
+    start = std::chrono::steady_clock::now();
+    FclRefit(*fcl_A, A.mesh());
+    FclRefit(*fcl_B, B.mesh());
+    times.fcl_pairs = FclCollide(fcl_A, fcl_B);
+    times.fcl += Seconds(start) / steps;
+    times.pairs = pairs.size();
+    times.elements = flexmbs::contact::ContactElements(A.mesh(), B.mesh(), pairs, max_depth).size();
+  }
+  return times;
+}
+
+/// Two side-clamped plates of n x n x 1 cells (their top faces, 2 n^2 triangles, the contact
+/// surfaces), the upper turned over and pressing 0.1 mm into the lower, both deformed anew at every
+/// step: the force element with its trees refitted against rebuilt, our broad phase against FCL's.
 void FlexiblePair(const std::vector<int>& cells) {
   namespace mbs = flexmbs::mbs;
-  using Eigen::Vector3d;
-  constexpr double kSide = 0.2, kThickness = 0.01, kInterference = 1e-4, kMaxDepth = 1e-3;
+  constexpr double kInterference = 1e-4, kMaxDepth = 1e-3;
   const flexmbs::contact::ElasticLayer layer{1e8, 2e-3};
   std::printf("\nflexible pair, two deforming plates' top faces (seconds per step; ratios to the refitted element)\n");
   std::printf("%9s %6s %9s %9s %10s %11s %11s %8s %10s %10s %10s %9s\n", "triangles", "modes", "pairs", "fcl pairs",
               "elements", "refit elem.", "rebuild el.", "rebuild/", "refit+pairs", "fcl refit", "fcl/", "steps/s");
   for (const int n : cells) {
-    const mbs::testing::ClampedBox box = mbs::testing::MakeClampedBox(
-        "plate", Eigen::Vector3i(n, n, 1), Vector3d(kSide, kSide, kThickness),
-        [](const flexmbs::fem::Mesh& mesh) {
-          std::vector<int> sides;
-          for (int axis : {0, 1}) {
-            for (double at : {0.0, kSide}) {
-              for (int node : flexmbs::testing::NodesOnPlane(mesh, axis, at)) sides.push_back(node);
-            }
-          }
-          std::sort(sides.begin(), sides.end());
-          sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
-          return sides;
-        },
-        "top", [](const flexmbs::fem::Mesh& mesh) { return flexmbs::testing::NodesOnPlane(mesh, 2, kThickness); },
-        [](const flexmbs::fem::Mesh&) { return std::vector<int>(); }, 6);
-    mbs::MultibodySystem system(Vector3d::Zero());
+    const mbs::testing::ClampedBox box = SideClampedPlate(n);
+    mbs::MultibodySystem system(Eigen::Vector3d::Zero());
     const int lower = system.AddBody(std::make_unique<mbs::FlexibleBody>("lower", box.fe.body, false));
     const int upper = system.AddBody(std::make_unique<mbs::FlexibleBody>("upper", box.fe.body, false));
     const Eigen::Index modes = system.body(lower).num_modes();
@@ -275,65 +352,12 @@ void FlexiblePair(const std::vector<int>& cells) {
     const mbs::PcmContactForce refitted("press", side(upper), side(lower), 1e5, friction, kMaxDepth);
     const mbs::PcmContactForce rebuilt("press", side(upper), side(lower), 1e5, friction, kMaxDepth,
                                        mbs::PcmTreeUpdate::kRebuild);
-    const Eigen::Matrix3d R_WU = (Eigen::AngleAxisd(0.1, Vector3d::UnitZ()) * Eigen::AngleAxisd(M_PI, Vector3d::UnitX()))
-                                     .toRotationMatrix();
-    const Vector3d centre(0.5 * kSide + kSide / n / 3.0, 0.5 * kSide + kSide / n / 3.0, 0.0);
-    const Vector3d p_WUo_W = centre - R_WU * Vector3d(0.5 * kSide, 0.5 * kSide, 0.0) +
-                             Vector3d(0.0, 0.0, 2.0 * kThickness - kInterference);
-    Eigen::VectorXd y = system.NeutralState(), x_upper = Eigen::VectorXd::Zero(7 + modes);
-    const Eigen::Quaterniond e(R_WU);
-    x_upper.head<7>() << p_WUo_W, e.w(), e.x(), e.y(), e.z();
-    system.SetBodyState(upper, x_upper, Eigen::VectorXd::Zero(6 + modes), y);
-    const int steps = n >= 64 ? 10 : 30;
-    double refit = 0.0, rebuild = 0.0, broad = 0.0, fcl = 0.0;
-    std::size_t elements = 0, num_pairs = 0, fcl_pairs = 0;
-    std::unique_ptr<Bvh> tree_A, tree_B;
-    std::shared_ptr<fcl::BVHModel<fcl::AABBd>> fcl_A, fcl_B;
-    for (int k = 0; k <= steps; ++k) {  // step 0 builds the trees, untimed
-      for (const int b : {lower, upper}) {
-        Eigen::VectorXd x = system.BodyPositions(y, b);
-        for (Eigen::Index j = 0; j < modes; ++j) {
-          x(7 + j) = 2e-5 * std::sin(0.7 * k + 1.3 * j + b) / box.fe.basis.Phi.col(j).cwiseAbs().maxCoeff();
-        }
-        system.SetBodyState(b, x, 0.01 * Eigen::VectorXd::Ones(6 + modes), y);
-      }
-      const mbs::PlacedPcmSurface A(system, refitted.A(), y), B(system, refitted.B(), y);
-      Eigen::VectorXd h = Eigen::VectorXd::Zero(system.num_velocities());
-      auto start = std::chrono::steady_clock::now();
-      refitted.AddForces(0.0, system, y, h);
-      const double refit_step = Seconds(start);
-      start = std::chrono::steady_clock::now();
-      rebuilt.AddForces(0.0, system, y, h);
-      const double rebuild_step = Seconds(start);
-      if (k == 0) {
-        tree_A = std::make_unique<Bvh>(A.mesh());
-        tree_B = std::make_unique<Bvh>(B.mesh(), kMaxDepth);
-        fcl_A = FclModel<fcl::AABBd>(A.mesh());
-        fcl_B = FclModel<fcl::AABBd>(B.mesh());
-        continue;
-      }
-      refit += refit_step;
-      rebuild += rebuild_step;
-      start = std::chrono::steady_clock::now();
-      tree_A->Refit(A.mesh());
-      tree_B->Refit(B.mesh());
-      const std::vector<flexmbs::contact::FacePair> pairs = CandidatePairs(*tree_A, *tree_B);
-      broad += Seconds(start);
-      start = std::chrono::steady_clock::now();
-      FclRefit(*fcl_A, A.mesh());
-      FclRefit(*fcl_B, B.mesh());
-      fcl_pairs = FclCollide(fcl_A, fcl_B);
-      fcl += Seconds(start);
-      num_pairs = pairs.size();
-      elements = flexmbs::contact::ContactElements(A.mesh(), B.mesh(), pairs, kMaxDepth).size();
-    }
-    refit /= steps;
-    rebuild /= steps;
-    broad /= steps;
-    fcl /= steps;
+    const FlexiblePairTimes t = TimeFlexiblePair(system, box, refitted, rebuilt,
+                                                 PressedPairState(system, upper, n, kInterference), n >= 64 ? 10 : 30,
+                                                 kMaxDepth);
     std::printf("%9zu %6ld %9zu %9zu %10zu %11.3e %11.3e %8.2f %10.3e %10.3e %10.2f %9.0f\n",
-                box.fe.body.surfaces.at(0).face_sizes.size() * 2, static_cast<long>(modes), num_pairs, fcl_pairs, elements,
-                refit, rebuild, rebuild / refit, broad, fcl, fcl / broad, 1.0 / refit);
+                box.fe.body.surfaces.at(0).face_sizes.size() * 2, static_cast<long>(modes), t.pairs, t.fcl_pairs,
+                t.elements, t.refit, t.rebuild, t.rebuild / t.refit, t.broad, t.fcl, t.fcl / t.broad, 1.0 / t.refit);
   }
 }
 

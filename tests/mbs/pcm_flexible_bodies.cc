@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <memory>
 #include <utility>
 
@@ -42,6 +43,18 @@ ClampedBox MakeClampedBox(const std::string& name, const Eigen::Vector3i& cells,
   fe.body = Reduce(fe, fe.basis);
   fe.body.name = name;
   return box;
+}
+
+std::vector<int> SideFaceNodes(const fem::Mesh& mesh, double side_x, double side_y) {
+  std::vector<int> sides;
+  for (const int axis : {0, 1}) {
+    for (const double at : {0.0, axis == 0 ? side_x : side_y}) {
+      for (const int node : flexmbs::testing::NodesOnPlane(mesh, axis, at)) sides.push_back(node);
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
+  return sides;
 }
 
 std::vector<int> NodesInBox(const fem::Mesh& mesh, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {

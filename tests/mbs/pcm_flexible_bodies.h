@@ -32,6 +32,10 @@ ClampedBox MakeClampedBox(const std::string& name, const Eigen::Vector3i& cells,
                           const NodeSelection& clamped, const std::string& surface, const NodeSelection& surface_nodes,
                           const NodeSelection& loaded, int normal_modes);
 
+/// The nodes on the four side faces x = 0, x = side_x, y = 0, y = side_y of a box's mesh, sorted,
+/// each once: a plate clamped at its sides.
+std::vector<int> SideFaceNodes(const fem::Mesh& mesh, double side_x, double side_y);
+
 /// The nodes of `mesh` in the box [lo, hi] (component-wise, within 1e-12).
 std::vector<int> NodesInBox(const fem::Mesh& mesh, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 

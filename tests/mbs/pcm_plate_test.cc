@@ -44,17 +44,7 @@ const Vector3d kCentre(0.5 * kSide + 1.3e-3, 0.5 * kSide + 0.7e-3, 0.0);  // und
 const testing::ClampedBox& Plate() {
   static const testing::ClampedBox plate = testing::MakeClampedBox(
       "plate", Eigen::Vector3i(20, 20, 2), Vector3d(kSide, kSide, kThickness),
-      [](const fem::Mesh& mesh) {
-        std::vector<int> sides;
-        for (int axis : {0, 1}) {
-          for (double at : {0.0, kSide}) {
-            for (int node : flexmbs::testing::NodesOnPlane(mesh, axis, at)) sides.push_back(node);
-          }
-        }
-        std::sort(sides.begin(), sides.end());
-        sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
-        return sides;
-      },
+      [](const fem::Mesh& mesh) { return testing::SideFaceNodes(mesh, kSide, kSide); },
       "top", [](const fem::Mesh& mesh) { return flexmbs::testing::NodesOnPlane(mesh, 2, kThickness); },
       [](const fem::Mesh& mesh) {
         return testing::NodesInBox(mesh, Vector3d(0.5 * kSide - kCell, 0.5 * kSide - kCell, kThickness),
