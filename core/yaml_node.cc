@@ -113,6 +113,8 @@ bool YamlNode::Has(std::string_view key) const {
   return node_->IsMap() && (*node_)[std::string(key)].IsDefined();
 }
 
+bool YamlNode::IsScalar() const { return node_->IsScalar(); }
+
 YamlNode YamlNode::Required(std::string_view key) const {
   if (!node_->IsMap()) Fail("expected a map");
   const YAML::Node child = (*node_)[std::string(key)];

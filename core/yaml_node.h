@@ -28,6 +28,8 @@ class YamlNode {
 
   /// True if this map node has `key`.
   bool Has(std::string_view key) const;
+  /// True for a scalar (a number or a string), false for a map, a sequence or null.
+  bool IsScalar() const;
   /// The child `key` of this map; throws InputError if it is missing.
   YamlNode Required(std::string_view key) const;
 
