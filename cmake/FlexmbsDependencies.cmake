@@ -72,6 +72,11 @@ pkg_check_modules(FLEXMBS_HDF5 REQUIRED IMPORTED_TARGET hdf5-openmpi)
 add_library(ext::hdf5 INTERFACE IMPORTED)
 target_link_libraries(ext::hdf5 INTERFACE PkgConfig::FLEXMBS_HDF5)
 
+# xxHash (XXH3-128, the content digest of bodies and results: docs/sid.md): pkg-config.
+pkg_check_modules(FLEXMBS_XXHASH REQUIRED IMPORTED_TARGET libxxhash)
+add_library(ext::xxhash INTERFACE IMPORTED)
+target_link_libraries(ext::xxhash INTERFACE PkgConfig::FLEXMBS_XXHASH)
+
 # SUNDIALS 6 (ARKODE): CMake config. libsundials_arkode holds the serial N_Vector and the dense
 # matrix and linear solver too; the targets are listed for clarity. A SUNContext comes first.
 find_package(SUNDIALS 6 REQUIRED CONFIG)

@@ -19,8 +19,9 @@ packages=(
   libhdf5-dev libhdf5-openmpi-dev libsundials-dev libsiconos-numerics-dev libfcl-dev
   # command line, input, logging
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
-  # provenance hashes (SHA-256)
-  libssl-dev
+  # provenance hashes (SHA-256); the content digest of bodies and results (XXH3-128), and
+  # xxHash's own programs the tests check it against (xxhsum, python3-xxhash)
+  libssl-dev libxxhash-dev xxhash python3-xxhash
   # independent peers for validation and benchmarks
   calculix-ccx python3-dolfinx python3-gmsh python3-numpy python3-scipy
   python3-matplotlib python3-h5py python3-meshio python3-siconos

@@ -6,19 +6,22 @@
 #include <vector>
 
 #include "core/sha256.h"
+#include "core/xxh3.h"
 #include "sid/sid_layout.h"
 
 namespace flexmbs::sid {
 namespace {
 
-/// Feeds the fields of a body to SHA-256 so that no two different bodies give the same bytes.
+/// Feeds the fields of a body to `Hash` (Sha256 or Xxh3_128) so that no two different bodies
+/// give the same bytes.
+template <typename Hash>
 class BodyHasher {
  public:
   void Text(std::string_view text) {
     Integer(static_cast<std::int64_t>(text.size()));
-    sha_.Update(text.data(), text.size());
+    hash_.Update(text.data(), text.size());
   }
-  void Integer(std::int64_t value) { sha_.Update(&value, sizeof value); }
+  void Integer(std::int64_t value) { hash_.Update(&value, sizeof value); }
   /// The number of `items`, then `each` of them in turn.
   template <typename Items, typename Each>
   void Sequence(const Items& items, Each each) {
@@ -35,7 +38,7 @@ class BodyHasher {
     Integer(m.rows());
     Integer(m.cols());
     for (Eigen::Index c = 0; c < m.cols(); ++c) {
-      sha_.Update(m.col(c).data(), static_cast<std::size_t>(m.rows()) * sizeof(double));
+      hash_.Update(m.col(c).data(), static_cast<std::size_t>(m.rows()) * sizeof(double));
     }
   }
   void Taylor(std::string_view name, const TaylorMatrix& block) {
@@ -44,10 +47,10 @@ class BodyHasher {
     Sequence(block.m1, [this](const Eigen::MatrixXd& m) { Matrix(m); });
     Sequence(block.m2, [this](const Eigen::MatrixXd& m) { Matrix(m); });
   }
-  std::string HexDigest() { return sha_.HexDigest(); }
+  std::string HexDigest() { return hash_.HexDigest(); }
 
  private:
-  Sha256 sha_;
+  Hash hash_;
 };
 
 /// `items` (nodes or surfaces) in the order of their names: the order the reader gets them back
@@ -60,10 +63,10 @@ std::vector<const Item*> ByName(const std::vector<Item>& items) {
   return sorted;
 }
 
-}  // namespace
-
-std::string ContentDigest(const ReducedBody& body) {
-  BodyHasher h;
+/// The digest of `body` with the hash `Hash` (ContentDigest).
+template <typename Hash>
+std::string DigestWith(const ReducedBody& body) {
+  BodyHasher<Hash> h;
   h.Text(body.name);
   h.Matrix(Eigen::Matrix<double, 1, 1>::Constant(body.mass));
   h.Matrix(body.center_of_mass);
@@ -104,6 +107,12 @@ std::string ContentDigest(const ReducedBody& body) {
   h.Indices(body.visual_surface.face_sizes);
   h.Indices(body.visual_surface.face_nodes);
   return h.HexDigest();
+}
+
+}  // namespace
+
+std::string ContentDigest(const ReducedBody& body, DigestAlgorithm algorithm) {
+  return algorithm == DigestAlgorithm::kSha256 ? DigestWith<Sha256>(body) : DigestWith<Xxh3_128>(body);
 }
 
 }  // namespace flexmbs::sid

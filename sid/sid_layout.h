@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "sid/reduced_body.h"
+#include "sid/sid_digest.h"
 
 namespace flexmbs::sid::layout {
 
@@ -49,8 +50,17 @@ inline constexpr std::array<NodeField, 4> kNodeFields{{
     {"AP", &Node::AP, {"1", "1/q", ""}},
 }};
 
-/// The root attribute holding the body's content digest (sid_digest.h).
-inline constexpr std::string_view kDigestAttribute = "content_sha256";
+/// The root attribute holding the body's content digest (sid_digest.h) and its hash, by schema.
+struct ContentDigestField {
+  std::string_view attribute;
+  DigestAlgorithm algorithm;
+};
+
+/// The content digest of a file of `schema_version` (4: SHA-256, 5 on: XXH3-128).
+constexpr ContentDigestField ContentDigestOf(int schema_version) {
+  return schema_version <= 4 ? ContentDigestField{"content_sha256", DigestAlgorithm::kSha256}
+                             : ContentDigestField{"content_xxh3_128", DigestAlgorithm::kXxh3_128};
+}
 
 /// The stiffening matrices in /stiffening: dataset name suffixes and units per load case.
 inline constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};

@@ -134,10 +134,13 @@ int CheckedSchemaVersion(const std::filesystem::path& path, const h5::Group& roo
   return static_cast<int>(version);
 }
 
-/// Throws InputError unless `body`'s content digest is the one the file's writer stored.
-void CheckDigest(const std::filesystem::path& path, const h5::Group& root, const ReducedBody& body) {
-  const std::string stored = root.GetStringAttribute(layout::kDigestAttribute);
-  const std::string computed = ContentDigest(body);
+/// Throws InputError unless `body`'s content digest is the one the writer of a file of
+/// `schema_version` stored (sid_layout.h: the attribute and hash of that schema).
+void CheckDigest(const std::filesystem::path& path, const h5::Group& root, const ReducedBody& body,
+                 int schema_version) {
+  const layout::ContentDigestField field = layout::ContentDigestOf(schema_version);
+  const std::string stored = root.GetStringAttribute(field.attribute);
+  const std::string computed = ContentDigest(body, field.algorithm);
   if (stored != computed) {
     throw InputError(fmt::format("{}: content digest mismatch: the body was damaged or edited after `flexmbs "
                                  "reduce` wrote it (stored {:.16}..., computed {:.16}...)",
@@ -155,7 +158,7 @@ int ReadSidSchemaVersion(const std::filesystem::path& path) {
 ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   const h5::File file = h5::File::Open(path);
   const h5::Group root = file.root();
-  CheckedSchemaVersion(path, root);
+  const int schema_version = CheckedSchemaVersion(path, root);
   ReducedBody body;
   body.name = root.GetStringAttribute("name");
   const h5::Group refmod = root.OpenGroup("refmod");
@@ -206,7 +209,7 @@ ReducedBody ReadReducedBody(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < keys.size(); ++i) body.provenance[keys[i]] = values[i];
   const std::string problem = FindInconsistency(body);
   if (!problem.empty()) throw InputError(fmt::format("{}: inconsistent body: {}", path.string(), problem));
-  CheckDigest(path, root, body);
+  CheckDigest(path, root, body, schema_version);
   return body;
 }
 

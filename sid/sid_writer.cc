@@ -80,16 +80,19 @@ void WriteVisualSurface(h5::Group& root, const VisualSurface& surface) {
 
 }  // namespace
 
-void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body) {
+void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body, int schema_version) {
+  FLEXMBS_CHECK(schema_version >= kSidOldestReadableSchemaVersion && schema_version <= kSidSchemaVersion,
+                fmt::format("a body of schema {} cannot be written", schema_version));
   CheckConsistent(body);
-  // The content digest (SHA-256 over every value, as long as the HDF5 writes themselves on a
-  // large body: docs/h5.md, "Cost of the checksums") runs on a thread of its own beside them;
-  // it only reads `body`, and HDF5 stays on this thread.
-  std::future<std::string> digest = std::async(std::launch::async, [&body] { return ContentDigest(body); });
+  // The content digest runs on a thread of its own beside the HDF5 writes (docs/h5.md, "Cost of
+  // the checksums"); it only reads `body`, and HDF5 stays on this thread.
+  const layout::ContentDigestField digest_field = layout::ContentDigestOf(schema_version);
+  std::future<std::string> digest =
+      std::async(std::launch::async, [&body, &digest_field] { return ContentDigest(body, digest_field.algorithm); });
   h5::File file = h5::File::Create(path);
   h5::Group root = file.root();
   root.SetStringAttribute("format", kSidFormat);
-  root.SetIntegerAttribute("schema_version", kSidSchemaVersion);
+  root.SetIntegerAttribute("schema_version", schema_version);
   root.SetStringAttribute("name", body.name);
 
   h5::Group refmod = root.CreateGroup("refmod");
@@ -118,7 +121,7 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   if (!body.visual_surface.empty()) WriteVisualSurface(root, body.visual_surface);
 
   // Provenance as two parallel string lists, so that any key round-trips.
-  root.SetStringAttribute(layout::kDigestAttribute, digest.get());
+  root.SetStringAttribute(digest_field.attribute, digest.get());
   std::map<std::string, std::string> provenance_entries = body.provenance;
   provenance_entries["tool_version"] = std::string(Version());
   std::vector<std::string> keys, values;
@@ -130,6 +133,10 @@ void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body
   provenance.WriteStrings("keys", keys);
   provenance.WriteStrings("values", values);
   file.Commit();
+}
+
+void WriteReducedBody(const std::filesystem::path& path, const ReducedBody& body) {
+  WriteReducedBody(path, body, kSidSchemaVersion);
 }
 
 }  // namespace flexmbs::sid

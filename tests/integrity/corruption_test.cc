@@ -228,7 +228,7 @@ TEST_F(CorruptionTest, TruncatedFilesAreRefused) {
 TEST_F(CorruptionTest, DamagedStringsAndAttributesAreRefusedOrHarmless) {
   const fs::path body = WriteBody(dir_), results = WriteResults(dir_);
   Report(DamageStrings(body, {"flexmbs-sid", "bracket", "normal_1", "constraint", "rigid", "modal 2 %", "kg m^2/q",
-                              "m/q", "tip", "pad", "eigensolver", "spectra", "content_sha256", "order", "units"},
+                              "m/q", "tip", "pad", "eigensolver", "spectra", "content_xxh3_128", "order", "units"},
                        &ReadBody),
          "body strings and attributes overwritten");
   Report(DamageStrings(results, {"flexmbs-results", "end time reached", "flexible", "revolute", "normal_2", "rad/s",

@@ -7,8 +7,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
+#include <tuple>
+#include <utility>
 
 #include "core/error.h"
 #include "core/h5_file.h"
@@ -214,19 +217,78 @@ TEST(SidFile, EarlierSchemaIsRefusedWithTheCommandThatRegeneratesIt) {
                                          path.string()));
 }
 
-// A value changed by hand (h5py, the dataset rewritten with its units, so every checksum
-// holds) is named as an edit by the content digest.
-TEST(SidFile, HandEditedValueIsNamedByTheContentDigest) {
-  const fs::path path = TempPath("edited.sid.h5");
-  WriteReducedBody(path, SampleBody());
+/// Multiplies /invariants/Ke's m0(0, 0) by 1.001 with h5py, rewriting the dataset with a valid
+/// checksum and its units.
+void EditKeInPlace(const fs::path& path) {
   RunPython(fmt::format("import h5py, numpy; g = h5py.File('{}', 'r+')['/invariants/Ke']; m = g['m0'][()]; "
                         "m[0, 0] *= 1.001; del g['m0']; g.create_dataset('m0', data=m, fletcher32=True)"
                         ".attrs['units'] = numpy.bytes_('N m/q^2')",
                         path.string()));
-  EXPECT_NE(ReadError(path).find(path.string() + ": content digest mismatch: the body was damaged or edited after "
-                                                 "`flexmbs reduce` wrote it (stored "),
-            std::string::npos)
-      << ReadError(path);
+}
+
+// A value changed by hand (h5py, the dataset rewritten with its units, so every checksum
+// holds) is named as an edit by the content digest, in a file of either schema: 5 (XXH3-128)
+// and the previous 4 (SHA-256), whose files stay readable.
+TEST(SidFile, HandEditedValueIsNamedByTheContentDigest) {
+  for (const int schema : {kSidOldestReadableSchemaVersion, kSidSchemaVersion}) {
+    const fs::path path = TempPath(fmt::format("edited_{}.sid.h5", schema));
+    WriteReducedBody(path, SampleBody(), schema);
+    ASSERT_EQ(ReadSidSchemaVersion(path), schema);
+    EditKeInPlace(path);
+    EXPECT_NE(ReadError(path).find(path.string() + ": content digest mismatch: the body was damaged or edited "
+                                                   "after `flexmbs reduce` wrote it (stored "),
+              std::string::npos)
+        << schema << ": " << ReadError(path);
+  }
+}
+
+// The two lines tests/sid/content_digest.py prints for `path`: the digest it computes from the
+// file with h5py and hashlib or python3-xxhash, as docs/sid.md describes it, and the stored one.
+std::pair<std::string, std::string> PythonDigests(const fs::path& path) {
+  FILE* pipe = popen(
+      fmt::format("/usr/bin/python3 '{}/tests/sid/content_digest.py' '{}'", FLEXMBS_SOURCE_DIR, path.string()).c_str(),
+      "r");
+  EXPECT_NE(pipe, nullptr);
+  if (pipe == nullptr) return {};
+  char computed[128] = {}, stored[128] = {};
+  const bool read = std::fscanf(pipe, "%127s %127s", computed, stored) == 2;
+  EXPECT_EQ(pclose(pipe), 0);
+  EXPECT_TRUE(read);
+  return {computed, stored};
+}
+
+// A body written in each readable schema: the stored digest is the one an independent program
+// computes from the file by the documented rule with the schema's hash (SHA-256 for 4, XXH3-128
+// for 5), the reader checks it and returns the body, and `info --verify`'s reading holds.
+TEST(SidFile, EachSchemasDigestIsItsHashOfTheDocumentedBytesAndReads) {
+  const ReducedBody written = SampleBody();
+  for (const auto& [schema, algorithm, hex_digits] :
+       {std::tuple{kSidOldestReadableSchemaVersion, DigestAlgorithm::kSha256, 64},
+        std::tuple{kSidSchemaVersion, DigestAlgorithm::kXxh3_128, 32}}) {
+    const fs::path path = TempPath(fmt::format("schema_{}.sid.h5", schema));
+    WriteReducedBody(path, written, schema);
+    const auto [computed, stored] = PythonDigests(path);
+    EXPECT_EQ(stored.size(), static_cast<std::size_t>(hex_digits)) << schema;
+    EXPECT_EQ(computed, stored) << schema;
+    EXPECT_EQ(stored, ContentDigest(written, algorithm)) << schema;
+    EXPECT_EQ(ContentDigest(ReadReducedBody(path), algorithm), stored) << schema;
+    EXPECT_GT(VerifyReducedBodyFile(path).datasets, 0) << schema;
+  }
+  EXPECT_NE(ContentDigest(written, DigestAlgorithm::kSha256), ContentDigest(written, DigestAlgorithm::kXxh3_128));
+}
+
+// A schema-5 body with one bit of the modes flipped on disk is refused with one line naming it.
+TEST(SidFile, ADamagedBodyOfTheNewSchemaIsRefused) {
+  const fs::path path = TempPath("flipped.sid.h5");
+  WriteReducedBody(path, SampleBody());
+  RunPython(fmt::format("import h5py; f = h5py.File('{0}', 'r'); d = f['/modes/phi']; "
+                        "offset = d.id.get_chunk_info(0).byte_offset; f.close(); "
+                        "g = open('{0}', 'r+b'); g.seek(offset + 3); b = g.read(1); g.seek(offset + 3); "
+                        "g.write(bytes([b[0] ^ 0x10])); g.close()",
+                        path.string()));
+  const std::string error = ReadError(path);
+  EXPECT_EQ(error.rfind(path.string() + ": /modes/phi: ", 0), 0u) << error;
+  EXPECT_NE(error.find("Fletcher32"), std::string::npos) << error;
 }
 
 TEST(SidFile, TheDigestCoversEveryValueTheReaderReturns) {
