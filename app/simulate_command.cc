@@ -115,7 +115,11 @@ nlohmann::json AdviceJson(const std::vector<mbs::ContactModeAdvice>& advice) {
   nlohmann::json list = nlohmann::json::array();
   for (const mbs::ContactModeAdvice& a : advice) {
     list.push_back({{"element", a.element},
+                    {"type", a.type},
                     {"body", a.body},
+                    {"unilateral", a.unilateral},
+                    {"first_points", a.first_points},
+                    {"effective_mass_kg", a.effective_mass},
                     {"impact_speed_m_s", a.impact_speed},
                     {"contact_time_s", a.contact_time},
                     {"correction_mode", a.correction_mode},

@@ -98,12 +98,14 @@ class CompliantPointsContact : public ForceElement {
   std::vector<ContactLoad> ContactLoads(double t, const MultibodySystem& system, const ConstVectorRef& y) const final;
   /// The normal forces summed over the points [N] at y.
   double NormalForce(const MultibodySystem& system, const ConstVectorRef& y) const;
+  /// The law every point takes.
+  const CompliantContactLaw& law() const { return contact_.law(); }
+  /// Every point's geometry at y (a fixed number of them; penetration <= 0 apart).
+  virtual std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const = 0;
 
  protected:
   /// The law between markers a (body A) and b (body B).
   CompliantPointsContact(std::string name, CompliantContactLaw law, MarkerRef a, MarkerRef b);
-  /// Every point's geometry at y (a fixed number of them; penetration <= 0 apart).
-  virtual std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const = 0;
 
  private:
   std::string name_;

@@ -73,6 +73,11 @@ class SurfacePlaneContact final : public CompliantPointsContact {
   SurfacePlaneContact(std::string name, MarkerRef origin, sid::ContactSurface surface, Eigen::Index num_modes,
                       MarkerRef plane, CompliantContactLaw law);
 
+  /// A's body-frame marker (its body is the reduced body), the plane's marker, A's surface.
+  const MarkerRef& origin() const { return origin_; }
+  const MarkerRef& plane() const { return plane_; }
+  const sid::ContactSurface& surface() const { return surface_; }
+
  private:
   /// Every vertex's contact point at y.
   std::vector<ContactPoint> Points(const MultibodySystem& system, const ConstVectorRef& y) const override;
