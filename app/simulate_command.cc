@@ -10,6 +10,7 @@
 
 #include "app/command_support.h"
 #include "app/commands.h"
+#include "app/fe_tooth_table.h"
 #include "app/gear_results.h"
 #include "core/error.h"
 #include "core/sha256.h"
@@ -238,7 +239,7 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
 
 void RunSimulate(const SimulateOptions& options) {
   CheckOutputFolder("-o", options.output);
-  const mbs::Scene scene = mbs::LoadScene(options.scene_file);
+  const mbs::Scene scene = mbs::LoadScene(options.scene_file, SimulateSceneHooks());
   // Checked (and projected if slightly off) before the results file exists, so a refused
   // initial state leaves no file.
   Eigen::VectorXd y0 = scene.initial_state;

@@ -73,7 +73,7 @@ Eigen::Matrix<double, 6, 1> ReadVector6(const YamlNode& node) {
   return vector;
 }
 
-void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
+void ReadForceElement(const YamlNode& node, MultibodySystem* system, const SceneHooks& hooks) {
   const std::string name = node.Required("name").AsString();
   const YamlNode type_node = node.Required("type");
   const std::string type = type_node.AsString();
@@ -106,7 +106,8 @@ void ReadForceElement(const YamlNode& node, MultibodySystem* system) {
     });
   } else if (IsContactForceType(type)) {
     element =
-        ReadContactForce(node, name, type, *system, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); });
+        ReadContactForce(node, name, type, *system, [&](const YamlNode& end) { return ReadMarkerRef(end, *system); },
+                         hooks);
   } else {
     type_node.Fail(fmt::format("'{}' must be one of: point_load, spring_damper, bushing, {}", type,
                                fmt::join(kContactForceTypes, ", ")));
@@ -267,7 +268,7 @@ std::vector<RecordedMarker> ReadOutput(const YamlNode& node, const MultibodySyst
 
 }  // namespace
 
-Scene LoadScene(const std::filesystem::path& file) {
+Scene LoadScene(const std::filesystem::path& file, const SceneHooks& hooks) {
   const YamlNode root = YamlNode::LoadFile(file);
   root.RejectUnknownKeys({"gravity", "bodies", "joints", "forces", "contacts", "simulation", "output"});
   Scene scene;
@@ -288,7 +289,7 @@ Scene LoadScene(const std::filesystem::path& file) {
     for (const YamlNode& joint : root.Required("joints").AsList()) ReadJoint(joint, scene.system.get());
   }
   if (root.Has("forces")) {
-    for (const YamlNode& element : root.Required("forces").AsList()) ReadForceElement(element, scene.system.get());
+    for (const YamlNode& element : root.Required("forces").AsList()) ReadForceElement(element, scene.system.get(), hooks);
   }
   scene.initial_state = scene.system->NeutralState();
   for (std::size_t b = 0; b < bodies.size(); ++b) {

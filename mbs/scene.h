@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mbs/multibody_system.h"
+#include "mbs/scene_hooks.h"
 #include "mbs/simulation.h"
 
 namespace flexmbs::mbs {
@@ -47,6 +48,8 @@ struct Scene {
 /// unknown or missing key, a non-finite number, an unknown body, marker, mode or joint type, a
 /// joint or element from a body to itself, a body file that cannot be read or has the wrong
 /// schema, a wrong number of initial modal coordinates, and bad simulation or output settings.
-Scene LoadScene(const std::filesystem::path& file);
+/// `hooks`: computations of stages mbs/ does not link (app/'s FE tooth for `teeth: fe`); without
+/// them the entries that need one are refused.
+Scene LoadScene(const std::filesystem::path& file, const SceneHooks& hooks = {});
 
 }  // namespace flexmbs::mbs

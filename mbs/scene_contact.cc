@@ -132,8 +132,9 @@ bool IsContactForceType(std::string_view type) {
 
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
                                                const MultibodySystem& system,
-                                               const std::function<MarkerRef(const YamlNode&)>& read_marker) {
-  if (type == "spur_gear_contact") return ReadSpurGearContact(node, name, read_marker);
+                                               const std::function<MarkerRef(const YamlNode&)>& read_marker,
+                                               const SceneHooks& hooks) {
+  if (type == "spur_gear_contact") return ReadSpurGearContact(node, name, read_marker, hooks.tooth_table);
   if (type == "pcm_contact") return ReadPcmContact(node, name, system, read_marker);
   if (type == "sphere_plane_contact") {
     node.RejectUnknownKeys({"name", "type", "sphere", "plane", "radius", "law", "stiffness", "damping", "exponent",

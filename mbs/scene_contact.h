@@ -15,6 +15,7 @@
 #include "mbs/force_element.h"
 #include "mbs/marker_ref.h"
 #include "mbs/multibody_system.h"
+#include "mbs/scene_hooks.h"
 
 namespace flexmbs::mbs {
 
@@ -32,10 +33,12 @@ bool IsContactForceType(std::string_view type);
 
 /// The contact element `name` of type `type` (IsContactForceType) from its scene entry `node`;
 /// `read_marker` reads one of its marker entries, `system` holds the bodies whose contact
-/// surfaces sphere_surface_contact names. Every bad key or value is an InputError
-/// "<file>:<line>:<col>: <item>: <problem>" naming the element and the value.
+/// surfaces sphere_surface_contact names, `hooks` what spur_gear_contact's `teeth: fe` computes.
+/// Every bad key or value is an InputError "<file>:<line>:<col>: <item>: <problem>" naming the
+/// element and the value.
 std::unique_ptr<ForceElement> ReadContactForce(const YamlNode& node, const std::string& name, std::string_view type,
                                                const MultibodySystem& system,
-                                               const std::function<MarkerRef(const YamlNode&)>& read_marker);
+                                               const std::function<MarkerRef(const YamlNode&)>& read_marker,
+                                               const SceneHooks& hooks);
 
 }  // namespace flexmbs::mbs

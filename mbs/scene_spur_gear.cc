@@ -47,25 +47,95 @@ contact::ToothCompliance ReadToothTable(const YamlNode& node) {
           ReadNumbers(node, "centre_depth")};
 }
 
-/// The `teeth` entry: both wheels' tables, the material and the flattening's reference load.
-contact::ElasticTeeth ReadTeeth(const YamlNode& node) {
-  node.RejectUnknownKeys({"gear1", "gear2", "youngs_modulus", "poisson_ratio", "reference_load"});
+/// The `fe` map's options of both wheels' FE teeth (a ToothTableRequest without gear and material).
+ToothTableRequest ReadFeOptions(const YamlNode& fe) {
+  ToothTableRequest request;
+  fe.RejectUnknownKeys({"mesh_size", "element_order", "loads"});
+  if (fe.Has("mesh_size")) {
+    const YamlNode size = fe.Required("mesh_size");
+    request.mesh_size = size.AsDouble();
+    if (!(*request.mesh_size > 0.0)) size.Fail(fmt::format("{:g} must be > 0 [m]", *request.mesh_size));
+  }
+  if (fe.Has("element_order")) {
+    const YamlNode order = fe.Required("element_order");
+    request.element_order = order.AsInt();
+    if (*request.element_order != 1 && *request.element_order != 2) {
+      order.Fail(fmt::format("{} must be 1 or 2", *request.element_order));
+    }
+  }
+  if (fe.Has("loads")) {
+    const YamlNode loads = fe.Required("loads");
+    request.loads = loads.AsInt();
+    if (*request.loads < 2 || *request.loads > 100) {
+      loads.Fail(fmt::format("{} load points: give 2 to 100", *request.loads));
+    }
+  }
+  return request;
+}
+
+/// The `teeth` entry: both wheels' tables or `fe`, their material and the flattening's reference
+/// load. For `fe` (the word, or a map with `fe: {mesh_size, element_order, loads}`) the tables
+/// are left empty and `fe` holds the FE tooth's options.
+struct TeethEntry {
   contact::ElasticTeeth teeth;
-  teeth.tooth1 = ReadToothTable(node.Required("gear1"));
-  teeth.tooth2 = ReadToothTable(node.Required("gear2"));
+  std::optional<ToothTableRequest> fe;
+};
+
+TeethEntry ReadTeeth(const YamlNode& node) {
+  TeethEntry entry;
+  if (node.IsScalar()) {
+    node.AsChoice({"fe"});
+    entry.fe.emplace();
+    return entry;
+  }
+  if (node.Has("fe")) {
+    node.RejectUnknownKeys({"fe", "youngs_modulus", "poisson_ratio", "reference_load"});
+    entry.fe = ReadFeOptions(node.Required("fe"));
+  } else {
+    node.RejectUnknownKeys({"gear1", "gear2", "youngs_modulus", "poisson_ratio", "reference_load"});
+    entry.teeth.tooth1 = ReadToothTable(node.Required("gear1"));
+    entry.teeth.tooth2 = ReadToothTable(node.Required("gear2"));
+  }
   const auto optional = [&](std::string_view key, double fallback) {
     return node.Has(key) ? node.Required(key).AsDouble() : fallback;
   };
+  contact::ElasticTeeth& teeth = entry.teeth;
   teeth.material.youngs_modulus = optional("youngs_modulus", teeth.material.youngs_modulus);
   teeth.material.poisson_ratio = optional("poisson_ratio", teeth.material.poisson_ratio);
   teeth.reference_load = optional("reference_load", teeth.reference_load);
-  return teeth;
+  return entry;
 }
 
-/// What the entry says of the teeth' stiffness: elastic `teeth`, or c' from `mesh_stiffness` (a
-/// number [N/m^2], or `iso`: ISO 6336-1's c' of the pair), or neither (the default c').
+/// Fills the tables of `entry` (`fe`) from `tooth_table`, one FE tooth per wheel of `spec` (the
+/// pair already checked); errors located at the `teeth` entry `node`, naming element `name`.
+void ComputeFeTeeth(const YamlNode& node, const std::string& name,
+                    const contact::GearPairSpec& spec, const ToothTableProvider& tooth_table,
+                    TeethEntry* entry) {
+  if (!tooth_table) {
+    node.Fail(fmt::format("force element '{}': teeth fe: the FE tooth is computed by `flexmbs "
+                          "simulate`, and this reader was given no FE stage; give the tables "
+                          "gear1, gear2",
+                          name));
+  }
+  ToothTableRequest request = *entry->fe;
+  request.material = entry->teeth.material;
+  try {
+    contact::CheckToothMaterial(entry->teeth.material, entry->teeth.reference_load);
+    request.gear = contact::MakeSpurGear(spec.gear1, "gear 1");
+    entry->teeth.tooth1 = tooth_table(request);
+    request.gear = contact::MakeSpurGear(spec.gear2, "gear 2");
+    entry->teeth.tooth2 = tooth_table(request);
+  } catch (const InputError& e) {
+    node.Fail(fmt::format("force element '{}': {}", name, e.what()));
+  }
+}
+
+/// What the entry says of the teeth' stiffness: elastic `teeth` (and where they are), or c' from
+/// `mesh_stiffness` (a number [N/m^2], or `iso`: ISO 6336-1's c' of the pair), or neither (the
+/// default c').
 struct StiffnessEntry {
-  std::optional<contact::ElasticTeeth> teeth;
+  std::optional<TeethEntry> teeth;
+  std::optional<YamlNode> teeth_node;
   std::optional<double> stiffness;
   bool iso = false;
 };
@@ -76,7 +146,8 @@ StiffnessEntry ReadStiffness(const YamlNode& node) {
     if (node.Has("mesh_stiffness")) {
       node.Required("mesh_stiffness").Fail("give either mesh_stiffness or teeth, not both");
     }
-    entry.teeth = ReadTeeth(node.Required("teeth"));
+    entry.teeth_node = node.Required("teeth");
+    entry.teeth = ReadTeeth(*entry.teeth_node);
   } else if (node.Has("mesh_stiffness")) {
     const YamlNode stiffness = node.Required("mesh_stiffness");
     entry.iso = stiffness.AsString() == "iso";
@@ -88,7 +159,7 @@ StiffnessEntry ReadStiffness(const YamlNode& node) {
 /// The mesh law of `entry` for `pair` (InputErrors of the values, unlocated).
 contact::MeshLaw MakeMeshLaw(const StiffnessEntry& entry, const contact::GearPairSpec& spec,
                              const contact::GearPair& pair, double damping) {
-  if (entry.teeth) return contact::MeshLaw(pair, *entry.teeth, damping);
+  if (entry.teeth) return contact::MeshLaw(pair, entry.teeth->teeth, damping);
   contact::GearMeshCompliance compliance{contact::GearMeshCompliance{}.single_pair_stiffness,
                                          damping};
   if (entry.iso) {
@@ -103,7 +174,8 @@ contact::MeshLaw MakeMeshLaw(const StiffnessEntry& entry, const contact::GearPai
 
 std::unique_ptr<ForceElement> ReadSpurGearContact(
     const YamlNode& node, const std::string& name,
-    const std::function<MarkerRef(const YamlNode&)>& read_marker) {
+    const std::function<MarkerRef(const YamlNode&)>& read_marker,
+    const ToothTableProvider& tooth_table) {
   node.RejectUnknownKeys({"name", "type", "wheel1", "wheel2", "gear1", "gear2", "centre_distance",
                           "backlash", "mesh_stiffness", "damping", "teeth"});
   const MarkerRef wheel1 = read_marker(node.Required("wheel1")),
@@ -116,9 +188,17 @@ std::unique_ptr<ForceElement> ReadSpurGearContact(
   spec.centre_distance = optional("centre_distance", 0.0);
   spec.backlash = optional("backlash", 0.0);
   const double damping = optional("damping", 0.0);
-  const StiffnessEntry stiffness = ReadStiffness(node);
+  StiffnessEntry stiffness = ReadStiffness(node);
+  contact::GearPair pair;
   try {
-    const contact::GearPair pair = contact::MakeGearPair(spec);
+    pair = contact::MakeGearPair(spec);
+  } catch (const InputError& e) {
+    node.Fail(fmt::format("force element '{}': {}", name, e.what()));
+  }
+  if (stiffness.teeth && stiffness.teeth->fe) {
+    ComputeFeTeeth(*stiffness.teeth_node, name, spec, tooth_table, &*stiffness.teeth);
+  }
+  try {
     return std::make_unique<SpurGearContact>(name, wheel1, wheel2, pair,
                                              MakeMeshLaw(stiffness, spec, pair, damping));
   } catch (const InputError& e) {

@@ -8,6 +8,7 @@
 #include "core/yaml_node.h"
 #include "mbs/force_element.h"
 #include "mbs/marker_ref.h"
+#include "mbs/scene_hooks.h"
 
 namespace flexmbs::mbs {
 
@@ -18,10 +19,13 @@ namespace flexmbs::mbs {
 /// either `mesh_stiffness` c' [N/m^2] (1.4e10; `iso`: ISO 6336-1's c' of the pair) or `teeth`,
 /// massless elastic teeth (contact::MeshLaw): {gear1, gear2: {roll, compliance, centre_depth}
 /// (contact::ToothCompliance), youngs_modulus (2.1e11), poisson_ratio (0.3), reference_load
-/// (3e5 N/m)}. Every bad key or value, and a pair that cannot mesh, is an InputError
-/// "<file>:<line>:<col>: <item>: force element '<name>': <problem>".
+/// (3e5 N/m)}, or `fe` in place of the tables (the word, or `fe: {mesh_size [m], element_order,
+/// loads}`): each wheel's table from `tooth_table` (an FE tooth of the wheel, after the pair's
+/// checks). Every bad key or value, a pair that cannot mesh, and `fe` without a `tooth_table` is
+/// an InputError "<file>:<line>:<col>: <item>: force element '<name>': <problem>".
 std::unique_ptr<ForceElement> ReadSpurGearContact(
     const YamlNode& node, const std::string& name,
-    const std::function<MarkerRef(const YamlNode&)>& read_marker);
+    const std::function<MarkerRef(const YamlNode&)>& read_marker,
+    const ToothTableProvider& tooth_table);
 
 }  // namespace flexmbs::mbs

@@ -51,6 +51,8 @@ class MeshLaw {
   /// The deflections under a load F [N] on `tp` (elastic teeth; zeros otherwise).
   ToothPairDeflection Deflection(const ToothPair& tp, double force) const;
   bool elastic() const { return teeth_.has_value(); }
+  /// The elastic teeth (their tables and material); nullptr for teeth of constant stiffness.
+  const ElasticTeeth* teeth() const { return teeth_ ? &*teeth_ : nullptr; }
 
  private:
   /// t_i held at or above the first roll angle of the tooth's table (the form circle).

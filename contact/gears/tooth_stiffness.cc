@@ -77,13 +77,17 @@ void CheckToothCompliance(const ToothCompliance& tooth, const char* item) {
   }
 }
 
-void CheckElasticTeeth(const ElasticTeeth& teeth) {
-  RequirePositive("Young's modulus [Pa]", teeth.material.youngs_modulus);
-  const double nu = teeth.material.poisson_ratio;
+void CheckToothMaterial(const ToothMaterial& material, double reference_load) {
+  RequirePositive("Young's modulus [Pa]", material.youngs_modulus);
+  const double nu = material.poisson_ratio;
   if (!(nu >= 0.0 && nu < 0.5)) {
     throw InputError(fmt::format("Poisson's ratio {} must be in [0, 0.5)", nu));
   }
-  RequirePositive("reference load [N/m]", teeth.reference_load);
+  RequirePositive("reference load [N/m]", reference_load);
+}
+
+void CheckElasticTeeth(const ElasticTeeth& teeth) {
+  CheckToothMaterial(teeth.material, teeth.reference_load);
   CheckToothCompliance(teeth.tooth1, "gear 1 tooth");
   CheckToothCompliance(teeth.tooth2, "gear 2 tooth");
 }

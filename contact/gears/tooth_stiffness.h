@@ -77,8 +77,11 @@ struct ElasticTeeth {
   double reference_load = 3e5;  ///< w_ref [N/m] (300 N/mm, ISO 6336-1's 100 N/mm and above)
 };
 
-/// InputError unless E > 0, 0 <= nu < 0.5 and the reference load w_ref > 0 (all finite), and
-/// both tables pass CheckToothCompliance ("gear 1 tooth", "gear 2 tooth").
+/// InputError unless E > 0, 0 <= nu < 0.5 and the reference load w_ref > 0 [N/m] (all finite).
+void CheckToothMaterial(const ToothMaterial& material, double reference_load);
+
+/// InputError unless the material passes CheckToothMaterial and both tables pass
+/// CheckToothCompliance ("gear 1 tooth", "gear 2 tooth").
 void CheckElasticTeeth(const ElasticTeeth& teeth);
 
 /// The single-pair stiffness c(t1, t2) [N/m^2] (per face width) of the tooth pair at roll angles

@@ -11,6 +11,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <fstream>
 #include <numbers>
 #include <string>
@@ -18,6 +21,7 @@
 #include "contact/gears/gear_mesh.h"
 #include "contact/gears/spur_gear.h"
 #include "core/h5_file.h"
+#include "gear_tooth_fe/tooth_model.h"
 #include "tests/app/flexmbs_process.h"
 #include "tests/support/driven_gear_pair.h"
 
@@ -47,15 +51,16 @@ struct GearSeries {
 };
 
 /// Runs the shared driven pair (the wheel starting where the positive flanks touch) with the
-/// mesh's `gear_keys` through `flexmbs simulate` and reads its gears/mesh series back.
-GearSeries RunDrivenPair(const std::string& gear_keys) {
+/// mesh's `gear_keys` to `end_time` [s] through `flexmbs simulate` and reads its gears/mesh series
+/// back.
+GearSeries RunDrivenPair(const std::string& gear_keys, double end_time = 1.1) {
   const fs::path dir =
       fs::temp_directory_path() / ("flexmbs_simulate_gears_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const double start_angle = flexmbs::contact::TouchingAngle2(
       ScenePair(), kCentre, 0.0, 0.0, flexmbs::contact::FlankSide::kPositive);
   std::ofstream(dir / "scene.yaml")
-      << flexmbs::testing::DrivenGearPairScene(start_angle, gear_keys);
+      << flexmbs::testing::DrivenGearPairScene(start_angle, gear_keys, end_time);
   const fs::path results = dir / "results.h5";
   const flexmbs::testing::Outcome run = flexmbs::testing::RunFlexmbs(
       {"simulate", (dir / "scene.yaml").string(), "-o", results.string()}, dir);
@@ -212,6 +217,44 @@ TEST(SimulateGears, ElasticTeethReportTheirDeflectionsAndTheTransmissionErrorRep
   EXPECT_GT(lowest_share, 0.5);                    // measured 0.690
   EXPECT_LT(highest_share, 1.0);                   // measured 0.710: the flattening takes the rest
   EXPECT_NEAR(share, ContactRatio() - 1.0, 3e-3);  // measured 0.47654 against 0.47687
+}
+
+/// One wheel's `teeth` table of gear_tooth_fe's FE tooth (edge 0.8 mm, 5 load points) as scene
+/// text, every number to 17 digits (read back to the same double).
+std::string FeTable(const char* key, const flexmbs::contact::SpurGearSpec& wheel) {
+  flexmbs::gear_tooth_fe::ToothModelOptions options;
+  options.geometry.mesh_size = 0.4;  // / m = 0.8 mm
+  options.loads = 5;
+  const flexmbs::contact::ToothCompliance table =
+      flexmbs::gear_tooth_fe::ToothComplianceFromFe(flexmbs::contact::MakeSpurGear(wheel, key),
+                                                    flexmbs::contact::ToothMaterial{}, options)
+          .compliance;
+  return fmt::format("      {}: {{roll: [{:.17g}], compliance: [{:.17g}], centre_depth: [{:.17g}]}}\n",
+                     key, fmt::join(table.roll, ", "), fmt::join(table.compliance, ", "),
+                     fmt::join(table.centre_depth, ", "));
+}
+
+// `teeth: fe` end to end: `flexmbs simulate` computes the wheels' FE teeth from the scene's gear
+// parameters, and the run is, sample for sample, the run on the tables gear_tooth_fe gives
+// directly for the same wheels and options (the scene's tables are the same numbers).
+TEST(SimulateGears, TeethFeRunsAsTheTablesGearToothFeGives) {
+  ASSERT_TRUE(fs::exists(flexmbs::testing::kFlexmbsBinary)) << "flexmbs is not built";
+  const std::string keys = flexmbs::testing::kDrivenPairGearKeys;
+  const double end = 0.05;
+  const GearSeries fe = RunDrivenPair(keys + "    teeth: {fe: {mesh_size: 8e-4, loads: 5}}\n", end);
+  const flexmbs::contact::GearPair pair = ScenePair();
+  const GearSeries tables = RunDrivenPair(keys + "    teeth:\n" +
+                                              FeTable("gear1", pair.gear1.spec) +
+                                              FeTable("gear2", pair.gear2.spec),
+                                          end);
+  ASSERT_EQ(fe.time.size(), 501);
+  ASSERT_EQ(tables.time.size(), fe.time.size());
+  EXPECT_GT(fe.force.maxCoeff(), 0.0);
+  EXPECT_EQ((fe.force - tables.force).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((fe.error_length - tables.error_length).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((fe.deflection1 - tables.deflection1).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((fe.deflection2 - tables.deflection2).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_GT(fe.deflection1.maxCoeff(), 0.0);  // elastic teeth
 }
 
 }  // namespace

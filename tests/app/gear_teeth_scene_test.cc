@@ -1,0 +1,164 @@
+// A scene's `teeth: fe` (docs/scene.md, spur_gear_contact): mbs::LoadScene with the hooks of
+// `flexmbs simulate` (app/fe_tooth_table.h) computes each wheel's tooth table by gear_tooth_fe,
+// equal to the table gear_tooth_fe gives directly for the same wheel, material and options; the
+// scene's FE options and material reach the FE tooth; bad entries are one-line errors at their
+// item, before any FE run.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "app/fe_tooth_table.h"
+#include "contact/gears/spur_gear.h"
+#include "gear_tooth_fe/tooth_model.h"
+#include "mbs/scene.h"
+#include "mbs/spur_gear_contact.h"
+#include "tests/input_error.h"
+#include "tests/support/driven_gear_pair.h"
+
+namespace flexmbs::app {
+namespace {
+
+/// A scene file of the driven pair (tests/support/driven_gear_pair.h) with the mesh keys
+/// kDrivenPairGearKeys + `teeth`, in a temporary directory removed with the object.
+class TeethScene {
+ public:
+  TeethScene()
+      : dir_(std::filesystem::temp_directory_path() /
+             ("flexmbs_gear_teeth_scene_" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(dir_);
+  }
+  ~TeethScene() { std::filesystem::remove_all(dir_); }
+  TeethScene(const TeethScene&) = delete;
+  TeethScene& operator=(const TeethScene&) = delete;
+
+  std::filesystem::path Write(const std::string& teeth) const {
+    const std::filesystem::path file = dir_ / "scene.yaml";
+    std::ofstream(file) << flexmbs::testing::DrivenGearPairScene(
+        0.0, std::string(flexmbs::testing::kDrivenPairGearKeys) + teeth);
+    return file;
+  }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+/// The pair's wheels as kDrivenPairGearKeys gives them.
+contact::SpurGearSpec Wheel(int teeth, double shift) {
+  return {2e-3, teeth, 20.0 * std::numbers::pi / 180.0, shift, 1.0, 1.25, 0.02};
+}
+
+/// The elastic teeth of the scene's element "mesh" (force element 1).
+const contact::ElasticTeeth& SceneTeeth(const mbs::Scene& scene) {
+  const auto& mesh = dynamic_cast<const mbs::SpurGearContact&>(scene.system->force_element(1));
+  const contact::ElasticTeeth* teeth = mesh.law().teeth();
+  EXPECT_NE(teeth, nullptr);
+  return *teeth;
+}
+
+void ExpectSameTable(const contact::ToothCompliance& scene, const contact::ToothCompliance& fe) {
+  EXPECT_EQ(scene.roll, fe.roll);
+  EXPECT_EQ(scene.compliance, fe.compliance);
+  EXPECT_EQ(scene.centre_depth, fe.centre_depth);
+}
+
+// The scene's tables are gear_tooth_fe's for each wheel (z 19, x 0.3 and z 31, x -0.1) with the
+// scene's edge (0.8 mm = 0.4 m), load points and material: equal to the last bit (the same FE
+// model, meshed and solved the same way).
+TEST(GearTeethScene, FeTeethAreTheTablesGearToothFeGivesForEachWheel) {
+  TeethScene files;
+  const mbs::Scene scene = mbs::LoadScene(
+      files.Write("    teeth: {fe: {mesh_size: 8e-4, element_order: 2, loads: 5}, "
+                  "youngs_modulus: 2.0e11, poisson_ratio: 0.29}\n"),
+      SimulateSceneHooks());
+  const contact::ElasticTeeth& teeth = SceneTeeth(scene);
+  EXPECT_EQ(teeth.material.youngs_modulus, 2.0e11);
+  EXPECT_EQ(teeth.material.poisson_ratio, 0.29);
+  gear_tooth_fe::ToothModelOptions options;
+  options.geometry.mesh_size = 0.4;
+  options.loads = 5;
+  const contact::ToothMaterial material{2.0e11, 0.29};
+  ExpectSameTable(teeth.tooth1, gear_tooth_fe::ToothComplianceFromFe(
+                                    contact::MakeSpurGear(Wheel(19, 0.3), "gear 1"), material,
+                                    options)
+                                    .compliance);
+  ExpectSameTable(teeth.tooth2, gear_tooth_fe::ToothComplianceFromFe(
+                                    contact::MakeSpurGear(Wheel(31, -0.1), "gear 2"), material,
+                                    options)
+                                    .compliance);
+  EXPECT_EQ(teeth.tooth1.roll.size(), 5u);
+}
+
+// `teeth: fe` (the word) asks for both wheels, unthinned, with steel and the FE tooth's own
+// defaults; the tables it returns are the element's.
+TEST(GearTeethScene, TheWordFeAsksForBothWheelsWithTheDefaults) {
+  TeethScene files;
+  std::vector<mbs::ToothTableRequest> requests;
+  const contact::ToothCompliance table{{0.2, 0.5}, {1e-11, 3e-11}, {2e-3, 1e-3}};
+  mbs::SceneHooks hooks{[&](const mbs::ToothTableRequest& request) {
+    requests.push_back(request);
+    return table;
+  }};
+  const mbs::Scene scene = mbs::LoadScene(files.Write("    teeth: fe\n"), hooks);
+  ASSERT_EQ(requests.size(), 2u);
+  EXPECT_EQ(requests[0].gear.spec.teeth, 19);
+  EXPECT_EQ(requests[1].gear.spec.teeth, 31);
+  EXPECT_EQ(requests[1].gear.spec.profile_shift, -0.1);
+  // Unthinned: the wheel as MakeSpurGear makes it (the pair has 1e-4 m of backlash).
+  EXPECT_EQ(requests[0].gear.base_half_angle,
+            contact::MakeSpurGear(Wheel(19, 0.3), "gear 1").base_half_angle);
+  for (const mbs::ToothTableRequest& r : requests) {
+    EXPECT_FALSE(r.mesh_size || r.element_order || r.loads);
+    EXPECT_EQ(r.material.youngs_modulus, contact::ToothMaterial{}.youngs_modulus);
+    EXPECT_EQ(r.material.poisson_ratio, contact::ToothMaterial{}.poisson_ratio);
+  }
+  ExpectSameTable(SceneTeeth(scene).tooth1, table);
+  ExpectSameTable(SceneTeeth(scene).tooth2, table);
+}
+
+TEST(GearTeethScene, BadFeEntriesAreOneLineErrorsAtTheirItemBeforeAnyFeRun) {
+  TeethScene files;
+  int runs = 0;
+  mbs::SceneHooks counting{[&](const mbs::ToothTableRequest&) {
+    ++runs;
+    return contact::ToothCompliance{{0.2, 0.5}, {1e-11, 3e-11}, {2e-3, 1e-3}};
+  }};
+  const auto refused = [&](const std::string& teeth, const mbs::SceneHooks& hooks) {
+    return flexmbs::testing::InputErrorMessage([&] { mbs::LoadScene(files.Write(teeth), hooks); });
+  };
+  const auto expect = [](const std::string& message, const std::string& part) {
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+    EXPECT_NE(message.find("scene.yaml:"), std::string::npos) << message;
+  };
+  expect(refused("    teeth: fe\n", {}),
+         "forces[1].teeth: force element 'mesh': teeth fe: the FE tooth is computed by `flexmbs "
+         "simulate`");
+  expect(refused("    teeth: fem\n", counting), "forces[1].teeth: 'fem' must be one of: fe");
+  expect(refused("    teeth: {fe: {mesh_size: -1e-3}}\n", counting),
+         "forces[1].teeth.fe.mesh_size: -0.001 must be > 0 [m]");
+  expect(refused("    teeth: {fe: {element_order: 3}}\n", counting),
+         "forces[1].teeth.fe.element_order: 3 must be 1 or 2");
+  expect(refused("    teeth: {fe: {loads: 1}}\n", counting),
+         "forces[1].teeth.fe.loads: 1 load points: give 2 to 100");
+  expect(refused("    teeth: {fe: {size: 1e-3}}\n", counting), "forces[1].teeth.fe.size");
+  expect(refused("    teeth: {fe: {}, gear1: {roll: [0.2, 0.5]}}\n", counting),
+         "forces[1].teeth.gear1");
+  expect(refused("    teeth: {fe: {}, poisson_ratio: 0.5}\n", counting),
+         "forces[1].teeth: force element 'mesh': Poisson's ratio 0.5 must be in [0, 0.5)");
+  expect(refused("    teeth: {fe: {}, youngs_modulus: -2e11}\n", counting),
+         "forces[1].teeth: force element 'mesh': Young's modulus [Pa] -200000000000 must be");
+  EXPECT_EQ(runs, 0);
+  // The FE tooth's own refusal, located at the entry.
+  const mbs::SceneHooks refusing{[](const mbs::ToothTableRequest&) -> contact::ToothCompliance {
+    throw InputError("FE tooth: mesh size 3 m is too large");
+  }};
+  expect(refused("    teeth: fe\n", refusing),
+         "forces[1].teeth: force element 'mesh': FE tooth: mesh size 3 m is too large");
+}
+
+}  // namespace
+}  // namespace flexmbs::app
