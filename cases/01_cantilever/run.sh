@@ -16,4 +16,5 @@ source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 "$flexmbs" info "$out/beam.sid.h5" --json > "$out/beam.info.json"
 "$flexmbs" info "$out/beam_cb.sid.h5" --json > "$out/beam_cb.info.json"
 /usr/bin/python3 "$here/check.py" "$out"
-echo "wrote $out/beam.mesh.json, $out/beam.sid.h5, $out/beam_cb.sid.h5, $out/beam_cb.SID_FEM"
+/usr/bin/python3 "$here/../mode_shapes.py" "$out/beam.sid.h5" "$out/beam_modes.png" --view 20 -70
+echo "wrote $out/beam.mesh.json, $out/beam.sid.h5, $out/beam_cb.sid.h5, $out/beam_cb.SID_FEM, $out/beam_modes.png"

@@ -6,9 +6,9 @@ tests/validation/slider_crank_exact.json).
 The deflection is the distance of marker `mid` from the chord through the rod's frame origin
 (end_a) and marker `end_b`, positive along z_W x chord, as in tests/validation/slider_crank_model.h.
 
-Usage: /usr/bin/python3 compare.py results.h5 [--limit 0.05]
+Usage: /usr/bin/python3 compare.py results.h5 [--limit 0.05] [--plot PNG]
 Prints both peaks and the largest difference; exits 1 if that difference exceeds `limit` times the
-reference's peak.
+reference's peak. --plot: both histories and their difference.
 """
 import argparse
 import json
@@ -39,6 +39,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("results")
     parser.add_argument("--limit", type=float, default=0.05)
+    parser.add_argument("--plot")
     args = parser.parse_args()
     t, w = midpoint_deflection(args.results)
     reference = json.loads(REFERENCE.read_text())
@@ -53,7 +54,29 @@ def main():
           f"{1e3 * difference:.3g} mm = {difference / peak_ref:.3g} of the reference's peak (limit {args.limit:g})")
     print_headline("02_slider_crank", difference / peak_ref, "midpoint deflection history / its peak",
                    peer="planar beam model (tests/validation/slider_crank_exact.json)")
+    if args.plot:
+        plot(args.plot, t, w, t_ref, w_ref)
+        print(f"wrote {args.plot}")
     return 0 if difference <= args.limit * peak_ref else 1
+
+
+def plot(path, t, w, t_ref, w_ref):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    top.plot(t_ref, w_ref * 1e3, "k-", label="geometrically exact planar beam (SciPy, ANCF)")
+    top.plot(t, w * 1e3, "--", label="flexmbs, reduced 3-D rod")
+    top.set_ylabel("midpoint deflection [mm]")
+    top.set_title("Flexible slider-crank (Simo & Vu-Quoc): the rod's midpoint deflection")
+    top.legend(fontsize=8)
+    bottom.plot(t_ref, (np.interp(t_ref, t, w) - w_ref) * 1e3, "-")
+    bottom.set_ylabel("difference [mm]")
+    bottom.set_xlabel("t [s]")
+    for ax in (top, bottom):
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
 
 
 if __name__ == "__main__":

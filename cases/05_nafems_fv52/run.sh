@@ -3,8 +3,9 @@
 # in-plane rigid motions removed on the mid-plane's centre lines) and held on its side faces,
 # has CalculiX solve the same meshes and supports (and the benchmark's support alone), and
 # checks the frequencies against each other and against the published ones (check.py), with a
-# plot out/fv52.png. Full run: hex20 20 x 20 x 4, and 8 x 8 x 2 for the refinement check;
-# --short: 8 x 8 x 2 only (CTest).
+# plot out/fv52.png and the benchmark body's mode shapes out/fv52_modes.png (../mode_shapes.py;
+# fv52_coarse_modes.png in the short mode). Full run: hex20 20 x 20 x 4, and 8 x 8 x 2 for the
+# refinement check; --short: 8 x 8 x 2 only (CTest).
 # Usage: run.sh [path/to/flexmbs] [--short]
 set -euo pipefail
 source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
@@ -34,7 +35,9 @@ run_mesh() {
 run_mesh nafems_fv52_plate_coarse.geo "$out/coarse"
 if [ "${2:-}" = "--short" ]; then
   /usr/bin/python3 check.py "$out/coarse" --mesh coarse --plot "$out/fv52_coarse.png"
+  /usr/bin/python3 ../mode_shapes.py "$out/coarse/plate.sid.h5" "$out/fv52_coarse_modes.png"
 else
   run_mesh nafems_fv52_plate.geo "$out"
   /usr/bin/python3 check.py "$out" --mesh full --coarse-out "$out/coarse" --plot "$out/fv52.png"
+  /usr/bin/python3 ../mode_shapes.py "$out/plate.sid.h5" "$out/fv52_modes.png"
 fi
