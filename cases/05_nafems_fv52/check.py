@@ -2,7 +2,7 @@
 """Checks what cases/05_nafems_fv52/README.md says the case shows, on the files run.sh wrote.
 
 Reads from OUT the `flexmbs reduce --json` reports (plate.reduce.json, plate_faces.reduce.json)
-and CalculiX's (cases/ccx_modes.py: plate.ccx.json, plate_faces.ccx.json, and plate_free.ccx.json
+and CalculiX's (tests/peers/ccx_modal.py: plate.ccx.json, plate_faces.ccx.json, and plate_free.ccx.json
 for the benchmark's support alone, in-plane motions free); with --coarse-out DIR also the coarse
 mesh's reports there (the full run's refinement check). Checks:
 - flexmbs against CalculiX on the same mesh and supports, every mode, both variants;

@@ -10,10 +10,10 @@
 set -euo pipefail
 source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 
-# CalculiX on mesh GEO (cases/ccx_modes.py), the plate's material, the given modes and supports.
+# CalculiX on mesh GEO (tests/peers/ccx_modal.py), the plate's material, the given modes and supports.
 ccx() {
   local geo="$1"; shift
-  /usr/bin/python3 ../ccx_modes.py "$here/../../meshes/$geo" --order 2 --youngs-modulus 2.0e11 --poisson-ratio 0.3 \
+  /usr/bin/python3 ../../tests/peers/ccx_modal.py "$here/../../meshes/$geo" --order 2 --youngs-modulus 2.0e11 --poisson-ratio 0.3 \
     --density 8000 "$@"
 }
 

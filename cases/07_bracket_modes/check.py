@@ -3,7 +3,7 @@
 
 Reads from OUT `flexmbs compare X.sid.h5 X.yaml --json` of both bodies (compare_modal.json,
 compare_cb.json: each reduced body's system modes paired with the full FE model's, bolted at
-base) and CalculiX's full model on the same mesh (full.ccx.json, cases/ccx_modes.py). Checks:
+base) and CalculiX's full model on the same mesh (full.ccx.json, tests/peers/ccx_modal.py). Checks:
 - the full model's 12 frequencies (flexmbs) against CalculiX's;
 - the modal body: its system modes are the full model's 12 lowest (frequency, MAC);
 - the Craig-Bampton body: Rayleigh-Ritz upper bounds, the lowest five within 0.5 % and MAC >=
