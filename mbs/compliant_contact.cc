@@ -32,8 +32,8 @@ Eigen::MatrixXd PointJacobian(const MarkerKinematics& marker, const Eigen::Vecto
 void AddModalLoad(const MultibodySystem& system, const MarkerRef& end, const Eigen::Matrix3Xd& modal_W,
                   const Eigen::Vector3d& f_W, Eigen::Ref<Eigen::VectorXd> h) {
   if (modal_W.cols() == 0) return;
-  const Eigen::Index body = end.body;
-  const Eigen::Index last = system.velocity_offset(body) + system.body(body).num_velocities();
+  const VelocityBlock& block = system.velocity_block(end.body);
+  const Eigen::Index last = block.start + block.size;
   h.segment(last - modal_W.cols(), modal_W.cols()) += modal_W.transpose() * f_W;
 }
 
@@ -44,7 +44,7 @@ void AddCoupling(const MultibodySystem& system, const std::array<End, 2>& ends, 
     if (row.marker->is_ground()) continue;
     for (const End& column : ends) {
       if (column.marker->is_ground()) continue;
-      out.block(system.velocity_offset(row.marker->body), system.velocity_offset(column.marker->body),
+      out.block(system.velocity_block(row.marker->body).start, system.velocity_block(column.marker->body).start,
                 row.point_jacobian.cols(), column.point_jacobian.cols()) +=
           (row.sign * column.sign) * row.point_jacobian.transpose() * K * column.point_jacobian;
     }

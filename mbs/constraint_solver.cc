@@ -131,7 +131,7 @@ void ConstraintSolver::SetPattern() {
     for (const int b : JointBodies(system.joint(k))) {
       if (b == kGround) continue;
       body_row_start_[static_cast<std::size_t>(b) + 1] += count;
-      row_nonzeros += system.body(b).num_velocities();
+      row_nonzeros += system.velocity_block(b).size;
     }
     for (Index row = first; row < first + count; ++row) {
       G_.outerIndexPtr()[row + 1] = static_cast<int>(G_.outerIndexPtr()[row] + row_nonzeros);
@@ -154,7 +154,7 @@ void ConstraintSolver::SetPattern() {
         Index& next = next_row[static_cast<std::size_t>(b)];
         row_at_body_[static_cast<std::size_t>(row)][slot] = {b, next - body_row_start_[static_cast<std::size_t>(b)]};
         body_rows_[static_cast<std::size_t>(next++)] = row;
-        const Index offset = system.velocity_offset(b), n = system.body(b).num_velocities();
+        const Index offset = system.velocity_block(b).start, n = system.velocity_block(b).size;
         for (Index column = offset; column < offset + n; ++column) *inner++ = static_cast<int>(column);
       }
     }
@@ -179,7 +179,7 @@ void ConstraintSolver::FormBodyBlocks(const Eigen::MatrixXd& G) {
     const std::size_t ub = static_cast<std::size_t>(b);
     const Index first = body_row_start_[ub], count = body_row_start_[ub + 1] - first;
     if (count == 0) continue;
-    const Index offset = system_.velocity_offset(b), n = system_.body(b).num_velocities();
+    const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
     const Eigen::Map<const Eigen::Matrix<Index, Eigen::Dynamic, 1>> R_b(body_rows_.data() + first, count);
     const MatrixXd G_b_T = G(R_b, Eigen::seqN(offset, n)).transpose();
     const MatrixXd Y = mass_factors_[ub].matrixL().solve(G_b_T);
@@ -316,7 +316,7 @@ Eigen::MatrixXd ConstraintSolver::scaled_schur() const {
 Eigen::VectorXd ConstraintSolver::SolveMass(const ConstVectorRef& r) const {
   Eigen::VectorXd out(r.size());
   for (int b = 0; b < system_.num_bodies(); ++b) {
-    const Index offset = system_.velocity_offset(b), n = system_.body(b).num_velocities();
+    const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
     out.segment(offset, n) = mass_factors_[static_cast<std::size_t>(b)].solve(r.segment(offset, n));
   }
   return out;
@@ -325,7 +325,7 @@ Eigen::VectorXd ConstraintSolver::SolveMass(const ConstVectorRef& r) const {
 Eigen::MatrixXd ConstraintSolver::SolveMassColumns(const Eigen::MatrixXd& R) const {
   MatrixXd out = MatrixXd::Zero(R.rows(), R.cols());
   for (int b = 0; b < system_.num_bodies(); ++b) {
-    const Index offset = system_.velocity_offset(b), n = system_.body(b).num_velocities();
+    const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
     for (Index j = 0; j < R.cols(); ++j) {
       const auto column = R.col(j).segment(offset, n);
       if (!column.isZero(0.0)) out.col(j).segment(offset, n) = mass_factors_[static_cast<std::size_t>(b)].solve(column);

@@ -53,7 +53,7 @@ PairPoint FromContactPoint(const ContactPoint& point) {
 /// The modal columns of body b (a flexible one) in a row over the system's velocities.
 Eigen::RowVectorXd ModalColumns(const MultibodySystem& system, int b, const Eigen::RowVectorXd& row) {
   const Eigen::Index n = dynamic_cast<const FlexibleBody&>(system.body(b)).data().num_modes();
-  return row.segment(system.velocity_offset(b) + 6, n);
+  return row.segment(system.velocity_block(b).start + 6, n);
 }
 
 bool IsFlexible(const MultibodySystem& system, int b) {

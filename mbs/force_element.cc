@@ -61,7 +61,7 @@ void AddCoupling(const MultibodySystem& system, const MarkerRef& i, const Marker
     if (row.marker->is_ground()) continue;
     for (const CouplingEnd& column : ends) {
       if (column.marker->is_ground()) continue;
-      out.block(system.velocity_offset(row.marker->body), system.velocity_offset(column.marker->body),
+      out.block(system.velocity_block(row.marker->body).start, system.velocity_block(column.marker->body).start,
                 row.motion.cols(), column.motion.cols()) -= row.motion.transpose() * K * column.motion;
     }
   }

@@ -64,8 +64,8 @@ KktNewtonSolver::KktNewtonSolver(const MultibodySystem& system)
   for (int b = 0; b < system.num_bodies(); ++b) {
     BodyBlocks& blocks = bodies_[static_cast<std::size_t>(b)];
     blocks.px = system.position_offset(b);
-    blocks.pu = system.velocity_offset(b);
-    blocks.nu = system.body(b).num_velocities();
+    blocks.pu = system.velocity_block(b).start;
+    blocks.nu = system.velocity_block(b).size;
   }
 }
 

@@ -50,7 +50,7 @@ SmoothStep SolveSmoothStep(const MultibodySystem& system, double t, double h, do
   const auto v_k = y.tail(nu);
   MatrixXd A = MatrixXd::Zero(nu, nu), H_x = MatrixXd::Zero(nu, nu), H_u = MatrixXd::Zero(nu, nu);
   for (int b = 0; b < system.num_bodies(); ++b) {
-    const Index offset = system.velocity_offset(b), n = system.body(b).num_velocities();
+    const auto [offset, n] = system.velocity_block(b);
     A.block(offset, offset, n, n) = system.BodyMassMatrix(b, y);
     system.body(b).AddForceJacobian(system.BodyPositions(y, b), system.BodyVelocities(y, b),
                                     u_dot_previous.segment(offset, n), system.gravity(), H_x.block(offset, offset, n, n),

@@ -41,7 +41,7 @@ int MultibodySystem::AddBody(std::unique_ptr<Body> body) {
   RequireNewName(bodies_, body->name(), "body", [](const auto& b) { return b->name(); });
   // Positions of all bodies come first in y: the velocities move back by n_x of the new body.
   position_offsets_.push_back(num_positions_);
-  velocity_offsets_.push_back(num_velocities_);
+  velocity_blocks_.push_back({num_velocities_, body->num_velocities()});
   num_positions_ += body->num_positions();
   num_velocities_ += body->num_velocities();
   bodies_.push_back(std::move(body));
@@ -131,15 +131,17 @@ Eigen::Map<const Eigen::VectorXd> MultibodySystem::BodyPositions(const ConstVect
 }
 
 Eigen::Map<const Eigen::VectorXd> MultibodySystem::BodyVelocities(const ConstVectorRef& y, int b) const {
-  return {y.data() + num_positions_ + velocity_offset(b), body(b).num_velocities()};
+  const VelocityBlock& block = velocity_block(b);
+  return {y.data() + num_positions_ + block.start, block.size};
 }
 
 void MultibodySystem::SetBodyState(int b, const ConstVectorRef& x_b, const ConstVectorRef& u_b,
                                    Eigen::Ref<Eigen::VectorXd> y) const {
-  FLEXMBS_CHECK(x_b.size() == body(b).num_positions() && u_b.size() == body(b).num_velocities(),
+  const VelocityBlock& block = velocity_block(b);
+  FLEXMBS_CHECK(x_b.size() == body(b).num_positions() && u_b.size() == block.size,
                 "MultibodySystem::SetBodyState: sizes do not match the body");
   y.segment(position_offset(b), x_b.size()) = x_b;
-  y.segment(num_positions_ + velocity_offset(b), u_b.size()) = u_b;
+  y.segment(num_positions_ + block.start, block.size) = u_b;
 }
 
 MarkerKinematics MultibodySystem::MarkerState(const MarkerRef& marker, const ConstVectorRef& y) const {
@@ -157,11 +159,12 @@ void MultibodySystem::AddMarkerLoad(const MarkerRef& marker, const MarkerKinemat
                                     const Eigen::Vector3d& f_W, const Eigen::Vector3d& tau_W,
                                     Eigen::Ref<Eigen::VectorXd> h) const {
   if (marker.is_ground()) return;
-  h.segment(velocity_offset(marker.body), body(marker.body).num_velocities()) += GeneralizedForce(kinematics, f_W, tau_W);
+  const VelocityBlock& block = velocity_block(marker.body);
+  h.segment(block.start, block.size) += GeneralizedForce(kinematics, f_W, tau_W);
 }
 
 Eigen::MatrixXd MultibodySystem::BodyMassMatrix(int b, const ConstVectorRef& y) const {
-  const Eigen::Index n = body(b).num_velocities();
+  const Eigen::Index n = velocity_block(b).size;
   Eigen::MatrixXd M(n, n);
   body(b).MassMatrix(BodyPositions(y, b), M);
   return M;
@@ -170,8 +173,8 @@ Eigen::MatrixXd MultibodySystem::BodyMassMatrix(int b, const ConstVectorRef& y) 
 Eigen::VectorXd MultibodySystem::Forces(double t, const ConstVectorRef& y) const {
   Eigen::VectorXd h(num_velocities_);
   for (int b = 0; b < num_bodies(); ++b) {
-    body(b).Forces(t, BodyPositions(y, b), BodyVelocities(y, b), g_W_,
-                   h.segment(velocity_offset(b), body(b).num_velocities()));
+    const VelocityBlock& block = velocity_block(b);
+    body(b).Forces(t, BodyPositions(y, b), BodyVelocities(y, b), g_W_, h.segment(block.start, block.size));
   }
   for (const auto& element : force_elements_) element->AddForces(t, *this, y, h);
   return h;
@@ -190,8 +193,8 @@ SystemConstraints MultibodySystem::Constraints(double t, const ConstVectorRef& y
     c.g.segment(row, m) = e.g;
     c.g_t.segment(row, m) = e.g_t;
     c.gamma.segment(row, m) = e.gamma;
-    if (!j.marker_i().is_ground()) c.G.block(row, velocity_offset(j.marker_i().body), m, e.G_i.cols()) += e.G_i;
-    if (!j.marker_j().is_ground()) c.G.block(row, velocity_offset(j.marker_j().body), m, e.G_j.cols()) += e.G_j;
+    if (!j.marker_i().is_ground()) c.G.block(row, velocity_block(j.marker_i().body).start, m, e.G_i.cols()) += e.G_i;
+    if (!j.marker_j().is_ground()) c.G.block(row, velocity_block(j.marker_j().body).start, m, e.G_j.cols()) += e.G_j;
   }
   return c;
 }
@@ -201,9 +204,10 @@ bool MultibodySystem::AccelerationDependentForces(const ConstVectorRef& y, const
   h.setZero();
   bool any = false;
   for (int b = 0; b < num_bodies(); ++b) {
-    const Eigen::Index offset = velocity_offset(b), n = body(b).num_velocities();
-    any = body(b).AddAccelerationDependentForces(BodyPositions(y, b), BodyVelocities(y, b), u_dot.segment(offset, n),
-                                                 h.segment(offset, n)) ||
+    const VelocityBlock& block = velocity_block(b);
+    any = body(b).AddAccelerationDependentForces(BodyPositions(y, b), BodyVelocities(y, b),
+                                                 u_dot.segment(block.start, block.size),
+                                                 h.segment(block.start, block.size)) ||
           any;
   }
   return any;
@@ -256,7 +260,7 @@ JointLoad MultibodySystem::ConstraintLoad(int k, double t, const ConstVectorRef&
 
 void MultibodySystem::DisplacePositions(const ConstVectorRef& du, Eigen::Ref<Eigen::VectorXd> y) const {
   for (int b = 0; b < num_bodies(); ++b) {
-    const Eigen::Index px = position_offset(b), pu = velocity_offset(b), n = body(b).num_modes();
+    const Eigen::Index px = position_offset(b), pu = velocity_block(b).start, n = body(b).num_modes();
     y.segment<3>(px) += du.segment<3>(pu);
     const Eigen::Vector3d rotation = du.segment<3>(pu + 3);
     const Eigen::Quaterniond e(y(px + 3), y(px + 4), y(px + 5), y(px + 6));

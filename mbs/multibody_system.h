@@ -42,6 +42,15 @@ struct JointLoad {
   Eigen::Vector3d tau_W = Eigen::Vector3d::Zero();  ///< [N m]
 };
 
+/// Body b's block of the system's velocities u: u_b = u.segment(start, size), and so its rows and
+/// columns of h, M, G and every Jacobian over u. The one place the system's velocities are cut
+/// per body (docs/mbs.md, "Planar scenes": a planar body's block will hold its in-plane
+/// velocities only).
+struct VelocityBlock {
+  Eigen::Index start = 0;  ///< the body's first entry in u
+  Eigen::Index size = 0;   ///< its number of velocities (6 + n)
+};
+
 /// A multibody system. Built once (Add*), then evaluated; all state is passed in.
 class MultibodySystem {
  public:
@@ -84,9 +93,11 @@ class MultibodySystem {
   Eigen::Index state_size() const { return num_positions_ + num_velocities_; }
   Eigen::Index num_constraints() const { return num_constraints_; }
   /// Where body b's x_b starts in y, where its u_b starts in u (y = [x; u]), and where joint k's
-  /// equations start in the stacked constraints.
+  /// equations start in the stacked constraints. velocity_offset(b) is velocity_block(b).start.
   Eigen::Index position_offset(int b) const { return position_offsets_.at(static_cast<std::size_t>(b)); }
-  Eigen::Index velocity_offset(int b) const { return velocity_offsets_.at(static_cast<std::size_t>(b)); }
+  Eigen::Index velocity_offset(int b) const { return velocity_block(b).start; }
+  /// Body b's block of u (VelocityBlock).
+  const VelocityBlock& velocity_block(int b) const { return velocity_blocks_.at(static_cast<std::size_t>(b)); }
   Eigen::Index constraint_offset(int k) const { return constraint_offsets_.at(static_cast<std::size_t>(k)); }
   /// The joint whose equations contain stacked constraint row `row`.
   int JointOfConstraint(Eigen::Index row) const;
@@ -162,7 +173,8 @@ class MultibodySystem {
   std::vector<Joint> joints_;
   std::vector<std::unique_ptr<ForceElement>> force_elements_;
   std::vector<std::unique_ptr<UnilateralContact>> unilateral_contacts_;
-  std::vector<Eigen::Index> position_offsets_, velocity_offsets_, constraint_offsets_;
+  std::vector<Eigen::Index> position_offsets_, constraint_offsets_;
+  std::vector<VelocityBlock> velocity_blocks_;
   std::vector<Eigen::Index> dropped_constraints_;
   Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_constraints_ = 0;
 };

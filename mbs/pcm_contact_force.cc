@@ -166,8 +166,8 @@ void PcmContactForce::AddForceJacobian(double, const MultibodySystem& system, co
         }
         Eigen::MatrixXd block = -law_.stiffness * J[i].transpose() * load.d_normal_force * volume_rate;
         for (int d = 0; d < 3; ++d) block -= lever[d] * centre_rate.row(d) / element.volume;
-        const Eigen::Index row = system.velocity_offset(sides[i]->marker.body);
-        const Eigen::Index column = system.velocity_offset(sides[j]->marker.body);
+        const Eigen::Index row = system.velocity_block(sides[i]->marker.body).start;
+        const Eigen::Index column = system.velocity_block(sides[j]->marker.body).start;
         const double sign = signs[i] * signs[j];
         dh_dx.block(row, column, J[i].cols(), J[j].cols()) += sign * block;
         dh_du.block(row, column, J[i].cols(), J[j].cols()) += sign * J[i].transpose() * load.d_velocity * J_moving[j];

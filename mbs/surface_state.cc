@@ -9,7 +9,7 @@ SurfaceState::SurfaceState(const MultibodySystem& system, const MarkerRef& origi
     : surface_(surface),
       frame_(system.MarkerState(origin, y)),
       q_dot_(system.BodyVelocities(y, origin.body).tail(num_modes)),
-      modal_column_(system.velocity_offset(origin.body) + 6) {
+      modal_column_(system.velocity_block(origin.body).start + 6) {
   const Eigen::VectorXd q = system.BodyPositions(y, origin.body).tail(num_modes);
   const Eigen::Index V = surface.vertices.rows();
   const Eigen::Matrix3Xd s_B = surface.vertices.transpose() + (surface.phi * q).reshaped(3, V);

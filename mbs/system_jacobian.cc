@@ -21,7 +21,7 @@ using Eigen::VectorXd;
 void SetPositionRows(const MultibodySystem& system, const ConstVectorRef& y, Eigen::Ref<MatrixXd> dfdy) {
   const Index nx = system.num_positions();
   for (int b = 0; b < system.num_bodies(); ++b) {
-    const Index px = system.position_offset(b), pu = nx + system.velocity_offset(b), n = system.body(b).num_modes();
+    const Index px = system.position_offset(b), pu = nx + system.velocity_block(b).start, n = system.body(b).num_modes();
     dfdy.block<3, 3>(px, pu).setIdentity();
     dfdy.block<4, 3>(px + 3, pu + 3) = RateByAngularVelocity(y.segment<4>(px + 3));
     dfdy.block<4, 4>(px + 3, px + 3) = RateByEulerParameters(y.segment<3>(pu + 3));
@@ -37,7 +37,7 @@ void SetPositionRows(const MultibodySystem& system, const ConstVectorRef& y, Eig
 void SetPositionColumns(const MultibodySystem& system, const ConstVectorRef& y, const Eigen::Ref<const MatrixXd>& D,
                         Eigen::Ref<MatrixXd> out) {
   for (int b = 0; b < system.num_bodies(); ++b) {
-    const Index px = system.position_offset(b), pu = system.velocity_offset(b), n = system.body(b).num_modes();
+    const Index px = system.position_offset(b), pu = system.velocity_block(b).start, n = system.body(b).num_modes();
     const Eigen::Matrix<double, 4, 3> L = RateByAngularVelocity(y.segment<4>(px + 3));
     out.middleCols<3>(px) = D.middleCols<3>(pu);
     out.middleCols<4>(px + 3) = D.middleCols<3>(pu + 3) * (L.transpose() * L).inverse() * L.transpose();
@@ -55,7 +55,8 @@ void SetRigidVelocityColumnsByDifferences(const MultibodySystem& system, double 
   const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
   VectorXd moved(y.size()), u_dot_moved(nu), lambda(system.num_constraints());
   for (int b = 0; b < system.num_bodies(); ++b) {
-    for (Index k = system.velocity_offset(b); k < system.velocity_offset(b) + 6; ++k) {
+    const Index start = system.velocity_block(b).start;
+    for (Index k = start; k < start + 6; ++k) {
       moved = y;
       const double increment = root_eps * std::max(std::abs(y(nx + k)), 1.0);
       moved(nx + k) += increment;
@@ -92,7 +93,7 @@ void SystemJacobian(const MultibodySystem& system, double t, const ConstVectorRe
   system.Accelerations(t, y, u_dot, lambda);
   MatrixXd dh = MatrixXd::Zero(nu, 2 * nu);
   for (int b = 0; b < system.num_bodies(); ++b) {
-    const Index pu = system.velocity_offset(b), n = system.body(b).num_velocities();
+    const auto [pu, n] = system.velocity_block(b);
     system.body(b).AddForceJacobian(system.BodyPositions(y, b), system.BodyVelocities(y, b), u_dot.segment(pu, n),
                                     system.gravity(), dh.block(pu, pu, n, n), dh.block(pu, nu + pu, n, n));
   }

@@ -57,7 +57,7 @@ void UnilateralContact::AddPointJacobian(const MultibodySystem& system, const Ma
   if (ref.is_ground()) return;
   const Eigen::MatrixXd J_p =
       marker.jacobian.topRows<3>() - Skew(p_W - marker.p_WM_W) * marker.jacobian.bottomRows<3>();
-  const Eigen::Index column = system.velocity_offset(ref.body), n = J_p.cols();
+  const Eigen::Index column = system.velocity_block(ref.body).start, n = J_p.cols();
   k->W_N.segment(column, n) += sign * k->n_W.transpose() * J_p;
   k->W_T.middleCols(column, n).row(0) += sign * k->t1_W.transpose() * J_p;
   k->W_T.middleCols(column, n).row(1) += sign * k->t2_W.transpose() * J_p;
