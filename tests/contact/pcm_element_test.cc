@@ -11,6 +11,7 @@
 #include <random>
 
 #include "contact/pcm/contact_element.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::contact {
 namespace {
@@ -64,10 +65,14 @@ TEST(PcmElement, RandomTrianglePairsMatchTheMidpointIntegrationOfTheirOverlap) {
     const Eigen::Matrix3d R = (Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitZ()) *
                                Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitX()))
                                   .toRotationMatrix();
-    const Eigen::Vector3d offset(planar(rng), planar(rng), planar(rng));
+    const Eigen::Vector3d offset = flexmbs::testing::DrawVector3(planar, rng);
     Eigen::Vector3d b[3] = {{-1.0, -0.8, 0.0}, {1.0, -0.6, 0.0}, {0.1, 0.9, 0.0}};  // normal +z
     Eigen::Vector3d a[3];
-    for (auto& p : a) p = Eigen::Vector3d(planar(rng), planar(rng), height(rng));
+    for (auto& p : a) {
+      const double x = planar(rng);
+      const double y = planar(rng);
+      p = Eigen::Vector3d(x, y, height(rng));
+    }
     if ((a[1] - a[0]).cross(a[2] - a[0]).z() > 0.0) std::swap(a[1], a[2]);  // A faces B
     for (auto* p : {&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]}) *p = R * *p + offset;
     const std::optional<PcmElement> element = TriangleElement(a[0], a[1], a[2], b[0], b[1], b[2], max_depth);

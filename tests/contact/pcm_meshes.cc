@@ -1,4 +1,5 @@
 #include "tests/contact/pcm_meshes.h"
+#include "tests/support/random_draws.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -117,10 +118,10 @@ PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t s
   std::vector<Eigen::Vector3d> points;
   std::vector<std::array<int, 3>> triangles;
   for (int t = 0; t < count; ++t) {
-    const Eigen::Vector3d p(position(rng), position(rng), position(rng));
+    const Eigen::Vector3d p = flexmbs::testing::DrawVector3(position, rng);
     points.push_back(p);
-    points.push_back(p + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)));
-    points.push_back(p + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)));
+    points.push_back(p + flexmbs::testing::DrawVector3(offset, rng));
+    points.push_back(p + flexmbs::testing::DrawVector3(offset, rng));
     triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
   }
   return TriangleMesh(points, triangles);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "contact/geometry/sphere_surface.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::contact {
 namespace {
@@ -30,7 +31,7 @@ Eigen::Vector3d NearestBySampling(const Eigen::Vector3d& p, const Eigen::Vector3
 TEST(SphereSurface, NearestPointOnTriangleIsTheSampledMinimumAndItsWeightsRebuildIt) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
-  const auto random_point = [&] { return Eigen::Vector3d(coordinate(rng), coordinate(rng), coordinate(rng)); };
+  const auto random_point = [&] { return flexmbs::testing::DrawVector3(coordinate, rng); };
   int interior = 0;
   for (int trial = 0; trial < 200; ++trial) {
     const Eigen::Vector3d a = random_point(), b = random_point(), c = random_point();
@@ -121,8 +122,9 @@ TEST(SphereSurface, NearestPointOnAWarpedQuadIsTheSampledMinimum) {
   for (int trial = 0; trial < 50; ++trial) {
     std::array<Eigen::Vector3d, 4> P{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
                                      Eigen::Vector3d(0, 1, 0)};
-    for (Eigen::Vector3d& corner : P) corner += Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
-    const Eigen::Vector3d p(0.2 + 0.6 * (jitter(rng) + 0.1) / 0.2, 0.5 + 3.0 * jitter(rng), 0.3 + jitter(rng));
+    for (Eigen::Vector3d& corner : P) corner += flexmbs::testing::DrawVector3(jitter, rng);
+    const Eigen::Vector3d draw = flexmbs::testing::DrawVector3(jitter, rng);
+    const Eigen::Vector3d p(0.2 + 0.6 * (draw.x() + 0.1) / 0.2, 0.5 + 3.0 * draw.y(), 0.3 + draw.z());
     const QuadPoint nearest = NearestPointOnQuad(p, P);
     double sampled = HUGE_VAL;  // the bilinear patch sampled on a 400 x 400 grid
     for (int i = 0; i <= 400; ++i) {

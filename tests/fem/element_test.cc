@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fem/reference_element.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::fem {
 namespace {
@@ -25,7 +26,7 @@ std::vector<Eigen::Vector3d> RandomPoints(ElementType type, int count, unsigned 
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Eigen::Vector3d> points;
   while (static_cast<int>(points.size()) < count) {
-    const Eigen::Vector3d u(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d u = flexmbs::testing::DrawVector3(unit, rng);
     switch (type) {
       case ElementType::kTet4:
       case ElementType::kTet10:

@@ -41,6 +41,7 @@
 #include "tests/mbs/flexible_test_bodies.h"
 #include "tests/mbs/scene_options_support.h"
 #include "tests/validation/flexible_pendulum_model.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -92,9 +93,9 @@ VectorXd GenericState(const MultibodySystem& system, unsigned seed, double defor
   for (int b = 0; b < system.num_bodies(); ++b) {
     const Index px = system.position_offset(b), pu = system.num_positions() + system.velocity_offset(b);
     const Index n = system.body(b).num_modes();
-    y.segment<3>(px) = 0.3 * Vector3d(uniform(rng), uniform(rng), uniform(rng));
-    const Eigen::Quaterniond e(
-        Eigen::AngleAxisd(1.5 * uniform(rng), Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized()));
+    y.segment<3>(px) = 0.3 * flexmbs::testing::DrawVector3(uniform, rng);
+    const double angle = 1.5 * uniform(rng);
+    const Eigen::Quaterniond e(Eigen::AngleAxisd(angle, flexmbs::testing::DrawVector3(uniform, rng).normalized()));
     y.segment<4>(px + 3) << e.w(), e.x(), e.y(), e.z();
     for (Index k = 0; k < n; ++k) y(px + 7 + k) = deformation * uniform(rng);
     for (Index k = 0; k < 6 + n; ++k) y(pu + k) = (k < 6 ? 3.0 : 0.03) * uniform(rng);

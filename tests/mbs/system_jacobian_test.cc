@@ -36,6 +36,7 @@
 #include "tests/mbs/flexible_test_bodies.h"
 #include "tests/mbs/scene_options_support.h"
 #include "tests/validation/flexible_pendulum_model.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -102,7 +103,7 @@ VectorXd GenericState(const Scene& scene, unsigned seed, double deformation = 1e
   for (int b = 0; b < system.num_bodies(); ++b) {
     const Index px = system.position_offset(b), pu = system.num_positions() + system.velocity_offset(b);
     const Index n = system.body(b).num_modes();
-    y.segment<3>(px) = 0.1 * Vector3d(uniform(rng), uniform(rng), uniform(rng));
+    y.segment<3>(px) = 0.1 * flexmbs::testing::DrawVector3(uniform, rng);
     const Eigen::Quaterniond e = Eigen::Quaterniond(Eigen::AngleAxisd(0.7 + 0.3 * b, Vector3d(1.0, 2.0, -1.0 + b).normalized()));
     y.segment<4>(px + 3) << e.w(), e.x(), e.y(), e.z();
     for (Index k = 0; k < n; ++k) y(px + 7 + k) = deformation * uniform(rng);
@@ -110,10 +111,10 @@ VectorXd GenericState(const Scene& scene, unsigned seed, double deformation = 1e
   }
   const MarkerKinematics corner = system.MarkerState(system.Marker("beam", "corner"), y);
   const Matrix3d R_WB =
-      corner.R_WM * Eigen::AngleAxisd(0.01, Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized()).matrix();
+      corner.R_WM * Eigen::AngleAxisd(0.01, flexmbs::testing::DrawVector3(uniform, rng).normalized()).matrix();
   const Eigen::Quaterniond e(R_WB);  // the mount marker has R_BM = I
   const Index px = system.position_offset(scene.block);
-  y.segment<3>(px) = corner.p_WM_W + 1e-3 * Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized() -
+  y.segment<3>(px) = corner.p_WM_W + 1e-3 * flexmbs::testing::DrawVector3(uniform, rng).normalized() -
                      R_WB * Vector3d(0.04, 0.03, -0.02);
   y.segment<4>(px + 3) << e.w(), e.x(), e.y(), e.z();
   return y;

@@ -55,7 +55,8 @@ class Values {
   double Next() {
     std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
     std::uniform_int_distribution<int> exponent(-300, 300);
-    return std::ldexp(mantissa(rng_), exponent(rng_));
+    const double m = mantissa(rng_);
+    return std::ldexp(m, exponent(rng_));
   }
   Eigen::MatrixXd Matrix(Eigen::Index rows, Eigen::Index cols) {
     Eigen::MatrixXd m(rows, cols);
