@@ -60,7 +60,8 @@ class SphereSurfaceUnilateral final : public UnilateralContact {
 };
 
 /// Node to surface between two flexible bodies: every vertex V of surface S_A of body A against
-/// the faces of surface S_B of body B (contact::PointMesh on S_B deformed), g_N,V along the normal
+/// the faces of surface S_B of body B (contact::PointMesh on S_B deformed, the nearest face found
+/// through a Bvh built on S_B at each evaluation: contact/pcm/nearest_face.h), g_N,V along the normal
 /// of B's face at the nearest point c, W_N,V the velocity of the vertex less that of B's material
 /// point at c (both through their body's frame and modes, SurfaceState). Name the surfaces that
 /// meet (an end face against an end face): a vertex off S_B is apart.

@@ -109,34 +109,39 @@ QuadPoint NearestPointOnQuad(const Eigen::Vector3d& p, const std::array<Eigen::V
   return out;
 }
 
+MeshPoint NearestFacePoint(const Eigen::Vector3d& p, const PolygonMesh& mesh, std::size_t first, int size) {
+  FLEXMBS_CHECK((size == 3 || size == 4) && first + static_cast<std::size_t>(size) <= mesh.face_vertices.size(),
+                "NearestMeshPoint: faces have 3 or 4 vertices");
+  MeshPoint face;
+  std::array<Eigen::Vector3d, 4> P;
+  for (int i = 0; i < size; ++i) {
+    const int vertex = mesh.face_vertices[first + static_cast<std::size_t>(i)];
+    FLEXMBS_CHECK(vertex >= 0 && vertex < mesh.vertices_W.cols(), "NearestMeshPoint: a face vertex out of range");
+    face.vertices[static_cast<std::size_t>(i)] = vertex;
+    P[static_cast<std::size_t>(i)] = mesh.vertices_W.col(vertex);
+  }
+  if (size == 3) {
+    const TrianglePoint nearest = NearestPointOnTriangle(p, P[0], P[1], P[2]);
+    face.point = nearest.point;
+    face.weights.head<3>() = nearest.weights;
+    face.normal = (P[1] - P[0]).cross(P[2] - P[0]).normalized();
+    face.interior = nearest.interior;
+  } else {
+    const QuadPoint nearest = NearestPointOnQuad(p, P);
+    face.point = nearest.point;
+    face.weights = nearest.weights;
+    face.normal = nearest.normal;
+    face.interior = nearest.interior;
+  }
+  return face;
+}
+
 MeshPoint NearestMeshPoint(const Eigen::Vector3d& p, const PolygonMesh& mesh) {
   MeshPoint best;
   double best_distance = std::numeric_limits<double>::infinity();
   std::size_t first = 0;
   for (const int size : mesh.face_sizes) {
-    FLEXMBS_CHECK((size == 3 || size == 4) && first + static_cast<std::size_t>(size) <= mesh.face_vertices.size(),
-                  "NearestMeshPoint: faces have 3 or 4 vertices");
-    MeshPoint face;
-    std::array<Eigen::Vector3d, 4> P;
-    for (int i = 0; i < size; ++i) {
-      const int vertex = mesh.face_vertices[first + static_cast<std::size_t>(i)];
-      FLEXMBS_CHECK(vertex >= 0 && vertex < mesh.vertices_W.cols(), "NearestMeshPoint: a face vertex out of range");
-      face.vertices[static_cast<std::size_t>(i)] = vertex;
-      P[static_cast<std::size_t>(i)] = mesh.vertices_W.col(vertex);
-    }
-    if (size == 3) {
-      const TrianglePoint nearest = NearestPointOnTriangle(p, P[0], P[1], P[2]);
-      face.point = nearest.point;
-      face.weights.head<3>() = nearest.weights;
-      face.normal = (P[1] - P[0]).cross(P[2] - P[0]).normalized();
-      face.interior = nearest.interior;
-    } else {
-      const QuadPoint nearest = NearestPointOnQuad(p, P);
-      face.point = nearest.point;
-      face.weights = nearest.weights;
-      face.normal = nearest.normal;
-      face.interior = nearest.interior;
-    }
+    const MeshPoint face = NearestFacePoint(p, mesh, first, size);
     const double distance = (p - face.point).norm();
     if (distance < best_distance) {
       best_distance = distance;
@@ -174,7 +179,10 @@ SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh) {
 }
 
 SphereMeshContact PointMesh(const Eigen::Vector3d& p_WA_W, const PolygonMesh& mesh) {
-  const MeshPoint nearest = NearestMeshPoint(p_WA_W, mesh);
+  return PointMeshAt(p_WA_W, NearestMeshPoint(p_WA_W, mesh));
+}
+
+SphereMeshContact PointMeshAt(const Eigen::Vector3d& p_WA_W, const MeshPoint& nearest) {
   SphereMeshContact contact;
   contact.vertices = nearest.vertices;
   contact.weights = nearest.weights;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "contact/geometry/point_contact.h"
@@ -54,7 +55,12 @@ struct MeshPoint {
   bool interior = false;
 };
 
-/// The face point of `mesh` nearest to p [m] over all faces (the first of equals).
+/// The point of one face of `mesh` nearest to p [m]: the face of `size` (3 or 4) vertices whose
+/// indices start at face_vertices[first]. Preconditions (InternalError): 3 or 4 valid vertices.
+MeshPoint NearestFacePoint(const Eigen::Vector3d& p, const PolygonMesh& mesh, std::size_t first, int size);
+
+/// The face point of `mesh` nearest to p [m] over all faces (the first of equals): O(faces);
+/// contact/pcm/nearest_face.h finds the same point through a bounding-volume hierarchy.
 /// Preconditions (InternalError): faces of 3 or 4 valid vertices, at least one.
 MeshPoint NearestMeshPoint(const Eigen::Vector3d& p, const PolygonMesh& mesh);
 
@@ -80,5 +86,7 @@ SphereMeshContact SphereMesh(const Sphere& sphere, const PolygonMesh& mesh);
 /// |p - c|: a node level with the face's edge, as where two meshes' nodes meet); elsewhere p is off
 /// the surface and n = (p - c) / |p - c|, g_N = |p - c| > 0. p_WB_W = c.
 SphereMeshContact PointMesh(const Eigen::Vector3d& p_WA_W, const PolygonMesh& mesh);
+/// PointMesh with the nearest face point already found (`nearest`, NearestMeshPoint's of p_WA_W).
+SphereMeshContact PointMeshAt(const Eigen::Vector3d& p_WA_W, const MeshPoint& nearest);
 
 }  // namespace flexmbs::contact

@@ -84,6 +84,8 @@ class Bvh {
   const std::vector<int>& faces() const { return faces_; }
   /// The (swept) box of each face, by face index.
   const std::vector<Aabb>& face_boxes() const { return face_boxes_; }
+  /// Where each face's vertices start in the mesh's face_vertices, by face index.
+  const std::vector<int>& face_offsets() const { return face_offsets_; }
 
  private:
   int Build(int begin, int end, std::vector<Eigen::Vector3d>& centres);
