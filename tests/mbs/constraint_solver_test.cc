@@ -67,8 +67,13 @@ struct Tree {
     std::mt19937 rng(seed);
     for (int k = 0; k < kBodies; ++k) system.AddBody(RandomRigidBody(rng, "body" + std::to_string(k), 3));
     for (int k = 0; k < kBodies; ++k) {
-      const MarkerRef parent = k == 0 ? MarkerRef::Ground(RandomVector(rng), RandomRotation(rng))
-                                      : system.Marker("body" + std::to_string((k - 1) / 2), k % 2 == 1 ? "m1" : "m2");
+      MarkerRef parent;
+      if (k == 0) {
+        const Eigen::Vector3d p_WP_W = RandomVector(rng);
+        parent = MarkerRef::Ground(p_WP_W, RandomRotation(rng));
+      } else {
+        parent = system.Marker("body" + std::to_string((k - 1) / 2), k % 2 == 1 ? "m1" : "m2");
+      }
       system.AddJoint(Joint("joint" + std::to_string(k), JointType::kRevolute, parent,
                             system.Marker("body" + std::to_string(k), "m0")));
     }

@@ -16,6 +16,7 @@
 
 #include "mbs/event_driven_contacts.h"
 #include "tests/mbs/moreau_jean_support.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::mbs {
 namespace {
@@ -84,8 +85,9 @@ TEST(EventDrivenPoisson, FourFeetStrikingAtOnceFollowTheTwoPhasesAndNeverGainEne
   constexpr int kTrials = 200;
   for (int trial = 0; trial < kTrials; ++trial) {
     const double e = 0.5 * (1.0 + unit(random));
-    const Eigen::Vector3d v(unit(random), unit(random), -0.2 - std::abs(unit(random)));
-    const Eigen::Vector3d w_B(10.0 * unit(random), 10.0 * unit(random), 10.0 * unit(random));
+    const Eigen::Vector3d draw = flexmbs::testing::DrawVector3(unit, random);
+    const Eigen::Vector3d v(draw.x(), draw.y(), -0.2 - std::abs(draw.z()));
+    const Eigen::Vector3d w_B = 10.0 * flexmbs::testing::DrawVector3(unit, random);
     testing::ContactScene scene = testing::BlockOnIncline(0.0, 0.0, 0.0, e);
     VectorXd u(6);
     u << v, w_B;

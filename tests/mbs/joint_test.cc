@@ -100,7 +100,8 @@ struct Fixture {
   Fixture(const JointCase& c, std::mt19937& rng, double t) : system(Eigen::Vector3d(0.0, 0.0, -9.81)) {
     MarkerRef I;
     if (c.ground_i) {
-      I = MarkerRef::Ground(RandomVector(rng), RandomRotation(rng));
+      const Eigen::Vector3d p_WI_W = RandomVector(rng);
+      I = MarkerRef::Ground(p_WI_W, RandomRotation(rng));
     } else {
       I = MarkerRef::OnBody(system.AddBody(RandomRigidBody(rng, "i")), 0);
     }
@@ -108,7 +109,10 @@ struct Fixture {
     body_j = &dynamic_cast<const RigidBody&>(system.body(j));
     system.AddJoint(Joint("joint", c.type, I, MarkerRef::OnBody(j, 1), c.driver));
     y = system.NeutralState();
-    if (!c.ground_i) system.SetBodyState(0, RigidPositions(RandomVector(rng), RandomRotation(rng)), Eigen::VectorXd::Zero(6), y);
+    if (!c.ground_i) {
+      const Eigen::Vector3d p_WBo_W = RandomVector(rng);
+      system.SetBodyState(0, RigidPositions(p_WBo_W, RandomRotation(rng)), Eigen::VectorXd::Zero(6), y);
+    }
     Assemble(c, rng, t);
     // Random velocities: not consistent with the joint, which the derivatives must not need.
     for (Eigen::Index k = system.num_positions(); k < y.size(); ++k) y(k) = std::uniform_real_distribution<double>(-2.0, 2.0)(rng);

@@ -13,13 +13,16 @@
 #include "mbs/body.h"
 #include "mbs/multibody_system.h"
 #include "mbs/rigid_body.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::mbs::testing {
 
 /// A random rotation (uniform enough for tests).
 inline Eigen::Matrix3d RandomRotation(std::mt19937& rng) {
   std::normal_distribution<double> normal;
-  return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized().toRotationMatrix();
+  const double w = normal(rng);
+  const Eigen::Vector3d xyz = flexmbs::testing::DrawVector3(normal, rng);
+  return Eigen::Quaterniond(w, xyz.x(), xyz.y(), xyz.z()).normalized().toRotationMatrix();
 }
 
 /// A random vector with entries in [-scale, scale].
@@ -33,7 +36,7 @@ inline Eigen::Vector3d RandomVector(std::mt19937& rng, double scale = 1.0) {
 inline Eigen::Matrix3d RandomInertia(std::mt19937& rng) {
   std::uniform_real_distribution<double> moment(1.0, 2.0);
   const Eigen::Matrix3d R = RandomRotation(rng);
-  return R * Eigen::Vector3d(moment(rng), moment(rng), moment(rng)).asDiagonal() * R.transpose();
+  return R * flexmbs::testing::DrawVector3(moment, rng).asDiagonal() * R.transpose();
 }
 
 /// A rigid body with random mass properties and markers "m0".."m{count-1}" at random poses.
@@ -45,7 +48,10 @@ inline std::unique_ptr<RigidBody> RandomRigidBody(std::mt19937& rng, const std::
     list.push_back({marker_name, RandomVector(rng, 0.5), RandomRotation(rng)});
   }
   std::uniform_real_distribution<double> mass(1.0, 3.0);
-  return std::make_unique<RigidBody>(name, mass(rng), RandomVector(rng, 0.3), RandomInertia(rng), std::move(list));
+  const double m = mass(rng);
+  const Eigen::Vector3d p_BoCm_B = RandomVector(rng, 0.3);
+  const Eigen::Matrix3d inertia = RandomInertia(rng);
+  return std::make_unique<RigidBody>(name, m, p_BoCm_B, inertia, std::move(list));
 }
 
 /// x = [p_WBo_W, e] of a pose.
