@@ -1,6 +1,7 @@
 // `flexmbs simulate`: load a scene, integrate it and write its results file.
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fmt/format.h>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -103,6 +104,9 @@ mbs::ResultsSample Sample(const mbs::Scene& scene, double t, const Eigen::Vector
   sample.element_rows = GearRows(system, t, y);
   sample.kinetic_energy = system.KineticEnergy(y);
   sample.potential_energy = system.PotentialEnergy(t, y);
+  const mbs::ConstraintResidual residual = mbs::MeasureConstraints(system, t, y);
+  sample.constraint_position = residual.position;
+  sample.constraint_velocity = residual.velocity;
   return sample;
 }
 
@@ -237,7 +241,24 @@ void Report(const SimulateOptions& options, const mbs::Scene& scene, const mbs::
   }
 }
 
+/// Wall-clock and process CPU time since it was made, summed into a part of the run's times.
+class PartClock {
+ public:
+  PartClock() : wall_(std::chrono::steady_clock::now()), cpu_(std::clock()) {}
+  /// Adds the time since construction to `part`.
+  void AddTo(mbs::PartTime& part) const {
+    part.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_).count();
+    part.cpu_seconds += static_cast<double>(std::clock() - cpu_) / CLOCKS_PER_SEC;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point wall_;
+  std::clock_t cpu_;
+};
+
 void RunSimulate(const SimulateOptions& options) {
+  const PartClock setup_clock;
+  mbs::RunTimes times;
   CheckOutputFolder("-o", options.output);
   const mbs::Scene scene = mbs::LoadScene(options.scene_file, SimulateSceneHooks());
   // Checked (and projected if slightly off) before the results file exists, so a refused
@@ -261,24 +282,40 @@ void RunSimulate(const SimulateOptions& options) {
   mbs::MoreauJeanStepReport contacts;  // the output interval that ended at the output time
   auto record_contacts = [&](double, const mbs::MoreauJeanStepReport& step) { contacts = step; };
   auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda) {
+    const PartClock output_clock;
     const mbs::ResultsSample sample = Sample(scene, t, y, lambda, contacts);
     if (std::isnan(energy_start)) energy_start = sample.kinetic_energy + sample.potential_energy;
     energy_end = sample.kinetic_energy + sample.potential_energy;
     writer.Append(sample);
     if (paraview) paraview->Record(t, y, contacts);
     progress.Show(fmt::format("t = {:.6g} s of {:g} s", t, end_time));
+    output_clock.AddTo(times.output);
+  };
+  auto record_event = [&](const mbs::ContactEvent& event) {
+    const PartClock output_clock;
+    writer.AppendEvent(event);
+    output_clock.AddTo(times.output);
+  };
+  setup_clock.AddTo(times.setup);
+  // The integration's time is the Simulate call's less the output inside it.
+  const PartClock run_clock;
+  auto finish = [&](std::string_view termination, bool complete) {
+    run_clock.AddTo(times.integration);
+    times.integration.wall_seconds -= times.output.wall_seconds;
+    times.integration.cpu_seconds -= times.output.cpu_seconds;
+    writer.WriteStatistics(times);
+    writer.Finish(termination, complete);
   };
   mbs::SimulationStatistics stats;
   try {
-    stats = mbs::Simulate(*scene.system, scene.options, y0, record, record_contacts,
-                          [&](const mbs::ContactEvent& event) { writer.AppendEvent(event); });
+    stats = mbs::Simulate(*scene.system, scene.options, y0, record, record_contacts, record_event);
   } catch (const mbs::SimulationError& e) {
     progress.Clear();
-    writer.Finish(e.what(), false);
+    finish(e.what(), false);
     throw;
   }
   progress.Clear();
-  writer.Finish("end time reached");
+  finish("end time reached", true);
   stats.initial_conditions = initial;
   Report(options, scene, stats, advice, energy_start, energy_end);
 }

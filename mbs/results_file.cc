@@ -52,7 +52,7 @@ EventSeries CreateEvents(h5::Group& root) {
 
 struct ResultsWriter::Impl {
   h5::File file;
-  std::optional<h5::AppendableDataset> time, kinetic, potential, total;
+  std::optional<h5::AppendableDataset> time, kinetic, potential, total, constraint_position, constraint_velocity;
   std::vector<BodySeries> bodies;
   std::vector<JointSeries> joints;
   std::vector<ContactSeries> contacts;
@@ -106,6 +106,9 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsLay
   impl_->kinetic = energy.CreateAppendable("kinetic", {}, "J");
   impl_->potential = energy.CreateAppendable("potential", {}, "J");
   impl_->total = energy.CreateAppendable("total", {}, "J");
+  h5::Group constraints = root.CreateGroup("constraints");
+  impl_->constraint_position = constraints.CreateAppendable("position_residual", {}, "m or rad");
+  impl_->constraint_velocity = constraints.CreateAppendable("velocity_residual", {}, "m/s or rad/s");
   h5::Group bodies = root.CreateGroup("bodies");
   for (const ResultsLayout::Body& body : layout.bodies) impl_->bodies.push_back(CreateBody(bodies, body));
   h5::Group joints = root.CreateGroup("joints");
@@ -221,6 +224,8 @@ void ResultsWriter::Append(const ResultsSample& sample) {
   impl.kinetic->AppendRow(sample.kinetic_energy);
   impl.potential->AppendRow(sample.potential_energy);
   impl.total->AppendRow(sample.kinetic_energy + sample.potential_energy);
+  impl.constraint_position->AppendRow(sample.constraint_position);
+  impl.constraint_velocity->AppendRow(sample.constraint_velocity);
   // Time last: a reader takes the length of /time as the number of complete samples.
   impl.time->AppendRow(sample.time);
   const double since_flush =
@@ -246,6 +251,24 @@ void ResultsWriter::AppendEvent(const ContactEvent& event) {
   const double since_flush =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - impl.last_flush).count();
   if (since_flush >= impl.flush_interval_seconds) Flush();
+}
+
+void ResultsWriter::WriteStatistics(const RunTimes& times) {
+  Impl& impl = *impl_;
+  FLEXMBS_CHECK(!impl.finished && !impl.file.root().HasGroup("statistics"),
+                "statistics written twice, or after the results file was finished");
+  h5::Group group = impl.file.root().CreateGroup("statistics");
+  const PartTime total{times.setup.wall_seconds + times.integration.wall_seconds + times.output.wall_seconds,
+                       times.setup.cpu_seconds + times.integration.cpu_seconds + times.output.cpu_seconds};
+  const PartTime parts[] = {times.setup, times.integration, times.output, total};
+  Eigen::Vector4d wall, cpu;
+  for (int k = 0; k < 4; ++k) {
+    wall(k) = parts[k].wall_seconds;
+    cpu(k) = parts[k].cpu_seconds;
+  }
+  group.WriteStrings("parts", {"setup", "integration", "output", "total"});
+  group.WriteVector("wall_seconds", wall, "s");
+  group.WriteVector("cpu_seconds", cpu, "s");
 }
 
 void ResultsWriter::Flush() {

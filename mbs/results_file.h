@@ -84,6 +84,10 @@ struct ResultsSample {
   std::vector<Eigen::Vector3d> joint_torques;
   double kinetic_energy = 0.0;
   double potential_energy = 0.0;
+  /// The constraints' drift: max |g_k| over the kept rows [m for translations, 1 (about rad) for
+  /// rotations] and max |(G u + g_t)_k| [m/s, rad/s] (MeasureConstraints); 0 without joints.
+  double constraint_position = 0.0;
+  double constraint_velocity = 0.0;
   /// One unilateral contact at an output time: its gap [m], the impulses [N s] summed over the
   /// Moreau-Jean steps since the last output, and whether it was active in any of them
   /// (mbs/moreau_jean_simulation.h).
@@ -97,6 +101,19 @@ struct ResultsSample {
   std::vector<ContactSample> contacts;
   /// Per ResultsLayout::ElementSeries, per channel its row (max(width, 1) values).
   std::vector<std::vector<Eigen::VectorXd>> element_rows;
+};
+
+/// Wall-clock and CPU (process) seconds of one part of a run.
+struct PartTime {
+  double wall_seconds = 0.0;
+  double cpu_seconds = 0.0;
+};
+
+/// Where a run's time went, written as statistics/ (ResultsWriter::WriteStatistics): the setup
+/// (scene, initial state, results file), the integration (the integrator with its contact solves
+/// and events, output excluded) and the output (samples, events, ParaView frames).
+struct RunTimes {
+  PartTime setup, integration, output;
 };
 
 /// Writes a results file sample by sample.
@@ -116,6 +133,9 @@ class ResultsWriter {
   /// before and after, normal impulse, kinetic energies before and after, closed after);
   /// flushes as Append. Precondition: the layout has events (InternalError otherwise).
   void AppendEvent(const ContactEvent& event);
+  /// Writes statistics/ (docs/results.md): `parts` (setup, integration, output, total) and per part
+  /// `wall_seconds` and `cpu_seconds`. At most once, before Finish (InternalError otherwise).
+  void WriteStatistics(const RunTimes& times);
   /// Writes everything so far to disk.
   void Flush();
   /// Records why the run ended (`termination`: "end time reached", "failed at t = ...") and

@@ -1,12 +1,15 @@
 """A one-page summary and the pictures of a `flexmbs simulate` results file.
 
 Reads only the datasets docs/results.md documents. Prints the run's termination, duration and
-samples, the energies at start and end with the largest rise between two outputs, per joint the
+samples, the energies at start and end with the largest rise between two outputs, the
+constraints' drift (the largest position and velocity residual, and at the end), where the run's
+time went (statistics/: wall and CPU seconds of setup, integration and output), per joint the
 largest force and torque, per contact the outputs it was active and sliding in and its summed
 normal impulse, the events by kind, and per gear the mean mesh force, the pairs in contact and
 the transmission error's range. Writes PNG files named after the results file:
 
   <stem>_energy.png            kinetic, potential and total energy over time
+  <stem>_constraints.png       the constraints' position and velocity residuals over time (with joints)
   <stem>_modes_<body>.png      a flexible body's modal coordinates over time
   <stem>_contact_<c>.png       a contact's gap and its normal impulse per output interval (a force)
   <stem>_gear_<g>.png          a gear mesh's force, tooth pairs in contact, transmission error
@@ -40,7 +43,7 @@ def sample_count(f):
 
     def visit(name, obj):
         top = name.split("/")[0]
-        if isinstance(obj, h5py.Dataset) and top in ("energy", "bodies", "joints", "contacts", "gears") \
+        if isinstance(obj, h5py.Dataset) and top in ("energy", "constraints", "bodies", "joints", "contacts", "gears") \
                 and not name.endswith("mode_names"):
             lengths.append(obj.shape[0])
 
@@ -72,6 +75,29 @@ def summarise_run(f, n):
         k = int(np.argmax(rise))
         lines.append(f"energy largest rise between outputs: {rise[k]:.3g} J at t = {t[k + 1]:.6g} s")
     return lines
+
+
+def summarise_constraints(f, n):
+    """The constraints' drift: the largest position and velocity residuals, their times, the end's."""
+    if "constraints" not in f or not members(f, "joints"):
+        return []
+    t = series(f, "time", n)
+    lines = []
+    for name, unit in (("position", "m or rad"), ("velocity", "m/s or rad/s")):
+        r = series(f["constraints"], f"{name}_residual", n)
+        k = int(np.argmax(r))
+        lines.append(f"constraint drift {name}: largest {r[k]:.3g} {unit} at t = {t[k]:.6g} s, end {r[-1]:.3g}")
+    return lines
+
+
+def summarise_statistics(f):
+    """Where the run's time went: wall and CPU seconds per part (statistics/)."""
+    if "statistics" not in f:
+        return []
+    g = f["statistics"]
+    parts = [text(p) for p in g["parts"][:]]
+    wall, cpu = g["wall_seconds"][:], g["cpu_seconds"][:]
+    return [f"time {part}: wall {w:.4g} s, cpu {c:.4g} s" for part, w, c in zip(parts, wall, cpu)]
 
 
 def summarise_bodies(f, n):
@@ -158,6 +184,20 @@ def plot_energy(f, n, path):
     save(fig, path)
 
 
+def plot_constraints(f, n, path):
+    """The constraints' position and velocity residuals over time (log scale)."""
+    fig, ax = plt.subplots(figsize=(7, 3.8))
+    t = series(f, "time", n)
+    for name, unit in (("position", "m or rad"), ("velocity", "m/s or rad/s")):
+        r = series(f["constraints"], f"{name}_residual", n)
+        ax.semilogy(t, np.maximum(r, 1e-300), label=f"{name} residual [{unit}]")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("largest constraint residual")
+    ax.set_title("constraint drift")
+    ax.legend()
+    save(fig, path)
+
+
 def plot_modes(f, n, body, path):
     """A flexible body's modal coordinates over time, one line per mode."""
     g = f["bodies"][body]
@@ -235,10 +275,13 @@ def main():
             return 1
         n = sample_count(f)
         print(f"results: {args.results} (schema {int(f.attrs['schema_version'])})")
-        for line in (summarise_run(f, n) + summarise_bodies(f, n) + summarise_joints(f, n)
-                     + summarise_contacts(f, n) + summarise_events(f) + summarise_gears(f, n)):
+        for line in (summarise_run(f, n) + summarise_constraints(f, n) + summarise_statistics(f)
+                     + summarise_bodies(f, n) + summarise_joints(f, n) + summarise_contacts(f, n)
+                     + summarise_events(f) + summarise_gears(f, n)):
             print(line)
         plot_energy(f, n, stem + "_energy.png")
+        if "constraints" in f and members(f, "joints"):
+            plot_constraints(f, n, stem + "_constraints.png")
         for b in members(f, "bodies"):
             if text(f["bodies"][b].attrs["kind"]) == "flexible":
                 plot_modes(f, n, b, f"{stem}_modes_{b}.png")

@@ -120,6 +120,35 @@ TEST(ResultsFile, ElementSeriesRoundTripUnderTheirFolder) {
   EXPECT_GT(VerifyResultsFile(path).datasets, 0);
 }
 
+// The constraints' drift per sample and the run's statistics/ (parts, wall and CPU seconds, the
+// total their sum); statistics are written once.
+TEST(ResultsFile, ConstraintResidualsAndStatisticsRoundTrip) {
+  const fs::path path = TempPath("statistics.h5");
+  {
+    ResultsWriter writer(path, Layout());
+    for (int k = 0; k < 3; ++k) {
+      ResultsSample sample = Sample(0.1 * k);
+      sample.constraint_position = 1e-12 * k;
+      sample.constraint_velocity = 2e-9 * k;
+      writer.Append(sample);
+    }
+    writer.WriteStatistics({{1.5, 1.25}, {4.0, 3.5}, {0.5, 0.25}});
+    EXPECT_THROW(writer.WriteStatistics({}), InternalError);
+    writer.Finish("end time reached");
+  }
+  const h5::File file = h5::File::Open(path);
+  const h5::Group constraints = file.root().OpenGroup("constraints");
+  EXPECT_EQ(constraints.ReadVector("position_residual"), Eigen::Vector3d(0.0, 1e-12, 2e-12));
+  EXPECT_EQ(constraints.ReadVector("velocity_residual")(2), 4e-9);
+  EXPECT_EQ(constraints.ReadUnits("position_residual"), "m or rad");
+  const h5::Group statistics = file.root().OpenGroup("statistics");
+  EXPECT_EQ(statistics.ReadStrings("parts"), (std::vector<std::string>{"setup", "integration", "output", "total"}));
+  EXPECT_EQ(statistics.ReadVector("wall_seconds"), Eigen::Vector4d(1.5, 4.0, 0.5, 6.0));
+  EXPECT_EQ(statistics.ReadVector("cpu_seconds"), Eigen::Vector4d(1.25, 3.5, 0.25, 5.0));
+  EXPECT_EQ(statistics.ReadUnits("cpu_seconds"), "s");
+  EXPECT_GT(VerifyResultsFile(path).datasets, 0);
+}
+
 TEST(ResultsFile, KilledWriterLeavesEveryFlushedSampleReadable) {
   const fs::path path = TempPath("killed.h5");
   constexpr int kFlushedSamples = 10;

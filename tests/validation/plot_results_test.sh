@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/plot_results.py on two runs made here: the bouncing ball event-driven
 # (cases/03_bouncing_ball) and the spur gear pair (tests/data/spur_gear_pair.yaml). Checks the
-# summary's lines against closed forms and that every picture is a non-empty PNG.
+# summary's lines against closed forms and the file's data (constraint drift, time per part), and
+# that every picture is a non-empty PNG.
 # Usage: plot_results_test.sh path/to/flexmbs out_dir
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -65,7 +66,57 @@ expect "gear mesh" "pairs in contact 1 .. 2"
 r_b2="$(awk 'BEGIN { print 2e-3 * 31 * cos(20 * atan2(0, -1) / 180) / 2 }')"
 near "gear mesh" "mean mesh force" "$(awk -v r="$r_b2" 'BEGIN { printf "%.9g", 10 / r }')" 3.5e-3  # measured 3.4e-4 (the start's ringing)
 expect "joint wheel_axis" "largest |force|"
-expect_png "$out/gear_plots/gears_energy.png" "$out/gear_plots/gears_gear_mesh.png"
+expect_png "$out/gear_plots/gears_energy.png" "$out/gear_plots/gears_gear_mesh.png" "$out/gear_plots/gears_constraints.png"
+
+# The report's constraint drift and time lines against the file's data: the largest residual, its
+# time and the end's value as constraints/ holds them, each part's wall and CPU seconds as
+# statistics/ holds them, the total their sum, the parts non-negative; the explicit run's drift
+# within its projection (|g| <= 1e-8).
+/usr/bin/python3 - "$out/gears.h5" "$summary" <<'PY' || failures=$((failures + 1))
+import re
+import sys
+
+import h5py
+import numpy as np
+
+f = h5py.File(sys.argv[1], "r")
+lines = open(sys.argv[2]).read().splitlines()
+bad = []
+
+
+def line(start):
+    found = [l for l in lines if l.startswith(start)]
+    if len(found) != 1:
+        bad.append(f"no single line '{start}'")
+        return ""
+    return found[0]
+
+
+def close(a, b, rel):
+    return abs(a - b) <= rel * max(abs(b), 1e-300)
+
+
+t = f["time"][:]
+for name in ("position", "velocity"):
+    r = f[f"constraints/{name}_residual"][:]
+    m = re.search(r"largest (\S+) .* at t = (\S+) s, end (\S+)$", line(f"constraint drift {name}:"))
+    if not m or not close(float(m[1]), r.max(), 5e-3) or not close(float(m[2]), t[np.argmax(r)], 1e-5) \
+            or not close(float(m[3]), r[-1], 5e-3):
+        bad.append(f"constraint drift {name}: {m and m.groups()} against {r.max()}, {t[np.argmax(r)]}, {r[-1]}")
+if f["constraints/position_residual"][:].max() > 1e-8:
+    bad.append(f"position drift {f['constraints/position_residual'][:].max():.3g} above 1e-8")
+parts = [p.decode() for p in f["statistics/parts"][:]]
+wall, cpu = f["statistics/wall_seconds"][:], f["statistics/cpu_seconds"][:]
+if parts != ["setup", "integration", "output", "total"] or (wall < 0).any() or (cpu < 0).any() \
+        or not close(wall[3], wall[:3].sum(), 1e-12) or not close(cpu[3], cpu[:3].sum(), 1e-12) or wall[1] <= 0:
+    bad.append(f"statistics {parts} {wall} {cpu}")
+for part, w, c in zip(parts, wall, cpu):
+    m = re.search(r"wall (\S+) s, cpu (\S+) s$", line(f"time {part}:"))
+    if not m or not close(float(m[1]), w, 1e-3) or not close(float(m[2]), c, 1e-3):
+        bad.append(f"time {part}: {m and m.groups()} against {w}, {c}")
+print("\n".join(f"FAIL: {b}" for b in bad) or "ok: constraint drift and time lines match constraints/ and statistics/")
+sys.exit(1 if bad else 0)
+PY
 
 # Not a results file: one line naming it and why, exit 1.
 refused() {
