@@ -6,7 +6,8 @@
 // time and the process's CPU time are given: on a machine shared with other jobs the CPU time
 // is the steadier measure.
 //
-// --parts 1 adds where the checksums' cost goes (sid_file_parts.h).
+// Each body is written and read in the previous schema (4: SHA-256 content digest) and the
+// current one (5: XXH3-128). --parts 1 adds where the checksums' cost goes (sid_file_parts.h).
 //
 //   bench_sid_file [--dofs 100000,512000] [--modes 20] [--repeat 3] [--dir /tmp] [--parts 0|1]
 #include <fmt/format.h>
@@ -70,15 +71,18 @@ int Run(int argc, char** argv) {
       return 2;
     }
   }
-  fmt::print("{:>9} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8}\n", "DOF", "modes", "file MB", "write s", "read s",
-             "write cpu", "read cpu");
+  fmt::print("{:>9} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8}\n", "DOF", "modes", "schema", "file MB", "write s",
+             "read s", "write cpu", "read cpu");
   for (const int d : dofs) {
     const sid::ReducedBody body = GeneratedBody(d, modes);
     const fs::path path = dir / fmt::format("bench_sid_file_{}.sid.h5", d);
-    const Seconds write = Fastest(repeat, [&] { sid::WriteReducedBody(path, body); });
-    const Seconds read = Fastest(repeat, [&] { sid::ReadReducedBody(path); });
-    fmt::print("{:>9} {:>6} {:>8.1f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f}\n", d, modes,
-               static_cast<double>(fs::file_size(path)) / 1e6, write.wall, read.wall, write.cpu, read.cpu);
+    // The previous schema (SHA-256 digest) and the current one (XXH3-128), in turns.
+    for (const int schema : {sid::kSidOldestReadableSchemaVersion, sid::kSidSchemaVersion}) {
+      const Seconds write = Fastest(repeat, [&] { sid::WriteReducedBody(path, body, schema); });
+      const Seconds read = Fastest(repeat, [&] { sid::ReadReducedBody(path); });
+      fmt::print("{:>9} {:>6} {:>6} {:>8.1f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f}\n", d, modes, schema,
+                 static_cast<double>(fs::file_size(path)) / 1e6, write.wall, read.wall, write.cpu, read.cpu);
+    }
     fs::remove(path);
     if (parts) PrintChecksumParts(body, dir, repeat);
   }

@@ -13,6 +13,8 @@
 #include "bench/cpu_and_wall_time.h"
 #include "core/fletcher32.h"
 #include "core/h5_file.h"
+#include "core/sha256.h"
+#include "core/xxh3.h"
 #include "sid/sid_digest.h"
 
 // HDF5's own Fletcher32, the function its filter calls (exported, not in its public headers).
@@ -70,7 +72,26 @@ void PrintChecksumParts(const sid::ReducedBody& body, const std::filesystem::pat
     fmt::print("    {:<46} {:>7.4f} s {:>6.2f} GB/s of phi\n", what, seconds, mb / 1e3 / seconds);
   };
   std::uint32_t sink = 0;
-  line("content digest (SHA-256 of the whole body)", Fastest(repeat, [&] { sink += ContentDigest(body).size(); }).cpu);
+  line("content digest, SHA-256 (schema 4)",
+       Fastest(repeat, [&] { sink += ContentDigest(body, sid::DigestAlgorithm::kSha256).size(); }).cpu);
+  line("content digest, XXH3-128 (schema 5)",
+       Fastest(repeat, [&] { sink += ContentDigest(body, sid::DigestAlgorithm::kXxh3_128).size(); }).cpu);
+  line("SHA-256 over phi", Fastest(repeat, [&] { sink += Sha256Hex(bytes).size(); }).cpu);
+  line("XXH3-128 over phi", Fastest(repeat, [&] { sink += Xxh3_128Hex(bytes).size(); }).cpu);
+  // Whether the two sums should share a pass: each over all of phi in turn (phi read twice from
+  // memory), against both over each 64 KiB block while it is in cache.
+  line("Fletcher32, then XXH3-128, over phi", Fastest(repeat, [&] {
+         sink += Fletcher32(bytes) + static_cast<std::uint32_t>(Xxh3_128Hex(bytes).size());
+       }).cpu);
+  line("both per 64 KiB block of phi, one pass", Fastest(repeat, [&] {
+         Xxh3_128 hash;
+         for (std::size_t start = 0; start < bytes.size(); start += std::size_t{1} << 16) {
+           const std::span<const std::byte> block = bytes.subspan(start, std::min(bytes.size() - start, std::size_t{1} << 16));
+           sink += Fletcher32(block);
+           hash.Update(block.data(), block.size());
+         }
+         sink += static_cast<std::uint32_t>(hash.HexDigest().size());
+       }).cpu);
   line("Fletcher32 over phi, flexmbs", Fastest(repeat, [&] { sink += Fletcher32(bytes); }).cpu);
   line("Fletcher32 over phi, HDF5's",
        Fastest(repeat, [&] { sink += H5_checksum_fletcher32(bytes.data(), bytes.size()); }).cpu);

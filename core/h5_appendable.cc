@@ -153,7 +153,7 @@ void AppendableDataset::AppendRow(std::span<const double> row) {
   Check(H5Dwrite(id_, H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                  row.data()),
         file, path_, "write the row");
-  digest_->sha.Update(row.data(), row.size() * sizeof(double));
+  digest_->hash.Update(row.data(), row.size() * sizeof(double));
   ++rows_;
   digest_->rows = rows_;
 }

@@ -21,19 +21,19 @@
 
 #include "core/error.h"
 #include "core/h5_file.h"
-#include "core/sha256.h"
+#include "core/xxh3.h"
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "h5_file.h stores hid_t as std::int64_t");
 
 namespace flexmbs::h5::detail {
 
-/// The running SHA-256 of an appendable dataset's rows, shared by the dataset and its file,
+/// The running XXH3-128 of an appendable dataset's rows, shared by the dataset and its file,
 /// which records it at every Flush and at Commit (files written in place).
 struct RowsDigest {
   hid_t id = H5I_INVALID_HID;
   std::string object;
   std::int64_t rows = 0;
-  Sha256 sha;
+  Xxh3_128 hash;
 };
 
 /// What File, Group and AppendableDataset of one file share. Groups and datasets check `open`
@@ -195,7 +195,7 @@ void RequireChecksum(const FileState& file, const DatasetView& view, const std::
 // ------------------------------------------------------------------------------------------
 // SHA-256 of a dataset's values, for files written in place (defined in h5_digest.cc)
 
-/// Writes the attributes `sha256` (hex digest) and `sha256_rows` (the leading rows it covers)
+/// Writes the attributes `xxh3_128` (hex digest) and `xxh3_128_rows` (the leading rows it covers)
 /// of the dataset `id` named `object`. Files written in place use the HDF5 1.8 format, whose
 /// chunk index has no checksum: a damaged chunk address could point at zeros, which pass
 /// Fletcher32. The digest, in the checksummed object header, catches that.
@@ -211,7 +211,8 @@ void WriteValuesDigestIfInPlace(const FileState& file, hid_t id, const std::stri
                                 std::size_t size, std::int64_t rows);
 
 /// Throws InputError naming `object` unless the values read (`bytes`, `row_bytes` per row, as
-/// stored: row-major) match the dataset's `sha256` attribute, if it has one.
+/// stored: row-major) match the dataset's `xxh3_128` attribute (XXH3-128), or in files written
+/// before it its `sha256` attribute (SHA-256), if it has one.
 void CheckValuesDigest(const FileState& file, const DatasetView& view, const std::string& object, const void* bytes,
                        std::size_t row_bytes);
 

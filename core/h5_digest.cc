@@ -1,4 +1,5 @@
-// core/h5_detail.h: the SHA-256 of a dataset's values in files written in place.
+// core/h5_detail.h: the hash of a dataset's values in files written in place: XXH3-128 since
+// 2026-11-27, SHA-256 before (still checked when a file has it).
 
 #include <fmt/format.h>
 #include <hdf5.h>
@@ -11,13 +12,25 @@
 
 #include "core/h5_detail.h"
 #include "core/sha256.h"
+#include "core/xxh3.h"
 
 namespace flexmbs::h5::detail {
 
 namespace {
 
-constexpr const char* kDigest = "sha256";
-constexpr const char* kDigestRows = "sha256_rows";
+constexpr const char* kDigest = "xxh3_128";
+constexpr const char* kDigestRows = "xxh3_128_rows";
+/// The attributes of files written before, checked with SHA-256.
+constexpr const char* kSha256Digest = "sha256";
+constexpr const char* kSha256DigestRows = "sha256_rows";
+
+/// The digest of the first `size` bytes at `bytes` with `Hash`.
+template <typename Hash>
+std::string HexDigestOf(const void* bytes, std::size_t size) {
+  Hash hash;
+  hash.Update(bytes, size);
+  return hash.HexDigest();
+}
 
 }  // namespace
 
@@ -45,31 +58,31 @@ void RecordRowDigests(FileState& file) {
   std::erase_if(file.row_digests, [](const std::weak_ptr<RowsDigest>& d) { return d.expired(); });
   for (const std::weak_ptr<RowsDigest>& weak : file.row_digests) {
     const std::shared_ptr<RowsDigest> digest = weak.lock();
-    WriteValuesDigest(file, digest->id, digest->object, digest->sha.HexDigestSoFar(), digest->rows);
+    WriteValuesDigest(file, digest->id, digest->object, digest->hash.HexDigest(), digest->rows);
   }
 }
 
 void WriteValuesDigestIfInPlace(const FileState& file, hid_t id, const std::string& object, const void* bytes,
                                 std::size_t size, std::int64_t rows) {
   if (file.mode != WriteMode::kInPlace) return;
-  Sha256 sha;
-  sha.Update(bytes, size);
-  WriteValuesDigest(file, id, object, sha.HexDigest(), rows);
+  WriteValuesDigest(file, id, object, HexDigestOf<Xxh3_128>(bytes, size), rows);
 }
 
 void CheckValuesDigest(const FileState& file, const DatasetView& view, const std::string& object, const void* bytes,
                        std::size_t row_bytes) {
   const hid_t id = view.dataset.get();
-  if (Check(H5Aexists(id, kDigest), file, object, "read the digest") <= 0) return;
-  const std::string stored = ReadStringAttribute(file, id, object, kDigest);
-  const std::int64_t rows = ReadIntegerAttribute(file, id, object, kDigestRows);
+  const bool xxh3 = Check(H5Aexists(id, kDigest), file, object, "read the digest") > 0;
+  if (!xxh3 && Check(H5Aexists(id, kSha256Digest), file, object, "read the digest") <= 0) return;
+  const std::string stored = ReadStringAttribute(file, id, object, xxh3 ? kDigest : kSha256Digest);
+  const std::int64_t rows = ReadIntegerAttribute(file, id, object, xxh3 ? kDigestRows : kSha256DigestRows);
   const std::uint64_t available = view.rank > 0 ? view.dims[0] : 1;
   if (rows < 0 || static_cast<std::uint64_t>(rows) > available) {
     Fail(file, object, fmt::format("its digest covers {} rows of {}", rows, available));
   }
-  Sha256 sha;
-  sha.Update(bytes, static_cast<std::size_t>(rows) * row_bytes);
-  if (sha.HexDigest() != stored) Fail(file, object, "the values do not match their SHA-256: the file is damaged");
+  const std::size_t size = static_cast<std::size_t>(rows) * row_bytes;
+  if ((xxh3 ? HexDigestOf<Xxh3_128>(bytes, size) : HexDigestOf<Sha256>(bytes, size)) != stored) {
+    Fail(file, object, fmt::format("the values do not match their {}: the file is damaged", xxh3 ? "XXH3-128" : "SHA-256"));
+  }
 }
 
 }  // namespace flexmbs::h5::detail

@@ -204,7 +204,7 @@ class Group {
 /// A dataset that grows by rows, for results written while a simulation runs. Obtain from
 /// Group::CreateAppendable. Rows written before a Flush survive a killed process when the
 /// file was created in WriteMode::kInPlace; there every Flush and the Commit also record the
-/// SHA-256 of the rows so far (attributes `sha256`, `sha256_rows`; docs/h5.md). Move-only.
+/// XXH3-128 of the rows so far (attributes `xxh3_128`, `xxh3_128_rows`; docs/h5.md). Move-only.
 class AppendableDataset {
  public:
   AppendableDataset(AppendableDataset&& other) noexcept;

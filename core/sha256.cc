@@ -29,12 +29,6 @@ std::string Sha256::HexDigest() {
   return hex;
 }
 
-std::string Sha256::HexDigestSoFar() const {
-  Sha256 copy;
-  FLEXMBS_CHECK(EVP_MD_CTX_copy_ex(copy.context_.get(), context_.get()) == 1, "OpenSSL SHA-256 copy failed");
-  return copy.HexDigest();
-}
-
 std::string Sha256Hex(std::span<const std::byte> bytes) {
   Sha256 sha;
   sha.Update(bytes.data(), bytes.size());

@@ -18,8 +18,6 @@ class Sha256 {
   void Update(const void* data, std::size_t size);
   /// The digest of everything added, as 64 lower-case hex digits. Call once.
   std::string HexDigest();
-  /// The digest of everything added so far; more can be added afterwards.
-  std::string HexDigestSoFar() const;
 
  private:
   std::unique_ptr<evp_md_ctx_st, void (*)(evp_md_ctx_st*)> context_;

@@ -213,6 +213,63 @@ std::pair<int, std::string> RunPython(const fs::path& script_path, const std::st
   return {::pclose(pipe), output};
 }
 
+// Files written in place carry per dataset the XXH3-128 of its values as stored (attributes
+// xxh3_128, xxh3_128_rows), for rows appended and flushed as for datasets written whole: h5py and
+// python3-xxhash compute the same from the file. Files written before carried a SHA-256 (sha256,
+// sha256_rows): one made so by h5py reads back, one whose SHA-256 or XXH3-128 does not match
+// its values is refused by name.
+TEST_F(H5FileTest, InPlaceDatasetsCarryTheXxh3OfTheirValuesAndAnEarlierSha256IsStillChecked) {
+  if (!SystemH5pyAvailable()) GTEST_SKIP() << "h5py is not installed for " << kSystemPython;
+  const fs::path path = dir_ / "results.h5";
+  const Eigen::MatrixXd K = Eigen::MatrixXd::Random(40, 7);
+  {
+    File file = File::Create(path, WriteMode::kInPlace);
+    Group root = file.root();
+    AppendableDataset q = root.CreateAppendable("q", {3}, "m");
+    for (int step = 0; step < 5; ++step) {
+      q.AppendRow(StateRow(step));
+      if (step == 2) q.Flush();
+    }
+    root.WriteMatrix("K", K, "N/m");
+    root.WriteMatrix("old_K", K, "N/m");
+    root.WriteMatrix("bad_K", K, "N/m");
+    file.Commit();
+  }
+  const std::string script = R"(import sys, hashlib, h5py, numpy, xxhash
+f = h5py.File(sys.argv[1], 'r+')
+for name in ('q', 'K'):
+    d = f[name]
+    values = d[()].astype('<f8').tobytes()
+    assert d.attrs['xxh3_128'].decode() == xxhash.xxh3_128_hexdigest(values), name
+    assert int(d.attrs['xxh3_128_rows']) == d.shape[0], (name, int(d.attrs['xxh3_128_rows']))
+def sha256_instead(name, values):
+    d = f[name]
+    del d.attrs['xxh3_128']
+    del d.attrs['xxh3_128_rows']
+    d.attrs['sha256'] = numpy.bytes_(hashlib.sha256(values).hexdigest())
+    d.attrs['sha256_rows'] = numpy.int64(d.shape[0])
+sha256_instead('old_K', f['old_K'][()].astype('<f8').tobytes())
+changed = f['q'][()].astype('<f8')
+changed[1, 2] += 1.0
+sha256_instead('q', changed.tobytes())
+changed = f['bad_K'][()].astype('<f8')
+changed[0, 0] *= -1.0
+f['bad_K'].attrs['xxh3_128'] = numpy.bytes_(xxhash.xxh3_128_hexdigest(changed.tobytes()))
+f.close()
+print('ok')
+)";
+  const auto [status, output] = RunPython(dir_ / "digests.py", script, path);
+  ASSERT_EQ(status, 0) << output;
+  ASSERT_EQ(output, "ok\n");
+  const File file = File::Open(path);
+  EXPECT_TRUE(file.root().ReadMatrix("K") == K);
+  EXPECT_TRUE(file.root().ReadMatrix("old_K") == K);
+  EXPECT_EQ(InputErrorOf([&] { file.root().ReadMatrix("q"); }),
+            path.string() + ": /q: the values do not match their SHA-256: the file is damaged");
+  EXPECT_EQ(InputErrorOf([&] { file.root().ReadMatrix("bad_K"); }),
+            path.string() + ": /bad_K: the values do not match their XXH3-128: the file is damaged");
+}
+
 TEST_F(H5FileTest, H5pySeesNaturalShapesUnitsAndUtf8Strings) {
   if (!SystemH5pyAvailable()) GTEST_SKIP() << "h5py is not installed for " << kSystemPython;
   const fs::path path = dir_ / "body.sid.h5";

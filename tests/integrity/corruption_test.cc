@@ -232,7 +232,7 @@ TEST_F(CorruptionTest, DamagedStringsAndAttributesAreRefusedOrHarmless) {
                        &ReadBody),
          "body strings and attributes overwritten");
   Report(DamageStrings(results, {"flexmbs-results", "end time reached", "flexible", "revolute", "normal_2", "rad/s",
-                                 "scene.yaml", "complete", "termination", "units"},
+                                 "scene.yaml", "complete", "termination", "units", "xxh3_128"},
                        &ReadResults),
          "results strings and attributes overwritten");
 }
