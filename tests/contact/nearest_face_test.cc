@@ -16,6 +16,7 @@
 #include "contact/geometry/sphere_surface.h"
 #include "contact/pcm/bvh.h"
 #include "contact/pcm/nearest_face.h"
+#include "tests/support/random_draws.h"
 
 namespace flexmbs::contact {
 namespace {
@@ -80,7 +81,7 @@ void Wave(PolygonMesh& mesh, double amplitude, double k, double phase) {
 void Jitter(PolygonMesh& mesh, double amplitude, std::mt19937& random) {
   std::uniform_real_distribution<double> uniform(-amplitude, amplitude);
   for (Eigen::Index v = 0; v < mesh.vertices_W.cols(); ++v) {
-    mesh.vertices_W.col(v) += Eigen::Vector3d(uniform(random), uniform(random), uniform(random));
+    mesh.vertices_W.col(v) += flexmbs::testing::DrawVector3(uniform, random);
   }
 }
 
@@ -117,7 +118,7 @@ std::vector<Eigen::Vector3d> QueryPoints(const PolygonMesh& mesh, const PolygonM
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   std::vector<Eigen::Vector3d> points;
   for (int k = 0; k < count; ++k) {
-    points.push_back(lo + (hi - lo).cwiseProduct(Eigen::Vector3d(uniform(random), uniform(random), uniform(random))));
+    points.push_back(lo + (hi - lo).cwiseProduct(flexmbs::testing::DrawVector3(uniform, random)));
   }
   for (Eigen::Index v = 0; v < mesh.vertices_W.cols(); ++v) points.push_back(mesh.vertices_W.col(v));
   for (Eigen::Index v = 0; v < aligned.vertices_W.cols(); ++v) points.push_back(aligned.vertices_W.col(v));

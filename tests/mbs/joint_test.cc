@@ -84,8 +84,10 @@ RelativePose AllowedPose(JointType type, std::mt19937& rng, double driven) {
       return {Rotation(z, angle(rng)), offset(rng) * z};
     case JointType::kSpherical:
       return {RandomRotation(rng), Eigen::Vector3d::Zero()};
-    case JointType::kUniversal:
-      return {Rotation(x, angle(rng)) * Rotation(y, angle(rng)), Eigen::Vector3d::Zero()};
+    case JointType::kUniversal: {
+      const double about_x = angle(rng);  // drawn first: the operands of * are evaluated in either order
+      return {Rotation(x, about_x) * Rotation(y, angle(rng)), Eigen::Vector3d::Zero()};
+    }
   }
   return {};
 }
