@@ -18,7 +18,8 @@ namespace {
 
 contact::SpurGearSpec ReadWheel(const YamlNode& node) {
   node.RejectUnknownKeys({"module", "teeth", "pressure_angle", "profile_shift",
-                          "addendum_coefficient", "dedendum_coefficient", "face_width"});
+                          "addendum_coefficient", "dedendum_coefficient", "face_width",
+                          "tip_relief"});
   contact::SpurGearSpec spec;
   spec.module = node.Required("module").AsDouble();
   spec.teeth = node.Required("teeth").AsInt();
@@ -30,6 +31,15 @@ contact::SpurGearSpec ReadWheel(const YamlNode& node) {
   spec.profile_shift = optional("profile_shift", 0.0);
   spec.addendum_coefficient = optional("addendum_coefficient", spec.addendum_coefficient);
   spec.dedendum_coefficient = optional("dedendum_coefficient", spec.dedendum_coefficient);
+  if (node.Has("tip_relief")) {  // {amount C_a [m], length L_Ca [m], shape linear|parabolic}
+    const YamlNode relief = node.Required("tip_relief");
+    relief.RejectUnknownKeys({"amount", "length", "shape"});
+    spec.tip_relief = relief.Required("amount").AsDouble();
+    spec.tip_relief_length = relief.Required("length").AsDouble();
+    if (relief.Has("shape")) {
+      spec.tip_relief_exponent = 1 + relief.Required("shape").AsChoice({"linear", "parabolic"});
+    }
+  }
   return spec;
 }
 

@@ -45,7 +45,7 @@ void AddSide(const GearPair& pair, double a, double phi1, double phi2, FlankSide
     const double s2 = line - g2.base_radius * tp.roll2;
     tp.tooth1 = ToothIndex(sigma, i1, g1.spec.teeth);
     tp.tooth2 = ToothIndex(sigma, i2, g2.spec.teeth);
-    tp.gap = s2 - s1;
+    tp.gap = s2 - s1 + TipRelief(g1, tp.roll1) + TipRelief(g2, tp.roll2);
     tp.p_O1C = g1.base_radius * n + 0.5 * (s1 + s2) * e;
     tp.n_12 = e;
     out.push_back(tp);

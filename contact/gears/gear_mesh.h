@@ -34,7 +34,9 @@ struct ToothPair {
 /// tooth k crosses it at s1 = r_b1 t1 from T1, t1 = alpha_w + sigma (phi1 + 2 pi k / z1) + psi_b1,
 /// wheel 2's at s2 = a sin(alpha_w) - r_b2 t2, t2 = alpha_w + pi + sigma (phi2 + 2 pi k / z2) +
 /// psi_b2, both normal to the line there, so the gap g = s2 - s1 = a sin(alpha_w) - r_b1 t1 - r_b2
-/// t2 is the exact normal distance of the two flanks. A pair is listed where both flank points
+/// t2 is the exact normal distance of the two flanks, plus both teeth's tip relief (TipRelief at
+/// t1 and t2: the relieved flanks taken as the involutes moved in along the line; a relief's
+/// slope turns the normal by C_a / L_Ca at most, left out). A pair is listed where both flank points
 /// exist (0 <= t_i <= tan(alpha_ai)); wheel 2's tooth is the one whose gap lies within half a base
 /// pitch of half the backlash at a (PairBacklash).
 std::vector<ToothPair> MeshingToothPairs(const GearPair& pair, double centre_distance, double phi1,

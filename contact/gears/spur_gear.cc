@@ -33,6 +33,25 @@ void CheckSpec(const SpurGearSpec& spec) {
   RequirePositive("addendum coefficient", spec.addendum_coefficient);
   RequirePositive("dedendum coefficient", spec.dedendum_coefficient);
   RequirePositive("face width [m]", spec.face_width);
+  RequireNonNegative("tip relief C_a [m]", spec.tip_relief);
+  if (spec.tip_relief > 0.0) {
+    RequirePositive("tip relief length L_Ca [m]", spec.tip_relief_length);
+    if (spec.tip_relief_exponent != 1 && spec.tip_relief_exponent != 2) {
+      throw InputError(fmt::format("tip relief exponent {} must be 1 (linear) or 2 (parabolic)",
+                                   spec.tip_relief_exponent));
+    }
+  }
+}
+
+/// A tip relief that starts at or below the base circle (L_Ca >= r_b tan(alpha_a)).
+void CheckTipRelief(const SpurGear& gear) {
+  if (gear.spec.tip_relief > 0.0 &&
+      !(gear.spec.tip_relief_length < gear.base_radius * gear.tip_roll)) {
+    throw InputError(fmt::format(
+        "tip relief length L_Ca {} m must be < r_b tan(alpha_a) = {:.6g} m (the relief would "
+        "start below the base circle)",
+        gear.spec.tip_relief_length, gear.base_radius * gear.tip_roll));
+  }
 }
 
 /// Undercut: the generating rack's tip line cuts below the base tangent point when
@@ -170,8 +189,18 @@ SpurGear MakeSpurGear(const SpurGearSpec& spec, const char* item) {
     CheckUndercut(spec);
     gear = Derive(spec);
     CheckShape(gear);
+    CheckTipRelief(gear);
   });
   return gear;
+}
+
+double TipRelief(const SpurGear& gear, double roll) {
+  const SpurGearSpec& spec = gear.spec;
+  if (!(spec.tip_relief > 0.0)) return 0.0;
+  const double span = spec.tip_relief_length / gear.base_radius;  // t_a - t_Ca
+  const double into = roll - (gear.tip_roll - span);
+  if (!(into > 0.0)) return 0.0;
+  return spec.tip_relief * std::pow(into / span, spec.tip_relief_exponent);
 }
 
 double PairBacklash(const GearPair& pair, double centre_distance) {

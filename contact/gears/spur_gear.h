@@ -15,6 +15,14 @@ struct SpurGearSpec {
   double addendum_coefficient = 1.0;   ///< h_a* [-] > 0 (addendum m (h_a* + x))
   double dedendum_coefficient = 1.25;  ///< h_f* [-] > 0 (dedendum m (h_f* - x))
   double face_width = 0.0;             ///< b [m] > 0
+  /// Tip relief (TipRelief): C_a [m] >= 0 of material taken off the flank at the tip, along its
+  /// normal; 0: none.
+  double tip_relief = 0.0;
+  /// L_Ca [m] > 0 (with C_a > 0): the relief's extent along the line of action, down from the
+  /// tip: it starts at roll angle t_Ca = tan(alpha_a) - L_Ca / r_b, which must lie above 0.
+  double tip_relief_length = 0.0;
+  /// The relief's growth from t_Ca to the tip: 1 linear, 2 parabolic.
+  int tip_relief_exponent = 1;
 };
 
 /// A wheel's derived geometry (ISO 21771 sec. 5). Radii [m], angles [rad].
@@ -33,6 +41,11 @@ struct SpurGear {
   double base_half_angle = 0.0;
 };
 
+/// The tip relief [m] of `gear`'s flank at roll angle t [rad]: C_a ((t - t_Ca) / (t_a - t_Ca))^e
+/// above t_Ca = t_a - L_Ca / r_b (t_a = tip_roll, e the exponent), 0 below it or without relief.
+/// The rigid flanks' gap of a tooth pair grows by both teeth's relief (gear_mesh.h).
+double TipRelief(const SpurGear& gear, double roll);
+
 /// The involute function inv(alpha) = tan(alpha) - alpha, alpha in [0, pi/2).
 double Involute(double alpha);
 /// The angle alpha in [0, pi/2) with inv(alpha) = value >= 0 (Newton's method from
@@ -43,7 +56,9 @@ double InverseInvolute(double value);
 /// for a module, pressure angle, coefficient or face width out of range, fewer than 3 teeth,
 /// undercut (z < z_min = 2 (h_a* - x) / sin^2(alpha), ISO 21771 sec. 5.4: the message names the
 /// shift that avoids it), a root circle at or below the centre, a tip circle not above the base
-/// circle, or pointed teeth (tip thickness <= 0). `item` names the wheel in the message.
+/// circle, pointed teeth (tip thickness <= 0), or a tip relief with C_a < 0, L_Ca <= 0, an
+/// exponent other than 1 or 2, or a start at or below the base circle. `item` names the wheel in
+/// the message.
 SpurGear MakeSpurGear(const SpurGearSpec& spec, const char* item);
 
 /// Two external wheels in mesh.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "contact/gears/spur_gear.h"
 #include "tests/input_error.h"
@@ -140,6 +141,23 @@ TEST(SpurGearInput, BadWheelsAreOneLineErrorsNamingTheParameter) {
             "gear 1: tip thickness -0.0004544 m must be > 0 (pointed teeth: lower the profile "
             "shift 1.5 or the "
             "addendum coefficient 1)");
+  spec = Wheel(2e-3, 20, 0.0);
+  spec.tip_relief = -1e-5;
+  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
+            "gear 1: tip relief C_a [m] -1e-05 must be finite and >= 0");
+  spec.tip_relief = 1e-5;
+  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
+            "gear 1: tip relief length L_Ca [m] 0 must be finite and > 0");
+  spec.tip_relief_length = 1e-3;
+  spec.tip_relief_exponent = 3;
+  EXPECT_EQ(InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); }),
+            "gear 1: tip relief exponent 3 must be 1 (linear) or 2 (parabolic)");
+  spec.tip_relief_exponent = 2;
+  spec.tip_relief_length = 0.02;  // r_b tan(alpha_a) = 9.5 mm for m 2 mm, z 20
+  const std::string message = InputErrorMessage([&] { MakeSpurGear(spec, "gear 1"); });
+  EXPECT_NE(message.find("gear 1: tip relief length L_Ca 0.02 m must be < r_b tan(alpha_a) = "),
+            std::string::npos)
+      << message;
 }
 
 TEST(SpurGearInput, PairsThatCannotMeshAreOneLineErrors) {

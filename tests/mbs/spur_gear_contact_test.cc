@@ -323,6 +323,22 @@ TEST(SpurGearContact, BadGearEntriesAreOneLineErrorsAtTheirItem) {
                          "and above roll[0]"),
             std::string::npos)
       << message;
+  message = refused(
+      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02,\n"
+      "            tip_relief: {amount: 2e-5, length: 1e-3, shape: cubic}}\n");
+  EXPECT_NE(message.find("forces[1].gear2.tip_relief.shape: 'cubic' must be one of: linear, "
+                         "parabolic"),
+            std::string::npos)
+      << message;
+  message = refused(
+      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02,\n"
+      "            tip_relief: {amount: -2e-5, length: 1e-3}}\n");
+  EXPECT_NE(message.find("force element 'mesh': gear 2: tip relief C_a [m] -2e-05 must be finite "
+                         "and >= 0"),
+            std::string::npos)
+      << message;
   message = refused(std::string(kGearKeys) + "    teeth: {gear1: " + table + ", gear2: " + table +
                     ", poisson_ratio: 0.5}\n");
   EXPECT_NE(message.find("force element 'mesh': Poisson's ratio 0.5 must be in [0, 0.5)"),
@@ -346,6 +362,23 @@ TEST(SpurGearContact, IsoMeshStiffnessIsTheStandardsSinglePairStiffness) {
   const contact::ToothPair any;
   EXPECT_DOUBLE_EQ(mesh.law().PairLaw(any).stiffness, iso.single_pair * 0.02);
   EXPECT_FALSE(mesh.law().elastic());
+}
+
+// A wheel's `tip_relief` reaches the pair's wheels (contact/gears' TipRelief; its effect on the
+// mesh is tests/contact/gear_mesh_test.cc's): amount, length and the parabolic shape.
+TEST(SpurGearContact, TipReliefEntryReachesTheWheel) {
+  GearScene files;
+  const Scene scene = LoadScene(files.Write(SceneText(
+      0.0,
+      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02,\n"
+      "            tip_relief: {amount: 2e-5, length: 1e-3, shape: parabolic}}\n"
+      "    centre_distance: 0.0505\n")));
+  const auto& mesh = dynamic_cast<const SpurGearContact&>(scene.system->force_element(1));
+  EXPECT_EQ(mesh.pair().gear1.spec.tip_relief, 0.0);
+  EXPECT_EQ(mesh.pair().gear2.spec.tip_relief, 2e-5);
+  EXPECT_EQ(mesh.pair().gear2.spec.tip_relief_length, 1e-3);
+  EXPECT_EQ(mesh.pair().gear2.spec.tip_relief_exponent, 2);
 }
 
 }  // namespace
