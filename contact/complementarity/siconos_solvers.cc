@@ -117,7 +117,9 @@ FrictionContactSolution SolveFc(const FrictionContactProblem& problem, int solve
   SiconosFc p(problem);
   OptionsPtr o = Options(solver, options);
   FrictionContactSolution s;
-  s.r = Eigen::VectorXd::Zero(p.q.size());
+  FLEXMBS_CHECK(options.initial_r.size() == 0 || options.initial_r.size() == p.q.size(),
+                "Siconos: the initial r must have d n entries");
+  s.r = options.initial_r.size() == p.q.size() ? options.initial_r : Eigen::VectorXd::Zero(p.q.size());
   s.u = Eigen::VectorXd::Zero(p.q.size());
   const int info = problem.dimension == 2 ? fc2d_driver(&p.fc, s.r.data(), s.u.data(), o.get())
                                           : fc3d_driver(&p.fc, s.r.data(), s.u.data(), o.get());

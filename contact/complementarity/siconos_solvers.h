@@ -12,6 +12,9 @@ namespace flexmbs::contact {
 struct SiconosOptions {
   double tolerance = 1e-10;    ///< SICONOS_DPARAM_TOL
   int max_iterations = 10000;  ///< SICONOS_IPARAM_MAX_ITER (pivots for Lemke, sweeps for NSGS)
+  /// Friction solvers: the reactions handed to the driver, which its solvers start from (d n
+  /// entries); empty: r = 0.
+  Eigen::VectorXd initial_r;
 };
 
 // The wrappers below copy the problem into Siconos' dense NumericsMatrix, call its driver and
