@@ -1,0 +1,109 @@
+#!/usr/bin/python3
+"""The flexible pendulum's runs against the planar co-rotational beam (reference.py).
+
+For each results file RUN.h5 (`flexmbs simulate`, scene.yaml or a variant run.sh writes): the
+swing angle, the beam frame's turn about W z (the frame sits on the pin section: its modes are
+clamped there), and the tip deflection in that frame, the y_B component of R_WB^T (p_WTip - p_WBo)
+(the tip face's averaging marker), against the reference's theta_0 and tip deflection at the same
+output times, computed once for all runs (reference.py's output: the stored reference.json to
+2 s, which a run may end before, or run.sh's rerun). Differences: the tip's largest over the run relative to the reference's largest |tip|,
+the angle's largest in rad. Prints both, exits 1 if one exceeds its limit; writes a plot with
+--plot and one headline line for bench/ (the first run's tip difference).
+
+Usage: /usr/bin/python3 compare.py REFERENCE.json --run RUN.h5 NAME TIP_LIMIT ANGLE_LIMIT_RAD ... [--plot PNG]
+"""
+import argparse
+import json
+import pathlib
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from headline import print_headline  # noqa: E402 (cases/headline.py)
+from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
+
+
+def swing(path):
+    """times [s], the frame's angle about W z [rad] (unwrapped) and the tip deflection [m], and
+    flexmbs' integration time [s] from the run's report when it is beside the results."""
+    with h5py.File(path, "r") as f:
+        t = f["time"][:]
+        p_o, e = f["bodies/beam/position"][:], f["bodies/beam/orientation"][:]
+        tip = f["bodies/beam/markers/tip"][:]
+    R = [rotation(ek) for ek in e]
+    angle = np.unwrap([np.arctan2(Rk[1, 0], Rk[0, 0]) for Rk in R])
+    deflection = np.array([(Rk.T @ (tk - pk))[1] for Rk, tk, pk in zip(R, tip, p_o)])
+    report = pathlib.Path(path).with_suffix(".json")
+    seconds = json.loads(report.read_text())["wall_seconds"] if report.exists() else None
+    return t, angle, deflection, seconds
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("reference")
+    p.add_argument("--run", nargs=4, action="append", required=True, metavar=("RUN.h5", "NAME", "TIP_LIMIT", "ANGLE_LIMIT"))
+    p.add_argument("--plot")
+    a = p.parse_args()
+    ref = json.loads(pathlib.Path(a.reference).read_text())
+    t_ref = np.array(ref["times"])
+    angle_ref, tip_ref = np.unwrap(ref["angle"]), np.array(ref["tip"])
+    print(f"reference: co-rotational beam, {ref['elements']} elements, rtol {ref['rtol']:g}, "
+          f"{ref['cpu_seconds']} s CPU, energy drift {ref['energy_drift_j']:.1e} J")
+    failures, curves, headline = [], [], None
+    for path, name, tip_limit, angle_limit in a.run:
+        t, angle, tip, seconds = swing(path)
+        if len(t) > len(t_ref) or np.max(np.abs(t - t_ref[:len(t)])) > 1e-9:
+            sys.exit(f"{path}: output times differ from the reference's ({len(t)} against {len(t_ref)})")
+        t_ref, angle_ref, tip_ref = t_ref[:len(t)], angle_ref[:len(t)], tip_ref[:len(t)]
+        tip_error = np.max(np.abs(tip - tip_ref)) / np.max(np.abs(tip_ref))
+        angle_error = np.max(np.abs(angle - angle_ref))
+        print(f"{name} ({path}):")
+        for k in range(0, len(t), max(1, len(t) // 10)):
+            print(f"  t = {t[k]:5.3f} s: angle {angle[k]:+.5f} rad (reference {angle_ref[k]:+.5f}), "
+                  f"tip {tip[k] * 1e3:+.4f} mm (reference {tip_ref[k] * 1e3:+.4f})")
+        for what, error, limit, unit in (("tip difference / largest |tip|", tip_error, float(tip_limit), ""),
+                                         ("angle difference", angle_error, float(angle_limit), " rad")):
+            ok = error <= limit
+            print(f"{'ok  ' if ok else 'FAIL'} {name}: {what} {error:.2e}{unit} (limit {limit:g}{unit})")
+            if not ok:
+                failures.append(f"{name} {what}")
+        if seconds is not None:
+            print(f"     {name}: flexmbs simulate {seconds:.3f} s")
+        if headline is None:
+            headline = (tip_error, seconds)
+        curves.append((name, t, angle, tip))
+    print_headline("11_flexible_pendulum", headline[0], "tip deflection / its largest value",
+                   runtime_s=headline[1], peer="co-rotational beam (SciPy)", peer_runtime_s=ref["cpu_seconds"])
+    if a.plot:
+        plot(a.plot, t_ref, angle_ref, tip_ref, curves)
+        print(f"wrote {a.plot}")
+    if failures:
+        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
+        sys.exit(1)
+
+
+def plot(path, t_ref, angle_ref, tip_ref, curves):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    top.plot(t_ref, np.degrees(angle_ref), "k-", label="co-rotational beam (SciPy)")
+    bottom.plot(t_ref, tip_ref * 1e3, "k-", label="co-rotational beam (SciPy)")
+    for name, t, angle, tip in curves:
+        top.plot(t, np.degrees(angle), "--", label=f"flexmbs, {name}")
+        bottom.plot(t, tip * 1e3, "--", label=f"flexmbs, {name}")
+    top.set_ylabel("swing angle [deg]")
+    bottom.set_ylabel("tip deflection in the pin's frame [mm]")
+    bottom.set_xlabel("t [s]")
+    top.set_title("Flexible pendulum: reduced 3-D strip against a planar co-rotational beam")
+    for ax in (top, bottom):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+if __name__ == "__main__":
+    main()
