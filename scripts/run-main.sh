@@ -8,7 +8,8 @@
 # against its full FE model, reduces the L-bracket of cases/07_bracket_modes two ways against
 # its full FE model and CalculiX, spins up the beam of cases/08_spin_up_beam, presses the
 # sphere into the plate of cases/09_sphere_on_plate against its full FE model and drives the
-# gear pair of cases/10_gear_pair on elastic teeth (see their READMEs).
+# gear pair of cases/10_gear_pair on elastic teeth and swings the flexible pendulum of
+# cases/11_flexible_pendulum (see their READMEs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -23,4 +24,5 @@ cmake --build build -j"$(nproc)" --target flexmbs
 ./cases/07_bracket_modes/run.sh build/bin/flexmbs
 ./cases/08_spin_up_beam/run.sh build/bin/flexmbs
 ./cases/09_sphere_on_plate/run.sh build/bin/flexmbs
-exec ./cases/10_gear_pair/run.sh build/bin/flexmbs
+./cases/10_gear_pair/run.sh build/bin/flexmbs
+exec ./cases/11_flexible_pendulum/run.sh build/bin/flexmbs
