@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
+#include <ctime>
 #include <string>
 #include <utility>
 
@@ -106,6 +107,7 @@ EventRun RunEventDriven(ContactScene& scene, double end_time, double output_inte
   MoreauJeanStepReport report;
   const MultibodySystem& system = *scene.system;
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   run.statistics = Simulate(
       *scene.system, options, scene.y0,
       [&](double t, const VectorXd& y, const VectorXd&) {
@@ -117,6 +119,7 @@ EventRun RunEventDriven(ContactScene& scene, double end_time, double output_inte
       [&](double, const MoreauJeanStepReport& step) { report = step; },
       [&](const ContactEvent& event) { run.events.push_back(event); });
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return run;
 }
 

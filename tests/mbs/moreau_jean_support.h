@@ -55,6 +55,7 @@ struct EventRun {
   std::vector<ContactEvent> events;
   SimulationStatistics statistics;
   double wall_seconds = 0.0;
+  double cpu_seconds = 0.0;  ///< the process's CPU time over the run (steadier than wall on a loaded machine)
 };
 
 /// Runs `scene` event-driven to end_time with an output every output_interval [s], the given
