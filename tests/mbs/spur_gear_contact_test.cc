@@ -323,18 +323,18 @@ TEST(SpurGearContact, BadGearEntriesAreOneLineErrorsAtTheirItem) {
                          "and above roll[0]"),
             std::string::npos)
       << message;
-  message = refused(
-      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
-      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02,\n"
-      "            tip_relief: {amount: 2e-5, length: 1e-3, shape: cubic}}\n");
+  // The pair with gear 2's tip relief as given.
+  const auto with_relief = [](const std::string& relief) {
+    return "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+           "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02,\n"
+           "            tip_relief: " + relief + "}\n";
+  };
+  message = refused(with_relief("{amount: 2e-5, length: 1e-3, shape: cubic}"));
   EXPECT_NE(message.find("forces[1].gear2.tip_relief.shape: 'cubic' must be one of: linear, "
                          "parabolic"),
             std::string::npos)
       << message;
-  message = refused(
-      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
-      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02,\n"
-      "            tip_relief: {amount: -2e-5, length: 1e-3}}\n");
+  message = refused(with_relief("{amount: -2e-5, length: 1e-3}"));
   EXPECT_NE(message.find("force element 'mesh': gear 2: tip relief C_a [m] -2e-05 must be finite "
                          "and >= 0"),
             std::string::npos)
