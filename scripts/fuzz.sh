@@ -50,10 +50,10 @@ for t in "${targets[@]}"; do
     status=1
     tail -n 40 "build-fuzz/logs/$t.leaks.log"
   fi
-  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+  executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
   final=$(grep -E '^#[0-9]+' "$log" | tail -n 1 | grep -oE 'cov: [0-9]+ ft: [0-9]+' || true)
   crashes=$(find "build-fuzz/artifacts/$t" -type f | wc -l)
-  summary+=("$(printf '%-12s executions %-10s %-22s artifacts %s' "$t" "${runs:-?}" "${final:-cov: ? ft: ?}" "$crashes")")
+  summary+=("$(printf '%-12s executions %-10s %-22s artifacts %s' "$t" "${executed:-?}" "${final:-cov: ? ft: ?}" "$crashes")")
 done
 printf '%s\n' "== summary (${seconds} s per target)" "${summary[@]}"
 exit "$status"
