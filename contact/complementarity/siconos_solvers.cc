@@ -125,6 +125,11 @@ FrictionContactSolution SolveFc(const FrictionContactProblem& problem, int solve
                                           : fc3d_driver(&p.fc, s.r.data(), s.u.data(), o.get());
   const double error = FcError(p, s.r, s.u, o.get(), options.tolerance);
   SetStatus(s, info, o->iparam[SICONOS_IPARAM_ITER_DONE], error, options, name);
+  if (solver == SICONOS_FRICTION_3D_PROX) {
+    // PROX counts its proximal iterations; each runs its internal NSN_AC to error / 10.
+    s.message += fmt::format(" ({} internal Newton steps)",
+                             o->iparam[SICONOS_FRICTION_3D_PROXIMAL_IPARAM_CUMULATIVE_ITER_DONE]);
+  }
   return s;
 }
 

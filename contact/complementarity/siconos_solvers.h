@@ -41,7 +41,10 @@ FrictionContactSolution SiconosFrictionAlartCurnier(const FrictionContactProblem
                                                     const SiconosOptions& options = {});
 
 /// Spatial friction contact (d = 3) by Siconos' proximal point method (SICONOS_FRICTION_3D_PROX,
-/// fc3d_proximal, internal solver NSN_AC).
+/// fc3d_proximal, internal solver NSN_AC). Siconos 4.4's defaults: the proximal weight alpha = 5
+/// times the error (unscaled), times 10 after an internal failure; each internal solve to
+/// max(error / 10, tolerance / contacts). iterations counts the proximal iterations; message
+/// ends with the internal Newton steps over all of them.
 FrictionContactSolution SiconosFrictionProximal(const FrictionContactProblem& problem,
                                                 const SiconosOptions& options = {});
 
