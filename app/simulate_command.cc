@@ -315,6 +315,8 @@ void RunSimulate(const SimulateOptions& options) {
     throw;
   }
   progress.Clear();
+  times.contact_solve_cpu_seconds =
+      stats.moreau_jean.contact_solve_cpu_seconds + stats.event_driven.contact_solve_cpu_seconds;
   finish("end time reached", true);
   stats.initial_conditions = initial;
   Report(options, scene, stats, advice, energy_start, energy_end);

@@ -85,6 +85,9 @@ struct EventDrivenStatistics {
   int max_impact_points = 0;  ///< the most points in one impact LCP
   /// The largest error a converged LCP or friction-contact problem ended with.
   double max_lcp_error = 0.0;
+  /// Process CPU time of the contact solves [s]: the closed points' acceleration-level problems
+  /// and the impact problems, each with its constrained response W (mbs/cpu_time.h).
+  double contact_solve_cpu_seconds = 0.0;
 };
 
 }  // namespace flexmbs::mbs

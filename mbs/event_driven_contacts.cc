@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "mbs/constraint_solver.h"
 #include "mbs/contact_reactions.h"
+#include "mbs/cpu_time.h"
 #include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
@@ -231,12 +232,14 @@ ClosedContactForces EventDrivenContacts::Derivative(double t, const ConstVectorR
     slide_friction.col(i) = -mu_i * SlideDirection(ki, y.tail(nu), point.slide_direction);
     columns.col(d * i) += ki.W_T.transpose() * slide_friction.col(i);
   }
+  const Eigen::Matrix3Xd bias = AccelerationBias(t, y, indices);
+  const double solve_start = ProcessCpuSeconds();
   const ConstrainedResponse response = Respond(system_, t, y, columns);
   const MatrixXd W = rows * response.dv;
-  const Eigen::Matrix3Xd bias = AccelerationBias(t, y, indices);
   VectorXd q = rows * u_dot;
   for (Index i = 0; i < k; ++i) q.segment(d * i, d) += bias.col(i).head(d);
   const Reactions reactions = SolveOrStop(W, q, mu, d, options_.lcp_tolerance, t, "acceleration-level");
+  solve_cpu_seconds_ += ProcessCpuSeconds() - solve_start;
   const VectorXd& r = reactions.r;
   const VectorXd a = W * r + q;
   u_dot += response.dv * r;
@@ -268,6 +271,7 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y, const
   }
   const Index d = k > 0 && mu.maxCoeff() > 0.0 ? 3 : 1;
   const MatrixXd rows = LocalRows(Evaluate(t, y, points), nu, d);
+  const double solve_start = ProcessCpuSeconds();
   const ConstrainedResponse response = Respond(system_, t, y, rows.transpose());
   const MatrixXd W = rows * response.dv;
   const VectorXd U_before = rows * y.tail(nu);
@@ -287,6 +291,7 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y, const
     for (Index i = 0; i < k; ++i) q(d * i) += e(i) * std::min(0.0, q(d * i));
     reactions = SolveOrStop(W, q, mu, d, options_.lcp_tolerance, t, "impact");
   }
+  solve_cpu_seconds_ += ProcessCpuSeconds() - solve_start;
   y.tail(nu) += response.dv * reactions.r;
   const VectorXd U_after = rows * y.tail(nu);
   ImpactResult result;

@@ -118,10 +118,15 @@ class EventDrivenContacts {
   void ProjectClosed(double t, Eigen::Ref<Eigen::VectorXd> y, const std::vector<ClosedPoint>& closed,
                      const ProjectionOptions& projection) const;
 
+  /// Process CPU time [s] of Derivative's and Impact's solves so far: the constrained response W
+  /// and the LCP or friction-contact problem.
+  double solve_cpu_seconds() const { return solve_cpu_seconds_; }
+
  private:
   const MultibodySystem& system_;
   EventDrivenOptions options_;
   std::vector<ContactPointRef> points_;
+  mutable double solve_cpu_seconds_ = 0.0;  ///< a measurement, summed by the const solves
 };
 
 }  // namespace flexmbs::mbs

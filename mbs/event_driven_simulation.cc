@@ -58,6 +58,8 @@ class EventDrivenRun {
   void HandleRoots(double t, VectorXd& z, const std::vector<int>& directions);
   /// The contact report and the joint multipliers of the output interval that ends at (t, z).
   MoreauJeanStepReport Report(double t, const VectorXd& z, VectorXd* joint_lambda);
+  /// CPU time of the contact solves so far [s] (EventDrivenContacts::solve_cpu_seconds).
+  double solve_cpu_seconds() const { return contacts_.solve_cpu_seconds(); }
 
  private:
   /// A contact point's state between events.
@@ -460,6 +462,7 @@ SimulationStatistics SimulateEventDriven(MultibodySystem& system, const Simulati
     emit(integrator.time(), integrator.state());
   }
   statistics.integrator = integrator.statistics();
+  statistics.event_driven.contact_solve_cpu_seconds = run.solve_cpu_seconds();
   statistics.dropped_row_violation = watch.largest_violation();
   statistics.dropped_row_limit_share = watch.largest_share();
   statistics.wall_seconds =

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "mbs/contact_reactions.h"
+#include "mbs/cpu_time.h"
 #include "mbs/kkt_factor.h"
 #include "mbs/simulation_error.h"
 
@@ -258,6 +259,7 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
   report_.solver_iterations = 0;
   report_.solver_error = 0.0;
   if (n_a > 0) {
+    const ScopedCpuTime solve_time(statistics_.contact_solve_cpu_seconds);
     MatrixXd rhs = MatrixXd::Zero(nu + static_cast<Index>(smooth.kept.size()), 3 * n_a);
     rhs.topRows(nu) = active.H.transpose();
     MatrixXd dv_per_P, impulse_per_P;

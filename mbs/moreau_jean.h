@@ -80,6 +80,9 @@ struct MoreauJeanStatistics {
   long solver_iterations = 0;     ///< summed over the steps
   int max_active_contacts = 0;
   double max_solver_error = 0.0;  ///< the largest error a converged solve ended with
+  /// Process CPU time of the contact solves [s]: per step with active contacts the KKT solve for
+  /// the Delassus operator W and the LCP or friction-contact solve (mbs/cpu_time.h).
+  double contact_solve_cpu_seconds = 0.0;
 };
 
 /// The one-step map of Moreau-Jean time stepping for a system. Per step from (t_k, x_k, v_k),

@@ -269,6 +269,7 @@ void ResultsWriter::WriteStatistics(const RunTimes& times) {
   group.WriteStrings("parts", {"setup", "integration", "output", "total"});
   group.WriteVector("wall_seconds", wall, "s");
   group.WriteVector("cpu_seconds", cpu, "s");
+  group.WriteScalar("contact_solve_cpu_seconds", times.contact_solve_cpu_seconds, "s");
 }
 
 void ResultsWriter::Flush() {

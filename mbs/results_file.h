@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -111,9 +112,12 @@ struct PartTime {
 
 /// Where a run's time went, written as statistics/ (ResultsWriter::WriteStatistics): the setup
 /// (scene, initial state, results file), the integration (the integrator with its contact solves
-/// and events, output excluded) and the output (samples, events, ParaView frames).
+/// and events, output excluded) and the output (samples, events, ParaView frames); of the
+/// integration's CPU time the contact solves' share (MoreauJeanStatistics, EventDrivenStatistics:
+/// contact_solve_cpu_seconds; 0 without unilateral contacts, NaN where not measured: a failed run).
 struct RunTimes {
   PartTime setup, integration, output;
+  double contact_solve_cpu_seconds = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Writes a results file sample by sample.
@@ -133,8 +137,9 @@ class ResultsWriter {
   /// before and after, normal impulse, kinetic energies before and after, closed after);
   /// flushes as Append. Precondition: the layout has events (InternalError otherwise).
   void AppendEvent(const ContactEvent& event);
-  /// Writes statistics/ (docs/results.md): `parts` (setup, integration, output, total) and per part
-  /// `wall_seconds` and `cpu_seconds`. At most once, before Finish (InternalError otherwise).
+  /// Writes statistics/ (docs/results.md): `parts` (setup, integration, output, total), per part
+  /// `wall_seconds` and `cpu_seconds`, and `contact_solve_cpu_seconds`. At most once, before
+  /// Finish (InternalError otherwise).
   void WriteStatistics(const RunTimes& times);
   /// Writes everything so far to disk.
   void Flush();

@@ -3,7 +3,8 @@
 Reads only the datasets docs/results.md documents. Prints the run's termination, duration and
 samples, the energies at start and end with the largest rise between two outputs, the
 constraints' drift (the largest position and velocity residual, and at the end), where the run's
-time went (statistics/: wall and CPU seconds of setup, integration and output), per joint the
+time went (statistics/: wall and CPU seconds of setup, integration and output, the contact
+solves' CPU seconds and their share of the integration's), per joint the
 largest force and torque, per contact the outputs it was active and sliding in and its summed
 normal impulse, the events by kind, and per gear the mean mesh force, the pairs in contact and
 the transmission error's range. Writes PNG files named after the results file:
@@ -97,7 +98,12 @@ def summarise_statistics(f):
     g = f["statistics"]
     parts = [text(p) for p in g["parts"][:]]
     wall, cpu = g["wall_seconds"][:], g["cpu_seconds"][:]
-    return [f"time {part}: wall {w:.4g} s, cpu {c:.4g} s" for part, w, c in zip(parts, wall, cpu)]
+    lines = [f"time {part}: wall {w:.4g} s, cpu {c:.4g} s" for part, w, c in zip(parts, wall, cpu)]
+    if "contact_solve_cpu_seconds" in g:  # files written before it have the parts alone
+        contact, integration = float(g["contact_solve_cpu_seconds"][()]), cpu[parts.index("integration")]
+        share = f"{contact / integration:.3g}" if integration > 0 else "nan"
+        lines.append(f"time contact solves: cpu {contact:.4g} s, {share} of the integration's cpu")
+    return lines
 
 
 def summarise_bodies(f, n):

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -72,6 +73,25 @@ TEST_F(SimulateContactsTest, TheDocumentedBouncingBallRunsAndRecordsItsImpacts) 
   EXPECT_EQ((impulse.array() > 0.0).count(), 2);  // impacts in the steps ending at 0.455 and 1.270 s (the
                                                   // third ends at 2.005 s, as in Siconos)
   EXPECT_NEAR(impulse.sum(), 1.9 * std::sqrt(2.0 * 9.81) * (1.0 + 0.9), 2.0 * 9.81 * 0.01);
+}
+
+// statistics/contact_solve_cpu_seconds of docs/scene.md's two bouncing balls (Moreau-Jean,
+// event-driven): measured, non-negative and a share of the integration's CPU time.
+TEST_F(SimulateContactsTest, ContactSolvesAreAShareOfTheIntegrationsCpuTime) {
+  for (const std::string heading : {"## Unilateral contacts (`contacts:`)", "### `method: event_driven`"}) {
+    const std::string scene = SceneOfSection(heading);
+    ASSERT_FALSE(scene.empty()) << heading;
+    const Outcome run = Simulate(scene);
+    ASSERT_EQ(run.exit_code, 0) << heading << ": " << run.err;
+    const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
+    const flexmbs::h5::Group statistics = file.root().OpenGroup("statistics");
+    const double contact = statistics.ReadScalar("contact_solve_cpu_seconds");
+    const double integration = statistics.ReadVector("cpu_seconds")(1);
+    std::printf("%s: contact solves %.3g s of the integration's %.3g s CPU\n", heading.c_str(), contact, integration);
+    EXPECT_EQ(statistics.ReadUnits("contact_solve_cpu_seconds"), "s");
+    EXPECT_GT(contact, 0.0) << heading;  // both runs have impacts; NaN fails too
+    EXPECT_LE(contact, integration) << heading;
+  }
 }
 
 TEST_F(SimulateContactsTest, UnilateralContactUnderAnOdeMethodIsRefused) {

@@ -121,7 +121,7 @@ TEST(ResultsFile, ElementSeriesRoundTripUnderTheirFolder) {
 }
 
 // The constraints' drift per sample and the run's statistics/ (parts, wall and CPU seconds, the
-// total their sum); statistics are written once.
+// total their sum, the contact solves' CPU seconds); statistics are written once.
 TEST(ResultsFile, ConstraintResidualsAndStatisticsRoundTrip) {
   const fs::path path = TempPath("statistics.h5");
   {
@@ -132,7 +132,7 @@ TEST(ResultsFile, ConstraintResidualsAndStatisticsRoundTrip) {
       sample.constraint_velocity = 2e-9 * k;
       writer.Append(sample);
     }
-    writer.WriteStatistics({{1.5, 1.25}, {4.0, 3.5}, {0.5, 0.25}});
+    writer.WriteStatistics({{1.5, 1.25}, {4.0, 3.5}, {0.5, 0.25}, 0.75});
     EXPECT_THROW(writer.WriteStatistics({}), InternalError);
     writer.Finish("end time reached");
   }
@@ -146,6 +146,8 @@ TEST(ResultsFile, ConstraintResidualsAndStatisticsRoundTrip) {
   EXPECT_EQ(statistics.ReadVector("wall_seconds"), Eigen::Vector4d(1.5, 4.0, 0.5, 6.0));
   EXPECT_EQ(statistics.ReadVector("cpu_seconds"), Eigen::Vector4d(1.25, 3.5, 0.25, 5.0));
   EXPECT_EQ(statistics.ReadUnits("cpu_seconds"), "s");
+  EXPECT_EQ(statistics.ReadScalar("contact_solve_cpu_seconds"), 0.75);
+  EXPECT_EQ(statistics.ReadUnits("contact_solve_cpu_seconds"), "s");
   EXPECT_GT(VerifyResultsFile(path).datasets, 0);
 }
 

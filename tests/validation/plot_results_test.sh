@@ -114,6 +114,11 @@ for part, w, c in zip(parts, wall, cpu):
     m = re.search(r"wall (\S+) s, cpu (\S+) s$", line(f"time {part}:"))
     if not m or not close(float(m[1]), w, 1e-3) or not close(float(m[2]), c, 1e-3):
         bad.append(f"time {part}: {m and m.groups()} against {w}, {c}")
+# The gears have no unilateral contacts: no contact solves.
+contact = f["statistics/contact_solve_cpu_seconds"][()]
+if contact != 0.0 or not re.search(r"^time contact solves: cpu 0 s, 0 of the integration's cpu$",
+                                     line("time contact solves:")):
+    bad.append(f"contact solves {contact}: {line('time contact solves:')}")
 print("\n".join(f"FAIL: {b}" for b in bad) or "ok: constraint drift and time lines match constraints/ and statistics/")
 sys.exit(1 if bad else 0)
 PY
