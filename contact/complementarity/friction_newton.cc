@@ -98,12 +98,18 @@ FrictionContactSolution SolveFrictionNewton(const FrictionContactProblem& proble
     // nothing one after another (measured: 1e-5 for ten steps) instead of failing at once.
     const bool stuck = !accepted || alpha < kShortStep;
     const bool solved = !stuck && f.merit <= options.subproblem_reduction * merit_at_centre;
-    if (solved || stuck) {
+    if ((solved || stuck) && options.proximal_per_error > 0.0) {
+      sigma = stuck ? 10.0 * sigma
+                    : std::max(std::min(0.1 * sigma, options.proximal_per_error * s.error * w_scale),
+                               options.min_proximal * w_scale);
+    } else if (solved || stuck) {
       // Newton stalls at this sigma: stay above it for a while; each solved subproblem lowers
       // that floor tenfold again, so a stall far from the solution does not hold sigma (and the
       // proximal point method's linear rate) for good.
       sigma_floor = stuck ? 10.0 * sigma : std::max(0.1 * sigma_floor, options.min_proximal * w_scale);
       sigma = solved ? std::max(0.1 * sigma, sigma_floor) : sigma_floor;
+    }
+    if (solved || stuck) {
       centre = s.r;
       f = Evaluate(problem, rho, sigma, centre, s.r);
       merit_at_centre = f.merit;

@@ -18,6 +18,13 @@ struct FrictionNewtonOptions {
   double min_proximal = 1e-6;  ///< the least sigma, relative to the mean diagonal of W
   /// A subproblem counts as solved when Newton has reduced ||Phi||^2 by this factor from its centre.
   double subproblem_reduction = 1e-4;
+  /// Sigma's rule after each subproblem. 0: the rule above (shrink tenfold, floors left by
+  /// stalls). > 0: sigma follows the error, as in Siconos' fc3d_proximal (alpha = 5 error): after
+  /// a solved subproblem the smaller of sigma / 10 and proximal_per_error FrictionContactError
+  /// W's mean diagonal (not below min_proximal); a stall multiplies sigma by ten for the next
+  /// subproblem only. Fewer steps from reactions far from the solution (NSGS's; docs/contact.md),
+  /// but Newton stops nearer the tolerance, which the event-driven stick detection does not take.
+  double proximal_per_error = 0.0;
   Eigen::VectorXd initial_r;    ///< warm start, d n entries; empty: r = 0
 };
 

@@ -16,6 +16,9 @@ FrictionContactSolution SolveFrictionContact(const FrictionContactProblem& probl
   newton.tolerance = options.tolerance;
   newton.max_iterations = options.newton_steps;
   newton.initial_r = first.r;
+  // NSGS's reactions lie far from the solution along W's null space: sigma from the error
+  // (docs/contact.md, "What the second family of problems showed").
+  newton.proximal_per_error = kHandoverProximalPerError;
   FrictionContactSolution second = SolveFrictionNewton(problem, newton);
   second.iterations += first.iterations;
   second.message = first.message + "; then " + second.message;
