@@ -95,8 +95,14 @@ ConstraintSolver::ConstraintSolver(const MultibodySystem& system, double t, cons
     : system_(system) {
   const int num_bodies = system.num_bodies();
   mass_factors_.reserve(static_cast<std::size_t>(num_bodies));
+  if (system.planar()) kept_.reserve(static_cast<std::size_t>(num_bodies));
   for (int b = 0; b < num_bodies; ++b) {
-    mass_factors_.emplace_back(system.BodyMassMatrix(b, y));
+    if (system.planar()) {
+      kept_.push_back(system.KeptVelocities(b));
+      mass_factors_.emplace_back(system.BodyMassMatrix(b, y)(kept_.back(), kept_.back()));
+    } else {
+      mass_factors_.emplace_back(system.BodyMassMatrix(b, y));
+    }
     if (mass_factors_.back().info() != Eigen::Success) {
       throw SimulationError(t, fmt::format("t = {:.9g} s: body '{}': mass matrix is not positive definite", t,
                                            system.body(b).name()));
@@ -182,8 +188,17 @@ void ConstraintSolver::FormBodyBlocks(const Eigen::MatrixXd& G) {
     const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
     const Eigen::Map<const Eigen::Matrix<Index, Eigen::Dynamic, 1>> R_b(body_rows_.data() + first, count);
     const MatrixXd G_b_T = G(R_b, Eigen::seqN(offset, n)).transpose();
-    const MatrixXd Y = mass_factors_[ub].matrixL().solve(G_b_T);
-    const MatrixXd Minv_G_b_T = mass_factors_[ub].matrixU().solve(Y);
+    // A planar scene's body: M_b^-1 is S_b M_b(s, s)^-1 S_b^T over its kept columns s.
+    MatrixXd Y, Minv_G_b_T;
+    if (kept_.empty()) {
+      Y = mass_factors_[ub].matrixL().solve(G_b_T);
+      Minv_G_b_T = mass_factors_[ub].matrixU().solve(Y);
+    } else {
+      Y = mass_factors_[ub].matrixL().solve(G_b_T(kept_[ub], Eigen::all));
+      Minv_G_b_T = MatrixXd::Zero(n, count);
+      const MatrixXd solved = mass_factors_[ub].matrixU().solve(Y);
+      Minv_G_b_T(kept_[ub], Eigen::all) = solved;
+    }
     for (Index l = 0; l < count; ++l) {
       const Index row = R_b(l);
       // b's columns open the row if b is its joint's first body, else close it.
@@ -317,9 +332,20 @@ Eigen::VectorXd ConstraintSolver::SolveMass(const ConstVectorRef& r) const {
   Eigen::VectorXd out(r.size());
   for (int b = 0; b < system_.num_bodies(); ++b) {
     const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
-    out.segment(offset, n) = mass_factors_[static_cast<std::size_t>(b)].solve(r.segment(offset, n));
+    SolveBodyMass(b, r.segment(offset, n), out.segment(offset, n));
   }
   return out;
+}
+
+void ConstraintSolver::SolveBodyMass(int b, const ConstVectorRef& r_b, Eigen::Ref<Eigen::VectorXd> out_b) const {
+  const std::size_t ub = static_cast<std::size_t>(b);
+  if (kept_.empty()) {
+    out_b = mass_factors_[ub].solve(r_b);
+    return;
+  }
+  out_b.setZero();
+  const Eigen::VectorXd solved = mass_factors_[ub].solve(r_b(kept_[ub]).eval());
+  out_b(kept_[ub]) = solved;
 }
 
 Eigen::MatrixXd ConstraintSolver::SolveMassColumns(const Eigen::MatrixXd& R) const {
@@ -328,7 +354,7 @@ Eigen::MatrixXd ConstraintSolver::SolveMassColumns(const Eigen::MatrixXd& R) con
     const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
     for (Index j = 0; j < R.cols(); ++j) {
       const auto column = R.col(j).segment(offset, n);
-      if (!column.isZero(0.0)) out.col(j).segment(offset, n) = mass_factors_[static_cast<std::size_t>(b)].solve(column);
+      if (!column.isZero(0.0)) SolveBodyMass(b, column, out.col(j).segment(offset, n));
     }
   }
   return out;

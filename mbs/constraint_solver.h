@@ -33,7 +33,10 @@ enum class SolverRows {
   kAll,   ///< every row (the redundancy search)
 };
 
-/// M and S of one state, factorised.
+/// M and S of one state, factorised. In a planar scene (MultibodySystem::planar) M^-1 stands for
+/// S M~^-1 S^T with S the kept velocity columns and M~ = M(s, s) per body (docs/mbs.md, "Planar
+/// scenes"): the accelerations, projections and Delassus matrices of the guided, in-plane motion.
+
 class ConstraintSolver {
  public:
   /// S with at most this many rows is factorised dense with pivoting: below about 30-50 rows the
@@ -94,6 +97,9 @@ class ConstraintSolver {
   void FormBodyBlocks(const Eigen::MatrixXd& G);
   /// Scales S to unit diagonal and factorises it (sparse, or dense with pivoting).
   void FactoriseSchur();
+  /// out_b = M_b^-1 r_b for body b (a planar scene's body: S_b M_b(s, s)^-1 S_b^T r_b over its
+  /// kept columns s, zero in the dropped ones).
+  void SolveBodyMass(int b, const ConstVectorRef& r_b, Eigen::Ref<Eigen::VectorXd> out_b) const;
   /// Body b's G_b M_b^-1 G_b^T over its rows.
   Eigen::Map<const Eigen::MatrixXd> BodySchur(int b) const;
   /// The scaled S (lower triangle) as (i, j, value) with i >= j, positions in rows(), to `add`.
@@ -103,7 +109,8 @@ class ConstraintSolver {
   void EliminationOrderedScaledSchur(Eigen::SparseMatrix<double>& S) const;
 
   const MultibodySystem& system_;
-  std::vector<Eigen::LLT<Eigen::MatrixXd>> mass_factors_;
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> mass_factors_;  // of M_b(s, s) in a planar scene
+  std::vector<std::vector<Eigen::Index>> kept_;  // per body its kept columns s; empty: spatial
   std::vector<Eigen::Index> rows_;
   std::vector<Eigen::Index> position_in_rows_;  // per stacked row: its index in rows_, or -1
   // The stacked rows at each body (CSR: body b's are body_rows_[body_row_start_[b] ..

@@ -48,6 +48,29 @@ bool SamePattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
          std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
 }
 
+/// Per velocity of u: true where a planar scene drops it (MultibodySystem::KeptVelocities); empty
+/// for a spatial scene.
+std::vector<char> DroppedVelocities(const MultibodySystem& system) {
+  if (!system.planar()) return {};
+  std::vector<char> dropped(static_cast<std::size_t>(system.num_velocities()), 1);
+  for (const Index column : system.KeptVelocities()) dropped[static_cast<std::size_t>(column)] = 0;
+  return dropped;
+}
+
+/// A planar scene's augmented matrix (docs/mbs.md, "Planar scenes"): the entries in a dropped
+/// velocity's row or column are left out and its diagonal is 1, so that the kept block is the
+/// in-plane system and du = r_u in the dropped velocities (Solve's right-hand side there).
+void KeepPlanarColumns(const std::vector<char>& dropped, std::vector<Triplet>& entries) {
+  const Index nu = static_cast<Index>(dropped.size());
+  const auto is_dropped = [&](Index i) { return i < nu && dropped[static_cast<std::size_t>(i)] != 0; };
+  entries.erase(std::remove_if(entries.begin(), entries.end(),
+                               [&](const Triplet& e) { return is_dropped(e.row()) || is_dropped(e.col()); }),
+                entries.end());
+  for (Index i = 0; i < nu; ++i) {
+    if (is_dropped(i)) entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
+  }
+}
+
 }  // namespace
 
 /// The sparse LU of the augmented matrix; its pattern analysis is redone only when the pattern
@@ -271,6 +294,8 @@ void KktNewtonSolver::Factorize(double gamma) {
     }
   }
   for (const Triplet& e : gamma_du_) entries.emplace_back(static_cast<int>(nu) + e.row(), e.col(), -gamma * e.value());
+  dropped_ = DroppedVelocities(system_);
+  if (!dropped_.empty()) KeepPlanarColumns(dropped_, entries);
   kkt_.resize(nu + m, nu + m);
   kkt_.setFromTriplets(entries.begin(), entries.end());
   kkt_.makeCompressed();
@@ -316,7 +341,13 @@ void KktNewtonSolver::Solve(Eigen::Ref<VectorXd> r) {
     rhs.segment(blocks.pu, blocks.nu).noalias() = blocks.M * r_u.segment(blocks.pu, blocks.nu);
   }
   rhs.head(nu) += gamma_ * (dh_dx_ * rho);
-  rhs.tail(m) = G_ * (r_u - gamma_ * omega_ * omega_ * rho);
+  VectorXd constrained = r_u - gamma_ * omega_ * omega_ * rho;
+  for (std::size_t i = 0; i < dropped_.size(); ++i) {
+    if (dropped_[i] == 0) continue;
+    rhs(static_cast<Index>(i)) = r_u(static_cast<Index>(i));
+    constrained(static_cast<Index>(i)) = 0.0;
+  }
+  rhs.tail(m) = G_ * constrained;
   const VectorXd du = factor_->lu.solve(rhs).head(nu);
   for (const BodyBlocks& blocks : bodies_) {
     const Index n = blocks.nu - 6;

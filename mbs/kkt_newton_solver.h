@@ -29,6 +29,8 @@
 // M and the bodies' dh blocks are block diagonal, G has nonzeros only at the two bodies of a
 // joint and a force element couples the bodies it loads, so the matrix is sparse: assembled per
 // Factorize and factorised by a sparse LU (the pattern analysed once while it stays the same).
+// In a planar scene the dropped velocities' rows and columns are identity (du = r_u there, zero
+// in a run), so the factorised system is the in-plane one (docs/mbs.md, "Planar scenes").
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -111,6 +113,7 @@ class KktNewtonSolver final : public OdeNewtonSolver {
   double t_ = 0.0, gamma_ = 0.0, omega_ = 0.0;
   bool evaluated_ = false, factorized_ = false;
   Eigen::SparseMatrix<double> kkt_;
+  std::vector<char> dropped_;  // per velocity: dropped by a planar scene (empty: spatial)
   std::unique_ptr<Factor> factor_;
   KktNewtonTimes times_;
 };

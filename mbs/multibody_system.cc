@@ -120,6 +120,35 @@ std::vector<Eigen::Index> MultibodySystem::KeptConstraints() const {
   return kept;
 }
 
+std::vector<Eigen::Index> MultibodySystem::KeptVelocities(int b) const {
+  if (planar()) return kept_velocities_.at(static_cast<std::size_t>(b));
+  std::vector<Eigen::Index> all(static_cast<std::size_t>(velocity_block(b).size));
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Eigen::Index>(i);
+  return all;
+}
+
+std::vector<Eigen::Index> MultibodySystem::KeptVelocities() const {
+  std::vector<Eigen::Index> kept;
+  kept.reserve(static_cast<std::size_t>(num_velocities_));
+  for (int b = 0; b < num_bodies(); ++b) {
+    for (const Eigen::Index column : KeptVelocities(b)) kept.push_back(velocity_block(b).start + column);
+  }
+  return kept;
+}
+
+void MultibodySystem::set_kept_velocities(std::vector<std::vector<Eigen::Index>> columns) {
+  FLEXMBS_CHECK(columns.empty() || static_cast<int>(columns.size()) == num_bodies(),
+                "MultibodySystem::set_kept_velocities: one list per body");
+  for (std::size_t b = 0; b < columns.size(); ++b) {
+    const std::vector<Eigen::Index>& kept = columns[b];
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      FLEXMBS_CHECK(kept[i] >= 0 && kept[i] < velocity_block(static_cast<int>(b)).size && (i == 0 || kept[i] > kept[i - 1]),
+                    "MultibodySystem::set_kept_velocities: columns ascending, distinct and in the body's block");
+    }
+  }
+  kept_velocities_ = std::move(columns);
+}
+
 Eigen::VectorXd MultibodySystem::NeutralState() const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(state_size());
   for (int b = 0; b < num_bodies(); ++b) y(position_offset(b) + 3) = 1.0;

@@ -113,6 +113,19 @@ class MultibodySystem {
   /// The stacked constraint rows not dropped, ascending.
   std::vector<Eigen::Index> KeptConstraints() const;
 
+  /// True for a planar scene (mbs/planar.h, docs/mbs.md "Planar scenes"): the solves gather each
+  /// body's kept velocity columns and scatter back zeros in the dropped ones.
+  bool planar() const { return !kept_velocities_.empty(); }
+  /// Body b's kept velocity columns, indices into its block of u, ascending: in a planar scene
+  /// v_x, v_y, w_z and the in-plane modes; in a spatial one every column (0 .. size - 1).
+  std::vector<Eigen::Index> KeptVelocities(int b) const;
+  /// The kept columns of every body as indices into u, ascending (all of u in a spatial scene).
+  std::vector<Eigen::Index> KeptVelocities() const;
+  /// Makes the system planar with `columns[b]` the kept columns of body b (one list per body,
+  /// ascending, distinct and inside the body's block: checked). mbs/planar.h's MakePlanar is the
+  /// caller, after its checks; an empty `columns` makes the system spatial again.
+  void set_kept_velocities(std::vector<std::vector<Eigen::Index>> columns);
+
   /// Every body at the origin of W, unrotated (e = (1, 0, 0, 0)), undeformed and at rest.
   Eigen::VectorXd NeutralState() const;
   /// Views of body b's positions x_b and velocities u_b in y.
@@ -176,6 +189,7 @@ class MultibodySystem {
   std::vector<Eigen::Index> position_offsets_, constraint_offsets_;
   std::vector<VelocityBlock> velocity_blocks_;
   std::vector<Eigen::Index> dropped_constraints_;
+  std::vector<std::vector<Eigen::Index>> kept_velocities_;  // per body; empty: spatial
   Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_constraints_ = 0;
 };
 

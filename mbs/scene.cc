@@ -12,6 +12,7 @@
 #include "mbs/event_driven_scene.h"
 #include "mbs/force_element.h"
 #include "mbs/joint.h"
+#include "mbs/planar.h"
 #include "mbs/scene_bodies.h"
 #include "mbs/scene_contact.h"
 #include "mbs/scene_unilateral.h"
@@ -270,7 +271,7 @@ std::vector<RecordedMarker> ReadOutput(const YamlNode& node, const MultibodySyst
 
 Scene LoadScene(const std::filesystem::path& file, const SceneHooks& hooks) {
   const YamlNode root = YamlNode::LoadFile(file);
-  root.RejectUnknownKeys({"gravity", "bodies", "joints", "forces", "contacts", "simulation", "output"});
+  root.RejectUnknownKeys({"gravity", "planar", "bodies", "joints", "forces", "contacts", "simulation", "output"});
   Scene scene;
   scene.file = file;
   scene.system = std::make_unique<MultibodySystem>(root.Has("gravity") ? ReadVector3(root.Required("gravity"))
@@ -322,6 +323,11 @@ Scene LoadScene(const std::filesystem::path& file, const SceneHooks& hooks) {
       }
       Within(item, [&] { return scene.system->AddUnilateralContact(std::move(contact)); });
     }
+  }
+  if (root.Has("planar")) {
+    const YamlNode planar = root.Required("planar");
+    if (planar.AsString() != "xy") planar.Fail(fmt::format("'{}': the planar scenes' plane is xy", planar.AsString()));
+    Within(planar, [&] { MakePlanar(*scene.system, scene.initial_state); });
   }
   if (root.Has("output")) {
     const YamlNode output = root.Required("output");

@@ -1,0 +1,38 @@
+#pragma once
+// Planar scenes (docs/mbs.md, "Planar scenes"; the thesis' planar chapters): every body moves in
+// the plane z = 0 of W, keeping the velocity columns v_x, v_y, w_z of its block and its in-plane
+// modes; the solves (ConstraintSolver, Moreau-Jean's KKT matrix, the sparse Newton matrix) gather
+// those columns and scatter zeros back into the dropped ones, while u keeps its spatial layout.
+
+#include <string>
+
+#include "mbs/multibody_system.h"
+
+namespace flexmbs::mbs {
+
+/// A number below this share of its scale counts as zero in the planar checks (an input's
+/// out-of-plane component, a mass coupling relative to sqrt(M_ii M_jj)).
+inline constexpr double kPlanarTolerance = 1e-9;
+
+/// The mode j of a flexible body is in-plane when the z components of its shape (every FE node)
+/// carry at most this share of its squared norm, out-of-plane when the x, y components do.
+inline constexpr double kPlanarModeShare = 1e-6;
+
+/// Makes `system` planar in W's xy plane at the initial state y0 (MultibodySystem::
+/// set_kept_velocities) after checking that the scene is planar there. Throws a one-line
+/// InputError "<item>: <problem>" naming the item and its value for: gravity with a
+/// z component; a body whose centre of mass starts off z = 0, whose rotation axis is not z, with
+/// an initial v_z, w_x, w_y or a dropped mode's q or qdot; a flexible body without mode shapes or
+/// with a mode that is neither in-plane nor out-of-plane (kPlanarModeShare); a body whose mass
+/// matrix couples a kept and a dropped column (a rigid body: centre of mass off its xy plane,
+/// J_xz or J_yz); a revolute joint whose axis is not z, a prismatic one whose axis is not in the
+/// plane, a cylindrical one whose axis is neither; a universal joint; a unilateral contact whose
+/// normal at y0 is not in the plane. Force elements are not checked (their out-of-plane loads are
+/// dropped with the columns).
+void MakePlanar(MultibodySystem& system, const ConstVectorRef& y0);
+
+/// The in-plane tangent of a planar contact with normal n_W (in the plane): t = z x n, so that
+/// (n, t, z) is right-handed.
+Eigen::Vector3d PlanarTangent(const Eigen::Vector3d& n_W);
+
+}  // namespace flexmbs::mbs
