@@ -17,7 +17,7 @@ import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline  # noqa: E402 (cases/headline.py)
 
 E, RHO, LENGTH, SIDE = 2.1e11, 7850.0, 1.0, 0.01
 # beta_n L of a clamped-free Euler-Bernoulli beam (roots of cos(x) cosh(x) = -1).
@@ -42,12 +42,8 @@ def main():
     mesh = json.loads((out / "beam.mesh.json").read_text())
     beam = json.loads((out / "beam.info.json").read_text())
     cb = json.loads((out / "beam_cb.info.json").read_text())
-    failures = []
-
-    def check(what, ok, detail):
-        print(f"{'ok  ' if ok else 'FAIL'} {what}: {detail}")
-        if not ok:
-            failures.append(what)
+    checks = Checks()
+    check = checks.check
 
     mass = RHO * LENGTH * SIDE * SIDE
     inertia = [mass * 2 * SIDE**2 / 12.0, mass * (LENGTH**2 + SIDE**2) / 12.0, mass * (LENGTH**2 + SIDE**2) / 12.0]
@@ -85,9 +81,8 @@ def main():
           and abs(top[0]["area_m2"] / (LENGTH * SIDE) - 1.0) <= MASS_ROUND_OFF, f"{top}")
     check("damping", cb["damping"] == "modal 1 %", cb["damping"])
     check("geometric stiffening", cb["stiffening"] is True, str(cb["stiffening"]))
-    print(f"{len(failures)} of the checks failed" if failures else "all checks passed")
-    return 1 if failures else 0
+    checks.finish()
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -19,7 +19,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 
 REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "slider_crank_exact.json"
 
@@ -54,16 +54,14 @@ def main():
           f"{1e3 * difference:.3g} mm = {difference / peak_ref:.3g} of the reference's peak (limit {args.limit:g})")
     print_headline("02_slider_crank", difference / peak_ref, "midpoint deflection history / its peak",
                    peer="planar beam model (tests/validation/slider_crank_exact.json)")
-    if args.plot:
-        plot(args.plot, t, w, t_ref, w_ref)
-        print(f"wrote {args.plot}")
-    return 0 if difference <= args.limit * peak_ref else 1
+    checks = Checks()
+    checks.check("midpoint deflection", difference <= args.limit * peak_ref,
+                 f"largest difference / the reference's peak {difference / peak_ref:.3g} (limit {args.limit:g})")
+    checks.finish(args.plot, lambda path: plot(path, t, w, t_ref, w_ref))
 
 
 def plot(path, t, w, t_ref, w_ref):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     top.plot(t_ref, w_ref * 1e3, "k-", label="geometrically exact planar beam (SciPy, ANCF)")
     top.plot(t, w * 1e3, "--", label="flexmbs, reduced 3-D rod")
@@ -75,9 +73,8 @@ def plot(path, t, w, t_ref, w_ref):
     bottom.set_xlabel("t [s]")
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -18,7 +18,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 
 H0, G, E, RADIUS, MASS = 1.0, 9.81, 0.9, 0.1, 1.0
 V1, T1 = math.sqrt(2.0 * G * H0), math.sqrt(2.0 * H0 / G)
@@ -94,11 +94,7 @@ def moreau_jean_errors(run):
 
 
 def plot(event_driven, moreau_jean, path):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     figure, (height, energy) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     height.plot(moreau_jean["t"], moreau_jean["z"], label="Moreau-Jean, h = 1 ms", lw=2.5, alpha=0.5)
     height.plot(event_driven["t"], event_driven["z"], "k", label="event-driven", lw=0.8)
@@ -113,8 +109,7 @@ def plot(event_driven, moreau_jean, path):
     energy.set_ylabel("kinetic + potential [J]")
     energy.legend(loc="upper right")
     figure.suptitle("Ball dropped from 1 m, e = 0.9: impacts at the closed-form times (red)")
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
+    save_figure(figure, path)
 
 
 def main():
@@ -128,18 +123,12 @@ def main():
     errors.update(moreau_jean_errors(moreau_jean))
     errors["resting speed [m/s]"] = max(abs(event_driven["vz"][-1]), abs(moreau_jean["vz"][-1]))
     print(f"closed form: first impact {T1:.6f} s, accumulation time {T_INF:.6f} s; event-driven saw {impacts} impacts")
-    failed = False
-    for name, value in errors.items():
-        ok = value <= LIMITS[name]
-        failed |= not ok
-        print(f"{name:42s} {value:10.3e}   limit {LIMITS[name]:.0e}   {'ok' if ok else 'EXCEEDED'}")
+    checks = Checks()
+    checks.limits(errors, LIMITS)
     print_headline("03_bouncing_ball", errors["event-driven impact times [s]"],
                    "event-driven impact times against the closed form [s]", peer="closed form")
-    if args.plot:
-        plot(event_driven, moreau_jean, args.plot)
-        print(f"wrote {args.plot}")
-    return 1 if failed else 0
+    checks.finish(args.plot, lambda path: plot(event_driven, moreau_jean, path))
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 
 E, NU, RHO = 2.1e11, 0.3, 7850.0          # steel, as rod.yaml and scene.yaml
 RADIUS, V0, GAP = 0.01, 1.0, 1e-6          # the sphere [m], its speed [m/s], the initial gap [m]
@@ -85,31 +85,26 @@ def main():
     print(f"peak force        flexmbs {peak_run:.2f} N, reference {peak_ref:.2f} N")
     print(f"contact duration  flexmbs {d_run * 1e6:.2f} us, reference {d_ref * 1e6:.2f} us")
     print(f"rebound speed     flexmbs {v[-1]:.5f} m/s, reference {reference(t)[-1]:.5f} m/s")
-    failed = False
-    for name, value in measured.items():
-        ok = value <= LIMITS[name]
-        failed |= not ok
-        print(f"{name:40s} {value:.3e}  (limit {LIMITS[name]:.1e}) {'ok' if ok else 'FAILED'}")
+    checks = Checks()
+    checks.limits(measured, LIMITS)
     print_headline("04_sphere_on_rod", measured["peak force, relative difference"], "peak contact force",
                    peer="Goldsmith's sphere on a long rod (SciPy)")
-    if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        mid = 0.5 * (t[:-1] + t[1:]) * 1e6
-        fig, ax = plt.subplots(figsize=(7, 4))
-        ax.plot(mid, f_ref, "k-", lw=2.5, alpha=0.4, label="reference: Goldsmith, sphere on a long rod (SciPy)")
-        ax.plot(mid, f_run, "C0-", lw=1.2, label="flexmbs: reduced rod (modes + correction mode)")
-        ax.set_xlabel("time [us]")
-        ax.set_ylabel("contact force [N]")
-        ax.set_title("Steel sphere r = 10 mm at 1 m/s on a 0.5 m steel rod")
-        ax.legend(loc="upper right", fontsize=8)
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=120)
-        print(f"wrote {args.plot}")
-    return 1 if failed else 0
+    checks.finish(args.plot, lambda path: plot(t, f_ref, f_run, path))
+
+
+def plot(t, f_ref, f_run, path):
+    plt = pyplot()
+    mid = 0.5 * (t[:-1] + t[1:]) * 1e6
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(mid, f_ref, "k-", lw=2.5, alpha=0.4, label="reference: Goldsmith, sphere on a long rod (SciPy)")
+    ax.plot(mid, f_run, "C0-", lw=1.2, label="flexmbs: reduced rod (modes + correction mode)")
+    ax.set_xlabel("time [us]")
+    ax.set_ylabel("contact force [N]")
+    ax.set_title("Steel sphere r = 10 mm at 1 m/s on a 0.5 m steel rod")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(alpha=0.3)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -25,7 +25,7 @@ import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline, reduce_seconds  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, reduce_seconds, save_figure  # noqa: E402 (cases/headline.py)
 
 # NAFEMS, Selected Benchmarks for Natural Frequency Analysis (R0015, 1987), test FV52, modes
 # 4-10 (the first three are the in-plane rigid motions). Bending: (1,1), (1,2) twice, (2,2);
@@ -62,12 +62,8 @@ def main():
     p.add_argument("--coarse-out", type=pathlib.Path)
     p.add_argument("--plot")
     a = p.parse_args()
-    failures = []
-
-    def check(what, ok, detail):
-        print(f"{'ok  ' if ok else 'FAIL'} {what}: {detail}")
-        if not ok:
-            failures.append(what)
+    checks = Checks()
+    check = checks.check
 
     ours = {v: load(a.out, f"{v}.reduce.json")["frequency_hz"] for v in BENDING_INDEX}
     ccx = {v: load(a.out, f"{v}.ccx.json")["frequencies_hz"] for v in BENDING_INDEX}
@@ -108,18 +104,11 @@ def main():
                    "frequencies against CalculiX on the same mesh (NAFEMS: the table)",
                    runtime_s=reduce_seconds(load(a.out, "plate.reduce.json")), peer="CalculiX (C3D20)",
                    peer_runtime_s=load(a.out, "plate.ccx.json")["seconds"])
-    if a.plot:
-        plot(a.plot, held, faces, in_plane, a.mesh)
-        print(f"wrote {a.plot}")
-    if failures:
-        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
-        sys.exit(1)
+    checks.finish(a.plot, lambda path: plot(path, held, faces, in_plane, a.mesh))
 
 
 def plot(path, held, faces, in_plane, mesh):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     labels = ["(1,1)", "(1,2)", "(2,1)", "(2,2)", "in-plane", "in-plane", "in-plane"]
     published = PUBLISHED_BENDING_HZ + PUBLISHED_IN_PLANE_HZ
     fig, ax = plt.subplots(figsize=(8, 4.5))
@@ -135,8 +124,7 @@ def plot(path, held, faces, in_plane, mesh):
                  "flexmbs = CalculiX to 1e-6")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":

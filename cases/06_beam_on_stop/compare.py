@@ -22,7 +22,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
 
 MASS, SPEED, STEP = 7.536, 1.0, 1e-6     # the beam [kg] (rho V), its speed [m/s], the step [s]
@@ -64,7 +64,7 @@ def main():
     p.add_argument("--plot")
     a = p.parse_args()
     runs = a.runs.split(",")
-    failures, table = [], {}
+    checks, table = Checks(), {}
     for formulation in FORMULATIONS:
         full = np.load(a.out / f"full_{formulation}.npy")
         info = json.loads((a.out / f"full_{formulation}.json").read_text())
@@ -78,7 +78,7 @@ def main():
                     own = f["contacts/stop/normal_impulse"][1:]
                     drift = history_error(impulses, own)
                     if drift > MOMENTUM_CHECK:
-                        failures.append(f"{formulation} {run}: momentum against impulses {drift:.1e}")
+                        checks.failures.append(f"{formulation} {run}: momentum against impulses {drift:.1e}")
                     impulses = own
             seconds = json.loads((a.out / f"{formulation}_{run}.json").read_text())["wall_seconds"]
             row = {"impulse": impulses.sum() / full.sum() - 1.0, "history": history_error(impulses, full),
@@ -89,25 +89,15 @@ def main():
         if (formulation, run) not in table:
             continue
         value = table[(formulation, run)][measure]
-        ok = abs(value) <= limit
-        print(f"{'ok  ' if ok else 'FAIL'} {formulation} {run}: {measure} error {value:+.2e} (limit {limit:g})")
-        if not ok:
-            failures.append(f"{formulation} {run} {measure}")
+        checks.check(f"{formulation} {run}: {measure}", abs(value) <= limit, f"error {value:+.2e} (limit {limit:g})")
     print_headline("06_beam_on_stop", abs(table[("penalty", runs[-1])]["peak"]), f"penalty peak force, {runs[-1]} modes",
                    runtime_s=table[("penalty", runs[-1])]["seconds"], peer="full FE model (SciPy)",
                    peer_runtime_s=json.loads((a.out / "full_penalty.json").read_text())["wall_seconds"])
-    if a.plot:
-        plot(a.plot, a.out, runs, table)
-        print(f"wrote {a.plot}")
-    if failures:
-        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
-        sys.exit(1)
+    checks.finish(a.plot, lambda path: plot(path, a.out, runs, table))
 
 
 def plot(path, out, runs, table):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
     t = 1e3 * STEP * np.arange(1, 1001)
     full = np.load(out / "full_penalty.npy")
@@ -130,8 +120,7 @@ def plot(path, out, runs, table):
     right.legend(fontsize=8)
     right.grid(alpha=0.3, which="both")
     fig.suptitle("beam on a stop: reduced (modes, c = pad correction mode) against the full FE model")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":

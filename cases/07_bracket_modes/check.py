@@ -19,7 +19,7 @@ import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline, reduce_seconds  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, reduce_seconds, save_figure  # noqa: E402 (cases/headline.py)
 
 # CalculiX prints 7 significant digits: measured 3.8e-7.
 CALCULIX = 1e-6
@@ -38,12 +38,8 @@ def main():
     modal = json.loads((a.out / "compare_modal.json").read_text())["pairs"]
     cb = json.loads((a.out / "compare_cb.json").read_text())["pairs"]
     ccx = json.loads((a.out / "full.ccx.json").read_text())["frequencies_hz"]
-    failures = []
-
-    def check(what, ok, detail):
-        print(f"{'ok  ' if ok else 'FAIL'} {what}: {detail}")
-        if not ok:
-            failures.append(what)
+    checks = Checks()
+    check = checks.check
 
     full = [pair["frequency_b_hz"] for pair in modal]
     worst = max(abs(f / c - 1.0) for f, c in zip(full, ccx))
@@ -63,18 +59,11 @@ def main():
     print_headline("07_bracket_modes", max(abs(e) for e in errors[:5]), "Craig-Bampton frequencies 1-5 against the full model",
                    runtime_s=reduce_seconds(json.loads((a.out / "bracket_cb.reduce.json").read_text())),
                    peer="CalculiX (C3D20), full model", peer_runtime_s=json.loads((a.out / "full.ccx.json").read_text())["seconds"])
-    if a.plot:
-        plot(a.plot, modal, cb)
-        print(f"wrote {a.plot}")
-    if failures:
-        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
-        sys.exit(1)
+    checks.finish(a.plot, lambda path: plot(path, modal, cb))
 
 
 def plot(path, modal, cb):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     n = range(1, len(cb) + 1)
     left.semilogy(n, [max(abs(pair["relative_error"]), 1e-16) for pair in modal], "o-", label="12 normal modes")
@@ -91,8 +80,7 @@ def plot(path, modal, cb):
     right.legend(fontsize=8)
     right.grid(alpha=0.3)
     fig.suptitle("L-bracket, hex20 14 583 DOF: reduced bodies of 12 columns against the full FE model")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":

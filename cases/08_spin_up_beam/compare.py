@@ -21,7 +21,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
 
 REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation" / "spin_up_reference.py"
@@ -49,7 +49,7 @@ def main():
     p.add_argument("--diverges-past", type=float, help="[m]: the unstiffened runs' end deflection exceeds this")
     p.add_argument("--plot")
     a = p.parse_args()
-    failures, curves, stiffened = [], [], []
+    checks, curves, stiffened = Checks(), [], []
     for args in a.run:
         path, spin, stiffening, limit = args[0], float(args[1]), int(args[2]), float(args[3])
         until = float(args[4]) if len(args) > 4 else np.inf
@@ -61,35 +61,22 @@ def main():
         print(f"{name} ({path}):")
         for tk, a_k, r_k in zip(t, tip, ref):
             print(f"  t = {tk:4.1f} s: tip {a_k:+.5f} m, 1-D {r_k:+.5f} m ({a_k - r_k:+.1e} m)")
-        ok = error <= limit
-        print(f"{'ok  ' if ok else 'FAIL'} {name}: largest difference / largest |deflection| {error:.1e}"
-              f"{'' if np.isinf(until) else f' up to {until:g} s'} (limit {limit:g})")
-        if not ok:
-            failures.append(name)
+        checks.check(name, error <= limit, f"largest difference / largest |deflection| {error:.1e}"
+                     f"{'' if np.isinf(until) else f' up to {until:g} s'} (limit {limit:g})")
         if not stiffening and a.diverges_past is not None:
-            ok = abs(tip[-1]) > a.diverges_past
-            print(f"{'ok  ' if ok else 'FAIL'} {name}: diverges, |tip| {abs(tip[-1]):.3g} m at {t[-1]:g} s "
-                  f"(> {a.diverges_past:g} m)")
-            if not ok:
-                failures.append(f"{name} diverges")
+            checks.check(f"{name} diverges", abs(tip[-1]) > a.diverges_past,
+                         f"|tip| {abs(tip[-1]):.3g} m at {t[-1]:g} s (> {a.diverges_past:g} m)")
         curves.append((name, t, tip, ref))
         if stiffening:
             stiffened.append(error)
     if stiffened:
         print_headline("08_spin_up_beam", max(stiffened), "tip deflection / its largest value, stiffened runs",
                        peer="1-D rotating beam (SciPy)")
-    if a.plot:
-        plot(a.plot, curves)
-        print(f"wrote {a.plot}")
-    if failures:
-        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
-        sys.exit(1)
+    checks.finish(a.plot, lambda path: plot(path, curves))
 
 
 def plot(path, curves):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for name, t, tip, ref in curves:
         line, = ax.plot(t, tip, "o", label=f"flexmbs, {name}")
@@ -100,8 +87,7 @@ def plot(path, curves):
     ax.set_title("Kane's spin-up beam: reduced 3-D body (4 modes) against the 1-D rotating beam")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 
 CENTRE_XY = (0.1013, 0.1007)  # the sphere's axis (scene.yaml)
 SECOND_ORDER = (3.5, 4.5)      # error ratio per level: measured 3.88, 3.97, 4.02
@@ -58,7 +58,7 @@ def main():
         ref = json.load(f)
     runs = args.runs.split(",")
     values = {run: run_values(args.out, run) for run in runs}
-    failures = []
+    checks = Checks()
     print(f"reference (full FE model, exact sphere, SciPy): force {ref['force_n']:.4f} N, "
           f"deflection {ref['deflection_m']:.6e} m, {ref['wall_seconds']:.2f} s")
     print("| run | force [N] | force error | deflection error | compliance error | wall [s] |")
@@ -72,36 +72,34 @@ def main():
         label = f"level {run[:-1]}, 12 modes only" if run.endswith("m") else f"level {run}, 12 + 49 modes"
         print(f"| {label} | {force:.4f} | {e_force:+.3e} | {e_defl:+.3e} | {e_comp:+.2e} | {wall:.2f} |")
         if abs(history[-1] - history[-2]) > SETTLED * abs(history[-1]):
-            failures.append(f"run {run} has not settled: {history[-2]} -> {history[-1]} N")
+            checks.failures.append(f"run {run} has not settled: {history[-2]} -> {history[-1]} N")
         if run.endswith("m"):
             continue
         errors[int(run)] = e_force
         low, high = FORCE_ERROR[int(run)]
         if not low <= e_force <= high:
-            failures.append(f"level {run}: force error {e_force:.3e} outside [{low}, {high}]")
+            checks.failures.append(f"level {run}: force error {e_force:.3e} outside [{low}, {high}]")
         if abs(e_comp) > COMPLIANCE:
-            failures.append(f"level {run}: deflection / force off the FE model's by {e_comp:.2e}")
+            checks.failures.append(f"level {run}: deflection / force off the FE model's by {e_comp:.2e}")
     for level in sorted(errors):
         if level + 1 in errors:
             ratio = errors[level] / errors[level + 1]
             print(f"error ratio level {level} / {level + 1}: {ratio:.3f}")
             if not SECOND_ORDER[0] <= ratio <= SECOND_ORDER[1]:
-                failures.append(f"error ratio {level}/{level + 1} = {ratio:.3f} is not second order")
+                checks.failures.append(f"error ratio {level}/{level + 1} = {ratio:.3f} is not second order")
     if 6 in errors and 7 in errors:
         f6, f7 = values["6"][0], values["7"][0]
         extrapolated = (f7 + (f7 - f6) / 3) / ref["force_n"] - 1
         print(f"Richardson (levels 6, 7): {extrapolated:+.2e} of the reference")
         if abs(extrapolated) > RICHARDSON:
-            failures.append(f"Richardson extrapolation off by {extrapolated:.2e}")
+            checks.failures.append(f"Richardson extrapolation off by {extrapolated:.2e}")
     finest = max(errors)
     print_headline("09_sphere_on_plate", abs(errors[finest]),
                    f"contact force, sphere level {finest}, against the full FE model's static contact",
                    runtime_s=values[str(finest)][2], peer="full FE model, exact sphere (SciPy)",
                    peer_runtime_s=ref["wall_seconds"])
     if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
         for run in runs:
             _, _, _, history, t = values[run]
@@ -114,12 +112,8 @@ def main():
             right.loglog(wall, abs(force / ref["force_n"] - 1), "o" if not run.endswith("m") else "s")
             right.annotate(run, (wall, abs(force / ref["force_n"] - 1)))
         right.set(xlabel="wall time [s]", ylabel="|force error|", title="error against wall time")
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=110)
-    if failures:
-        print("FAILED: " + "; ".join(failures))
-        sys.exit(1)
-    print("all checks passed")
+        save_figure(fig, args.plot, dpi=110)
+    checks.finish()
 
 
 if __name__ == "__main__":

@@ -40,7 +40,7 @@ import yaml
 import gear_geometry as gg
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 
 TORQUE, SPEED, START, RING = 10.0, 2.0, 0.1, 1e-3  # load [N m], pinion [rad/s], from [s], after a switch [s]
 E, NU, W_REF = 2.1e11, 0.3, 3e5                    # steel, the flattening's reference load [N/m]
@@ -103,7 +103,7 @@ def main():
     with open("scene.yaml") as f:
         teeth = yaml.safe_load(f.read().replace("WHEEL_ANGLE", "0"))["forces"][1]["teeth"]
     runs = {name: read(f"{args.out}/{name}.h5", g) for name in ("fe", "iso")}
-    measured, failures = {}, []
+    measured, checks = {}, Checks()
     for name, r in runs.items():
         t = r["t"]
         whole = (t >= START) & (t < START + period * math.floor((t[-1] - START) / period))
@@ -160,7 +160,7 @@ def main():
             value = measured[name].get(key)
             cells.append("" if value is None else f"{value:.2e}")
             if value is not None and not value <= limit:
-                failures.append(f"{name}: {key} {value:.3e} > {limit}")
+                checks.failures.append(f"{name}: {key} {value:.3e} > {limit}")
         print(f"| {key} | {cells[0]} | {cells[1]} | {limit:g} |")
     lo, hi, dbl = measured["fe"]["levels_um"]
     share = measured["fe"]["teeth_share"]
@@ -173,9 +173,7 @@ def main():
                    "FE teeth' single-contact transmission error against the teeth and Weber's flattening in series",
                    runtime_s=wall, peer="closed forms, ISO 6336-1 c'")
     if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         rows = 4 if shaft.exists() else 3
         fig, axes = plt.subplots(rows, 1, figsize=(9, 2.7 * rows), sharex=True)
         for name, label in (("fe", "FE teeth"), ("iso", "ISO 6336-1 c'")):
@@ -203,12 +201,8 @@ def main():
                             ls="--", lw=0.8, label="single contact: F/(c' b) + Timoshenko's shaft")
             axes[3].set(ylabel="wheel lag on the line [um]", ylim=(0, None))
             axes[3].legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=110)
-    if failures:
-        print("FAILED: " + "; ".join(failures))
-        sys.exit(1)
-    print("all checks passed")
+        save_figure(fig, args.plot, dpi=110)
+    checks.finish()
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from headline import print_headline  # noqa: E402 (cases/headline.py)
+from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
 from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
 
 
@@ -51,7 +51,7 @@ def main():
     angle_ref, tip_ref = np.unwrap(ref["angle"]), np.array(ref["tip"])
     print(f"reference: co-rotational beam, {ref['elements']} elements, rtol {ref['rtol']:g}, "
           f"{ref['cpu_seconds']} s CPU, energy drift {ref['energy_drift_j']:.1e} J")
-    failures, curves, headline = [], [], None
+    checks, curves, headline = Checks(), [], None
     for path, name, tip_limit, angle_limit in a.run:
         t, angle, tip, seconds = swing(path)
         if len(t) > len(t_ref) or np.max(np.abs(t - t_ref[:len(t)])) > 1e-9:
@@ -65,10 +65,7 @@ def main():
                   f"tip {tip[k] * 1e3:+.4f} mm (reference {tip_ref[k] * 1e3:+.4f})")
         for what, error, limit, unit in (("tip difference / largest |tip|", tip_error, float(tip_limit), ""),
                                          ("angle difference", angle_error, float(angle_limit), " rad")):
-            ok = error <= limit
-            print(f"{'ok  ' if ok else 'FAIL'} {name}: {what} {error:.2e}{unit} (limit {limit:g}{unit})")
-            if not ok:
-                failures.append(f"{name} {what}")
+            checks.check(f"{name}: {what}", error <= limit, f"{error:.2e}{unit} (limit {limit:g}{unit})")
         if seconds is not None:
             print(f"     {name}: flexmbs simulate {seconds:.3f} s")
         if headline is None:
@@ -76,18 +73,11 @@ def main():
         curves.append((name, t, angle, tip))
     print_headline("11_flexible_pendulum", headline[0], "tip deflection / its largest value",
                    runtime_s=headline[1], peer="co-rotational beam (SciPy)", peer_runtime_s=ref["cpu_seconds"])
-    if a.plot:
-        plot(a.plot, t_ref, angle_ref, tip_ref, curves)
-        print(f"wrote {a.plot}")
-    if failures:
-        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
-        sys.exit(1)
+    checks.finish(a.plot, lambda path: plot(path, t_ref, angle_ref, tip_ref, curves))
 
 
 def plot(path, t_ref, angle_ref, tip_ref, curves):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     top.plot(t_ref, np.degrees(angle_ref), "k-", label="co-rotational beam (SciPy)")
     bottom.plot(t_ref, tip_ref * 1e3, "k-", label="co-rotational beam (SciPy)")
@@ -101,8 +91,7 @@ def plot(path, t_ref, angle_ref, tip_ref, curves):
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
 
 
 if __name__ == "__main__":
