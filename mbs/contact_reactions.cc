@@ -14,24 +14,24 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 contact::SolveStatus SolveContactReactions(const MatrixXd& W, const VectorXd& q, const VectorXd& mu,
-                                           double tolerance, int nsgs_sweeps, VectorXd* r) {
+                                           double tolerance, int nsgs_sweeps, VectorXd* r, Index d) {
   const Index n = mu.size();
-  r->setZero(3 * n);
+  r->setZero(d * n);
   if (n == 0 || mu.maxCoeff() == 0.0) {
     contact::LcpProblem lcp{MatrixXd(n, n), VectorXd(n)};
     for (Index i = 0; i < n; ++i) {
-      lcp.q(i) = q(3 * i);
-      for (Index j = 0; j < n; ++j) lcp.M(i, j) = W(3 * i, 3 * j);
+      lcp.q(i) = q(d * i);
+      for (Index j = 0; j < n; ++j) lcp.M(i, j) = W(d * i, d * j);
     }
     contact::LcpSolution solution = contact::SolveLcp(lcp, {tolerance});
-    for (Index i = 0; i < n; ++i) (*r)(3 * i) = solution.z(i);
+    for (Index i = 0; i < n; ++i) (*r)(d * i) = solution.z(i);
     solution.message = "LCP by " + solution.message;
     return solution;
   }
   contact::FrictionContactOptions friction;
   friction.tolerance = tolerance;
   friction.nsgs_sweeps = nsgs_sweeps;
-  contact::FrictionContactSolution solution = contact::SolveFrictionContact({3, W, q, mu}, friction);
+  contact::FrictionContactSolution solution = contact::SolveFrictionContact({static_cast<int>(d), W, q, mu}, friction);
   *r = solution.r;
   solution.message = "friction contact: " + solution.message;
   return solution;

@@ -134,7 +134,13 @@ EventDrivenContacts::EventDrivenContacts(const MultibodySystem& system,
                                          const EventDrivenOptions& options)
     : system_(system), options_(options) {
   for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
-    for (int p = 0; p < system.unilateral_contact(k).num_points(); ++p) points_.push_back({k, p});
+    const UnilateralContact& contact = system.unilateral_contact(k);
+    if (system.planar() && contact.law().friction > 0.0) {
+      throw InputError(fmt::format("contact '{}': friction {:g} in a planar scene: event_driven takes planar contacts "
+                                   "without friction so far (moreau_jean solves the two-sided planar cone)",
+                                   contact.name(), contact.law().friction));
+    }
+    for (int p = 0; p < contact.num_points(); ++p) points_.push_back({k, p});
   }
 }
 

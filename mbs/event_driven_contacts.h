@@ -67,6 +67,8 @@ struct ImpactResult {
 /// The contact points of a system and their algebra. Holds a reference to the system.
 class EventDrivenContacts {
  public:
+  /// Throws InputError naming the contact for a contact with friction in a planar scene (not
+  /// built yet: Moreau-Jean takes it).
   EventDrivenContacts(const MultibodySystem& system, const EventDrivenOptions& options);
 
   /// Every point of every contact, contact by contact.

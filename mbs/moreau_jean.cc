@@ -14,6 +14,7 @@
 #include "mbs/contact_reactions.h"
 #include "mbs/cpu_time.h"
 #include "mbs/kkt_factor.h"
+#include "mbs/planar.h"
 #include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
@@ -29,20 +30,34 @@ using Eigen::VectorXd;
 constexpr double kSlipSpeed = 1e-9;
 
 /// The smooth part of a step: the factorised KKT matrix [A G^T; G 0] over the kept joint rows and
-/// the free velocity increment with its joint impulses.
+/// the free velocity increment with its joint impulses. In a planar scene the matrix is over the
+/// kept velocity columns s (A(s, s), G(:, s)): the solves gather and scatter them.
 struct SmoothStep {
   KktFactor kkt;
   std::vector<Index> kept;
+  std::vector<Index> velocities;  ///< the kept velocity columns s (planar scenes); empty: all
   VectorXd dv_free;       ///< v_free - v_k
   VectorXd impulse_free;  ///< Lambda of the free step (kept rows) [N s]
 };
 
-/// Solves the KKT system for right-hand sides [rhs_v; rhs_c]: the velocity parts and Lambda (the
-/// second block of the solution with its sign turned: A dv = rhs_v + G^T Lambda).
+/// Solves the KKT system for right-hand sides [rhs_v; rhs_c] (nu + m rows): the velocity parts
+/// (zero in the dropped columns of a planar scene) and Lambda (the second block of the solution
+/// with its sign turned: A dv = rhs_v + G^T Lambda).
 void SolveKkt(const SmoothStep& step, Index nu, const MatrixXd& rhs, MatrixXd* dv, MatrixXd* impulse) {
-  const MatrixXd solution = step.kkt.Solve(rhs);
-  *dv = solution.topRows(nu);
-  *impulse = -solution.bottomRows(solution.rows() - nu);
+  if (step.velocities.empty()) {
+    const MatrixXd solution = step.kkt.Solve(rhs);
+    *dv = solution.topRows(nu);
+    *impulse = -solution.bottomRows(solution.rows() - nu);
+    return;
+  }
+  const Index ns = static_cast<Index>(step.velocities.size()), m = rhs.rows() - nu;
+  MatrixXd gathered(ns + m, rhs.cols());
+  gathered.topRows(ns) = rhs(step.velocities, Eigen::all);
+  gathered.bottomRows(m) = rhs.bottomRows(m);
+  const MatrixXd solution = step.kkt.Solve(gathered);
+  *dv = MatrixXd::Zero(nu, rhs.cols());
+  dv->operator()(step.velocities, Eigen::all) = solution.topRows(ns);
+  *impulse = -solution.bottomRows(m);
 }
 
 SmoothStep SolveSmoothStep(const MultibodySystem& system, double t, double h, double theta, const ConstVectorRef& y,
@@ -63,23 +78,33 @@ SmoothStep SolveSmoothStep(const MultibodySystem& system, double t, double h, do
 
   SmoothStep step;
   step.kept = system.KeptConstraints();
+  if (system.planar()) step.velocities = system.KeptVelocities();
   const Index m = static_cast<Index>(step.kept.size());
   const SystemConstraints c = system.Constraints(t + h, y);
-  MatrixXd kkt = MatrixXd::Zero(nu + m, nu + m);
-  kkt.topLeftCorner(nu, nu) = A;
   VectorXd rhs(nu + m);
   rhs.head(nu) = rhs_v;
   for (Index r = 0; r < m; ++r) {
     const Index row = step.kept[static_cast<std::size_t>(r)];
-    kkt.block(nu + r, 0, 1, nu) = c.G.row(row);
-    kkt.block(0, nu + r, nu, 1) = c.G.row(row).transpose();
     rhs(nu + r) = -c.g_t(row) - c.G.row(row).dot(v_k);
   }
+  MatrixXd kkt;
+  if (step.velocities.empty()) {
+    kkt = MatrixXd::Zero(nu + m, nu + m);
+    kkt.topLeftCorner(nu, nu) = A;
+    kkt.bottomLeftCorner(m, nu) = c.G(step.kept, Eigen::all);
+  } else {
+    const Index ns = static_cast<Index>(step.velocities.size());
+    kkt = MatrixXd::Zero(ns + m, ns + m);
+    kkt.topLeftCorner(ns, ns) = A(step.velocities, step.velocities);
+    kkt.bottomLeftCorner(m, ns) = c.G(step.kept, step.velocities);
+  }
+  const Index n = kkt.rows() - m;
+  kkt.topRightCorner(n, m) = kkt.bottomLeftCorner(m, n).transpose();
   if (!step.kkt.Compute(kkt)) {
     const Eigen::Index rank = step.kkt.rank();
     throw SimulationError(t, fmt::format("t = {:.9g} s: Moreau-Jean step: the KKT matrix of the masses and the {} kept "
                                          "joint rows is singular ({} of {})",
-                                         t, m, rank >= 0 ? fmt::format("rank {}", rank) : "sparse LU", nu + m));
+                                         t, m, rank >= 0 ? fmt::format("rank {}", rank) : "sparse LU", n + m));
   }
   MatrixXd dv, impulse;
   SolveKkt(step, nu, rhs, &dv, &impulse);
@@ -110,10 +135,13 @@ ContactPoints EvaluateContactPoints(const MultibodySystem& system, double t, con
   return points;
 }
 
-/// The active points' local problem: H (3 per point: W_N, W_T) and the normal law's offsets.
+/// The active points' local problem: H (d per point: W_N and the tangents' rows; d = 3, or 2 in
+/// a planar scene) and the normal law's offsets.
 struct ActiveContacts {
+  Index d = 3;             ///< ContactDimension
   std::vector<int> index;  ///< point indices into ContactPoints
-  MatrixXd H;              ///< 3 n_a x num_velocities()
+  std::vector<Eigen::Matrix3Xd> t_W;  ///< per active point its d - 1 tangents in W
+  MatrixXd H;              ///< d n_a x num_velocities()
   VectorXd normal_offset;  ///< per active point: e U_N,k (velocity level) or g_N(x_k) / h (position level)
   VectorXd mu;
 };
@@ -127,21 +155,25 @@ ActiveContacts FindActiveContacts(const MultibodySystem& system, const ContactPo
                                   const VectorXd& v_k, const VectorXd& v_free, ImpactLevel level) {
   const bool position_level = level == ImpactLevel::kPosition;
   ActiveContacts active;
+  active.d = ContactDimension(system);
+  const Index d = active.d;
   for (std::size_t k = 0; k < points.kinematics.size(); ++k) {
     const UnilateralContactKinematics& c = points.kinematics[k];
     const double predicted = position_level ? c.g_N + h * c.W_N.dot(v_free) : c.g_N + 0.5 * h * c.W_N.dot(v_k);
     if (predicted <= 0.0) active.index.push_back(static_cast<int>(k));
   }
   const Index n_a = static_cast<Index>(active.index.size());
-  active.H.resize(3 * n_a, v_k.size());
+  active.H.resize(d * n_a, v_k.size());
   active.normal_offset.resize(n_a);
   active.mu.resize(n_a);
   for (Index i = 0; i < n_a; ++i) {
     const std::size_t k = static_cast<std::size_t>(active.index[static_cast<std::size_t>(i)]);
     const UnilateralContactKinematics& c = points.kinematics[k];
     const UnilateralLaw& law = system.unilateral_contact(points.contact[k]).law();
-    active.H.row(3 * i) = c.W_N;
-    active.H.middleRows(3 * i + 1, 2) = c.W_T;
+    const ContactTangents tangents = Tangents(c, d);
+    active.H.row(d * i) = c.W_N;
+    active.H.middleRows(d * i + 1, d - 1) = tangents.W_T;
+    active.t_W.push_back(tangents.t_W);
     active.normal_offset(i) = position_level ? c.g_N / h : law.restitution * c.W_N.dot(v_k);
     active.mu(i) = law.friction;
   }
@@ -170,18 +202,18 @@ std::vector<ContactStepResult> SummarizeContacts(const MultibodySystem& system, 
   }
   for (std::size_t i = 0; i < active.index.size(); ++i) {
     const std::size_t k = static_cast<std::size_t>(points.contact[static_cast<std::size_t>(active.index[i])]);
-    const Index i3 = 3 * static_cast<Index>(i);
+    const Index d = active.d, at = d * static_cast<Index>(i);
+    const UnilateralContactKinematics& c = points.kinematics[static_cast<std::size_t>(active.index[i])];
+    const Eigen::Vector3d P_T_W = active.t_W[i] * P.segment(at + 1, d - 1);
     results[k].active = true;
     ++results[k].active_points;
-    results[k].P_N += P(i3);
-    results[k].P_T += P.segment<2>(i3 + 1);
-    const double slip = (active.H.middleRows(i3 + 1, 2) * v_next).norm();
-    const bool slides = active.mu(static_cast<Index>(i)) > 0.0 && P(i3) > 0.0 && slip > kSlipSpeed;
+    results[k].P_N += P(at);
+    results[k].P_T += Eigen::Vector2d(c.t1_W.dot(P_T_W), c.t2_W.dot(P_T_W));
+    const double slip = (active.H.middleRows(at + 1, d - 1) * v_next).norm();
+    const bool slides = active.mu(static_cast<Index>(i)) > 0.0 && P(at) > 0.0 && slip > kSlipSpeed;
     results[k].sliding = results[k].sliding || slides;
-    if (P.segment<3>(i3).isZero(0.0)) continue;
-    const UnilateralContactKinematics& c = points.kinematics[static_cast<std::size_t>(active.index[i])];
-    results[k].loads.push_back(
-        {0, c.p_WA_W, c.n_W, (P(i3) * c.n_W + P(i3 + 1) * c.t1_W + P(i3 + 2) * c.t2_W) / h});
+    if (P.segment(at, d).isZero(0.0)) continue;
+    results[k].loads.push_back({0, c.p_WA_W, c.n_W, (P(at) * c.n_W + P_T_W) / h});
   }
   return results;
 }
@@ -255,20 +287,21 @@ const MoreauJeanStepReport& MoreauJeanStepper::Step(double t, double h, Eigen::R
   const Index n_a = static_cast<Index>(active.index.size());
 
   VectorXd impulse = smooth.impulse_free;
-  VectorXd P = VectorXd::Zero(3 * n_a);
+  const Index d = active.d;
+  VectorXd P = VectorXd::Zero(d * n_a);
   report_.solver_iterations = 0;
   report_.solver_error = 0.0;
   if (n_a > 0) {
     const ScopedCpuTime solve_time(statistics_.contact_solve_cpu_seconds);
-    MatrixXd rhs = MatrixXd::Zero(nu + static_cast<Index>(smooth.kept.size()), 3 * n_a);
+    MatrixXd rhs = MatrixXd::Zero(nu + static_cast<Index>(smooth.kept.size()), d * n_a);
     rhs.topRows(nu) = active.H.transpose();
     MatrixXd dv_per_P, impulse_per_P;
     SolveKkt(smooth, nu, rhs, &dv_per_P, &impulse_per_P);
     const MatrixXd W = active.H * dv_per_P;
     VectorXd q = active.H * v_next;
-    for (Index i = 0; i < n_a; ++i) q(3 * i) += active.normal_offset(i);
+    for (Index i = 0; i < n_a; ++i) q(d * i) += active.normal_offset(i);
     const contact::SolveStatus status =
-        SolveContactReactions(W, q, active.mu, options_.solver_tolerance, options_.solver_max_iterations, &P);
+        SolveContactReactions(W, q, active.mu, options_.solver_tolerance, options_.solver_max_iterations, &P, d);
     if (!status.converged) NotConverged(step_number, t, h, static_cast<int>(n_a), status, options_.solver_tolerance);
     report_.solver_iterations = status.iterations;
     report_.solver_error = status.error;

@@ -102,7 +102,8 @@ struct MoreauJeanStatistics {
 /// (g_N(x_k) / h, 0, 0), and the index set g_N(x_k) + h W_N v_free <= 0). Frictionless steps
 /// solve the LCP (W_NN, q_N) by Lemke (as Siconos' LCP), and where Lemke misses the tolerance (a
 /// singular W_NN from redundant contact points: its pivots lose accuracy) by the proximal Newton
-/// solver with mu = 0; others SolveFrictionContact (d = 3). The bodies' acceleration-dependent
+/// solver with mu = 0; others SolveFrictionContact (d = 3; in a planar scene d = 2, the one
+/// in-plane tangent, and the KKT matrix over the kept velocity columns, mbs/planar.h). The bodies' acceleration-dependent
 /// forces (geometric stiffening) enter by one corrector of the
 /// free velocity with u' = (v_free - v_k) / h (as MultibodySystem::Accelerations); the contact
 /// impulses' own stiffening is left out.

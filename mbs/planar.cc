@@ -122,6 +122,19 @@ void CheckJoint(const MultibodySystem& system, const Joint& joint, const ConstVe
 
 Eigen::Vector3d PlanarTangent(const Eigen::Vector3d& n_W) { return Eigen::Vector3d::UnitZ().cross(n_W); }
 
+Index ContactDimension(const MultibodySystem& system) { return system.planar() ? 2 : 3; }
+
+ContactTangents Tangents(const UnilateralContactKinematics& c, Index d) {
+  FLEXMBS_CHECK(d == 2 || d == 3, "Tangents: d is 2 or 3");
+  if (d == 3) {
+    Eigen::Matrix3Xd t_W(3, 2);
+    t_W << c.t1_W, c.t2_W;
+    return {t_W, c.W_T};
+  }
+  const Eigen::Vector3d t = PlanarTangent(c.n_W);
+  return {t, t.dot(c.t1_W) * c.W_T.row(0) + t.dot(c.t2_W) * c.W_T.row(1)};
+}
+
 void MakePlanar(MultibodySystem& system, const ConstVectorRef& y0) {
   const Eigen::Vector3d& g_W = system.gravity();
   if (std::abs(g_W.z()) > kPlanarTolerance * std::max(1.0, g_W.norm())) {

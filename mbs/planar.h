@@ -35,4 +35,18 @@ void MakePlanar(MultibodySystem& system, const ConstVectorRef& y0);
 /// (n, t, z) is right-handed.
 Eigen::Vector3d PlanarTangent(const Eigen::Vector3d& n_W);
 
+/// The dimension d of a system's contact problems (FrictionContactProblem): 2 in a planar scene
+/// (the normal and the one in-plane tangent: Coulomb's two-sided cone, exact), 3 otherwise.
+Eigen::Index ContactDimension(const MultibodySystem& system);
+
+/// A contact point's d - 1 tangents: their directions in W and the rows of the tangential
+/// relative velocity through u.
+struct ContactTangents {
+  Eigen::Matrix3Xd t_W;  ///< 3 x (d - 1)
+  Eigen::MatrixXd W_T;   ///< (d - 1) x num_velocities()
+};
+/// d = 3: t1_W, t2_W and W_T as the contact gives them; d = 2: t = PlanarTangent(n_W) and its row
+/// (t . t1) W_T1 + (t . t2) W_T2.
+ContactTangents Tangents(const UnilateralContactKinematics& c, Eigen::Index d);
+
 }  // namespace flexmbs::mbs
