@@ -58,6 +58,10 @@ def read(results):
             "impulse": f["contacts/floor/normal_impulse"][:],
             "active": f["contacts/floor/active"][:],
         }
+        parts = list(f["statistics/parts"].asstr()[:])
+        run["wall"] = float(f["statistics/wall_seconds"][parts.index("total")])
+        run["cpu"] = float(f["statistics/cpu_seconds"][parts.index("total")])
+        run["contact_cpu"] = float(f["statistics/contact_solve_cpu_seconds"][()])
         if "events" in f:
             run["event_time"] = f["events/time"][:]
             run["event_kind"] = f["events/kind"][:]
@@ -123,10 +127,14 @@ def main():
     errors.update(moreau_jean_errors(moreau_jean))
     errors["resting speed [m/s]"] = max(abs(event_driven["vz"][-1]), abs(moreau_jean["vz"][-1]))
     print(f"closed form: first impact {T1:.6f} s, accumulation time {T_INF:.6f} s; event-driven saw {impacts} impacts")
+    for name, run in (("event-driven", event_driven), ("Moreau-Jean", moreau_jean)):
+        print(f"{name}: flexmbs simulate {run['wall']:.3g} s wall, {run['cpu']:.3g} s CPU, of it the contact "
+              f"solves {run['contact_cpu']:.3g} s")
     checks = Checks()
     checks.limits(errors, LIMITS)
     print_headline("03_bouncing_ball", errors["event-driven impact times [s]"],
-                   "event-driven impact times against the closed form [s]", peer="closed form")
+                   "event-driven impact times against the closed form [s]", runtime_s=event_driven["wall"],
+                   peer="closed form")
     checks.finish(args.plot, lambda path: plot(event_driven, moreau_jean, path))
 
 

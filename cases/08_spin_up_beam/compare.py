@@ -16,6 +16,7 @@ import json
 import pathlib
 import subprocess
 import sys
+import time
 
 import h5py
 import numpy as np
@@ -28,18 +29,23 @@ REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "tests" / "validation"
 
 
 def tip_deflection(path):
+    """The output times after the start [s], the tip deflection there [m] and the run's total wall
+    time (statistics/) [s]."""
     with h5py.File(path, "r") as f:
         t = f["time"][:]
         p_o, e = f["bodies/beam/position"][:], f["bodies/beam/orientation"][:]
         tip = f["bodies/beam/markers/tip"][:]
-    return t[1:], np.array([(rotation(e[k]).T @ (tip[k] - p_o[k]))[1] for k in range(1, len(t))])
+        wall = float(f["statistics/wall_seconds"][list(f["statistics/parts"].asstr()[:]).index("total")])
+    return t[1:], np.array([(rotation(e[k]).T @ (tip[k] - p_o[k]))[1] for k in range(1, len(t))]), wall
 
 
 def reference(spin, stiffening, times):
+    """The 1-D beam's tip deflection at `times` [m] and the wall time of its run [s]."""
     command = ["/usr/bin/python3", str(REFERENCE), repr(spin), str(stiffening)] + [repr(t) for t in times]
+    start = time.perf_counter()
     out = subprocess.run(command, capture_output=True, text=True, check=True,
                          env={"PYTHONDONTWRITEBYTECODE": "1", "PATH": "/usr/bin:/bin"}).stdout
-    return np.array(json.loads(out)["tip"])
+    return np.array(json.loads(out)["tip"]), time.perf_counter() - start
 
 
 def main():
@@ -53,8 +59,8 @@ def main():
     for args in a.run:
         path, spin, stiffening, limit = args[0], float(args[1]), int(args[2]), float(args[3])
         until = float(args[4]) if len(args) > 4 else np.inf
-        t, tip = tip_deflection(path)
-        ref = reference(spin, stiffening, t)
+        t, tip, wall = tip_deflection(path)
+        ref, reference_wall = reference(spin, stiffening, t)
         within = t <= until + 1e-9
         error = np.abs(tip - ref)[within].max() / np.abs(ref[within]).max()
         name = f"{spin:g} rad/s, {'with' if stiffening else 'without'} stiffening"
@@ -68,10 +74,11 @@ def main():
                          f"|tip| {abs(tip[-1]):.3g} m at {t[-1]:g} s (> {a.diverges_past:g} m)")
         curves.append((name, t, tip, ref))
         if stiffening:
-            stiffened.append(error)
+            stiffened.append((error, wall, reference_wall))
     if stiffened:
-        print_headline("08_spin_up_beam", max(stiffened), "tip deflection / its largest value, stiffened runs",
-                       peer="1-D rotating beam (SciPy)")
+        errors, walls, reference_walls = zip(*stiffened)
+        print_headline("08_spin_up_beam", max(errors), "tip deflection / its largest value, stiffened runs",
+                       runtime_s=sum(walls), peer="1-D rotating beam (SciPy)", peer_runtime_s=sum(reference_walls))
     checks.finish(a.plot, lambda path: plot(path, curves))
 
 
