@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <utility>
 
@@ -27,6 +28,33 @@ std::string ConstraintRedundancy::DescribeRow(const MultibodySystem& system, std
   return fmt::format("{} (nearly redundant: pivot {:.2g})", row, pivot);
 }
 
+namespace {
+
+/// Per row k of G: in a planar scene the share of its mobility G_k M^-1 G_k^T (the full mass
+/// matrix) that its in-plane part G_k S M~^-1 S^T G_k^T keeps (the solver's), 0 for a row that
+/// constrains only out-of-plane motion (a revolute's z translation and x, y alignments; on a
+/// reduced body also a row whose in-plane part is its mesh's round-off); 1 for every row of a
+/// spatial scene.
+Eigen::VectorXd InPlaneShares(const MultibodySystem& system, const ConstVectorRef& y, const Eigen::MatrixXd& G,
+                              const ConstraintSolver& solver) {
+  Eigen::VectorXd share = Eigen::VectorXd::Ones(G.rows());
+  if (!system.planar()) return share;
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(G.rows());
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    const VelocityBlock& block = system.velocity_block(b);
+    const Eigen::MatrixXd G_b = G.middleCols(block.start, block.size);
+    const Eigen::MatrixXd Minv_G_b_T = system.BodyMassMatrix(b, y).llt().solve(G_b.transpose());
+    full += G_b.cwiseProduct(Minv_G_b_T.transpose()).rowwise().sum();
+  }
+  for (Eigen::Index k = 0; k < G.rows(); ++k) {
+    const Eigen::VectorXd G_k = G.row(k).transpose();
+    share(k) = full(k) > 0.0 ? G_k.dot(solver.SolveMass(G_k)) / full(k) : 0.0;
+  }
+  return share;
+}
+
+}  // namespace
+
 ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, double t, const ConstVectorRef& y,
                                               double pivot_limit) {
   ConstraintRedundancy redundancy;
@@ -36,11 +64,18 @@ ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, dou
   const Eigen::MatrixXd G = system.Constraints(t, y).G;
   const ConstraintSolver solver(system, t, y, G, SolverRows::kAll);
   const Eigen::MatrixXd& S = solver.scaled_schur();
+  const Eigen::VectorXd in_plane = InPlaneShares(system, y, G, solver);
   // L L^T = S(kept, kept), grown one kept row at a time.
   Eigen::MatrixXd L = Eigen::MatrixXd::Zero(m, m);
   std::vector<Eigen::Index> kept;
   for (Eigen::Index row = 0; row < m; ++row) {
     const Eigen::Index n = static_cast<Eigen::Index>(kept.size());
+    if (in_plane(row) < pivot_limit) {  // an out-of-plane row of a planar scene
+      redundancy.dropped_rows.push_back(row);
+      redundancy.pivots.push_back(in_plane(row));
+      redundancy.drift_rates.push_back(0.0);
+      continue;
+    }
     const Eigen::VectorXd l =
         L.topLeftCorner(n, n).triangularView<Eigen::Lower>().solve(S(kept, row));
     const double pivot = S(row, row) - l.squaredNorm();

@@ -45,7 +45,9 @@ struct ConstraintRedundancy {
 /// redundant_pivot: about sqrt(limit) rad from the span of the others); the kept rows are
 /// independent with every pivot >= the limit. The order keeps the earlier joints' rows, so the
 /// rows that close a loop are the ones dropped. Ignores the system's current
-/// dropped_constraints().
+/// dropped_constraints(). In a planar scene a row whose in-plane part keeps less than
+/// `pivot_limit` of its mobility G_k M^-1 G_k^T (full M) is dropped first, that share its pivot
+/// and no drift rate: the out-of-plane rows of spatial joints (docs/mbs.md, "Planar scenes").
 ConstraintRedundancy FindRedundantConstraints(const MultibodySystem& system, double t, const ConstVectorRef& y,
                                               double pivot_limit);
 

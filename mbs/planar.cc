@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "core/error.h"
@@ -18,27 +20,60 @@ using Eigen::Index;
   throw InputError(fmt::format("{}: {}", item, problem));
 }
 
-/// The modes of a flexible body that move in the plane, as columns of its velocity block
-/// (6 + j); refuses a mode that is neither in-plane nor out-of-plane, or a body without shapes.
+/// mirror[n]: the FE node at (x, y, -z) of node n (B components), paired to kMirrorDistance of
+/// the mesh's size; refuses a mesh that is not mirror-symmetric about B's xy plane.
+std::vector<Index> MirrorNodes(const FlexibleBody& body) {
+  const Eigen::Matrix3Xd& nodes = body.data().node_positions;
+  const double quantum = kMirrorDistance * std::max(1e-300, nodes.cwiseAbs().maxCoeff());
+  const auto key = [&](const Eigen::Vector3d& p) {
+    return std::array<long long, 3>{std::llround(p.x() / quantum), std::llround(p.y() / quantum),
+                                    std::llround(p.z() / quantum)};
+  };
+  std::map<std::array<long long, 3>, Index> by_position;
+  for (Index n = 0; n < nodes.cols(); ++n) by_position[key(nodes.col(n))] = n;
+  std::vector<Index> mirror(static_cast<std::size_t>(nodes.cols()));
+  for (Index n = 0; n < nodes.cols(); ++n) {
+    const Eigen::Vector3d p = nodes.col(n);
+    const auto found = by_position.find(key(Eigen::Vector3d(p.x(), p.y(), -p.z())));
+    if (found == by_position.end()) {
+      Refuse(fmt::format("body '{}'", body.name()),
+             fmt::format("its FE mesh is not mirror-symmetric about its xy plane: node {} at ({:g}, {:g}, {:g}) m has no "
+                         "mirror image",
+                         n, p.x(), p.y(), p.z()));
+    }
+    mirror[static_cast<std::size_t>(n)] = found->second;
+  }
+  return mirror;
+}
+
+/// The modes of a flexible body that move in the plane, as columns of its velocity block (6 + j):
+/// those even under the reflection z -> -z of B (the nodes mirrored, u_z negated; odd modes move
+/// out of the plane). Refuses a mode that is neither, or a body without mode shapes on its nodes.
 std::vector<Index> InPlaneModeColumns(const FlexibleBody& body) {
   const Eigen::MatrixXd& phi = body.data().phi;
   const Index n = body.num_modes();
-  if (n > 0 && phi.cols() != n) {
+  if (n == 0) return {};
+  if (phi.cols() != n || phi.rows() != 3 * body.data().node_positions.cols() || phi.rows() == 0) {
     Refuse(fmt::format("body '{}'", body.name()),
            "its file carries no mode shapes on the FE nodes to tell in-plane from out-of-plane modes");
   }
+  const std::vector<Index> mirror = MirrorNodes(body);
   std::vector<Index> columns;
   for (Index j = 0; j < n; ++j) {
-    double in_plane = 0.0, out_of_plane = 0.0;
-    for (Index row = 0; row < phi.rows(); ++row) {
-      (row % 3 == 2 ? out_of_plane : in_plane) += phi(row, j) * phi(row, j);
+    Eigen::VectorXd reflected(phi.rows());
+    for (std::size_t node = 0; node < mirror.size(); ++node) {
+      const Index from = 3 * mirror[node], to = 3 * static_cast<Index>(node);
+      reflected.segment<3>(to) << phi(from, j), phi(from + 1, j), -phi(from + 2, j);
     }
-    const double total = in_plane + out_of_plane;
-    if (out_of_plane <= kPlanarModeShare * total) {
+    const double norm = phi.col(j).norm();
+    const double even = (reflected - phi.col(j)).norm() / norm, odd = (reflected + phi.col(j)).norm() / norm;
+    if (even <= kPlanarModeSymmetry) {
       columns.push_back(6 + j);
-    } else if (in_plane > kPlanarModeShare * total) {
+    } else if (odd > kPlanarModeSymmetry) {
       Refuse(fmt::format("body '{}' mode {} '{}'", body.name(), j + 1, body.data().mode_names.at(static_cast<std::size_t>(j))),
-             fmt::format("neither in-plane nor out-of-plane: its shape's z share is {:.3g}", out_of_plane / total));
+             fmt::format("neither in-plane nor out-of-plane: it departs from its reflection z -> -z by {:.3g} and from "
+                         "its negative by {:.3g} of its norm",
+                         even, odd));
     }
   }
   return columns;
@@ -83,7 +118,7 @@ std::vector<Index> CheckBody(const MultibodySystem& system, int b, const ConstVe
     }
     for (const Index k : kept) {
       const double coupling = M(k, i) / std::sqrt(M(k, k) * M(i, i));
-      if (std::abs(coupling) > kPlanarTolerance) {
+      if (std::abs(coupling) > kPlanarCoupling) {
         const std::string kept_name = k < 6 ? kRigidNames[k] : fmt::format("mode {}", k - 5);
         Refuse(item, fmt::format("its mass matrix couples the in-plane {} with the out-of-plane {}: M = {:.6g} ({:.3g} of "
                                  "sqrt(M_ii M_jj); a rigid body's centre of mass off its xy plane or J_xz, J_yz not 0)",

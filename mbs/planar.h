@@ -10,20 +10,30 @@
 
 namespace flexmbs::mbs {
 
-/// A number below this share of its scale counts as zero in the planar checks (an input's
-/// out-of-plane component, a mass coupling relative to sqrt(M_ii M_jj)).
+/// A number below this share of its scale counts as zero in the planar checks of the input (an
+/// out-of-plane component of gravity, a position, an axis or a velocity).
 inline constexpr double kPlanarTolerance = 1e-9;
+/// A body's mass matrix couples a kept and a dropped column by nothing when |M_ij| is below this
+/// share of sqrt(M_ii M_jj): a reduced body's integrals over its mirror-symmetric mesh cancel to
+/// the FE data's round-off (1.2e-9 measured on the slider-crank's hex20 rod), which moves the
+/// dropped columns by as little.
+inline constexpr double kPlanarCoupling = 1e-6;
 
-/// The mode j of a flexible body is in-plane when the z components of its shape (every FE node)
-/// carry at most this share of its squared norm, out-of-plane when the x, y components do.
-inline constexpr double kPlanarModeShare = 1e-6;
+/// A flexible body's mode is in-plane when its reflection z -> -z (the FE nodes mirrored about
+/// B's xy plane, u_z negated) departs from it by at most this share of its norm, out-of-plane
+/// when it departs as little from its negative: the eigenvectors of a mirror-symmetric mesh are
+/// even or odd to round-off (~1e-13, tests/validation/slider_crank_model.cc).
+inline constexpr double kPlanarModeSymmetry = 1e-6;
+/// FE nodes pair with their mirror images within this share of the mesh's largest coordinate.
+inline constexpr double kMirrorDistance = 1e-9;
 
 /// Makes `system` planar in W's xy plane at the initial state y0 (MultibodySystem::
 /// set_kept_velocities) after checking that the scene is planar there. Throws a one-line
 /// InputError "<item>: <problem>" naming the item and its value for: gravity with a
 /// z component; a body whose centre of mass starts off z = 0, whose rotation axis is not z, with
-/// an initial v_z, w_x, w_y or a dropped mode's q or qdot; a flexible body without mode shapes or
-/// with a mode that is neither in-plane nor out-of-plane (kPlanarModeShare); a body whose mass
+/// an initial v_z, w_x, w_y or a dropped mode's q or qdot; a flexible body without mode shapes,
+/// with a mesh that is not mirror-symmetric about its xy plane or with a mode that is neither
+/// in-plane nor out-of-plane (kPlanarModeSymmetry); a body whose mass
 /// matrix couples a kept and a dropped column (a rigid body: centre of mass off its xy plane,
 /// J_xz or J_yz); a revolute joint whose axis is not z, a prismatic one whose axis is not in the
 /// plane, a cylindrical one whose axis is neither; a universal joint; a unilateral contact whose

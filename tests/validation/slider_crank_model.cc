@@ -15,6 +15,7 @@
 #include "mbs/flexible_body.h"
 #include "mbs/joint.h"
 #include "mbs/multibody_system.h"
+#include "mbs/planar.h"
 #include "mbs/rigid_body.h"
 #include "mbs/simulation.h"
 #include "mbs/time_function.h"
@@ -149,6 +150,7 @@ CrankRun RunSliderCrank(const SliderCrankData& data, const sid::ReducedBody& rod
   Eigen::VectorXd x_slider(7);
   x_slider << data.crank + data.rod_length, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0;
   system.SetBodyState(slider, x_slider, Eigen::VectorXd::Zero(6), y0);
+  if (options.planar) mbs::MakePlanar(system, y0);
 
   const mbs::MarkerRef root = system.Marker("rod", origin), tip = system.Marker("rod", "tip"),
                        mid = system.Marker("rod", "mid");
@@ -163,6 +165,8 @@ CrankRun RunSliderCrank(const SliderCrankData& data, const sid::ReducedBody& rod
   const mbs::SimulationStatistics statistics = SimulateTimed(system, options.integrator, options.end_time,
                                                              options.output_interval, y0, record, &run.cpu_seconds);
   run.dropped_rows = static_cast<long>(statistics.initial_conditions.redundancy.dropped_rows.size());
+  run.kept_velocities = static_cast<long>(system.KeptVelocities().size());
+  run.kept_rows = static_cast<long>(system.KeptConstraints().size());
   run.steps = statistics.integrator.steps;
   run.rhs_evaluations = statistics.integrator.rhs_evaluations;
   return run;

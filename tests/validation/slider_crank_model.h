@@ -61,6 +61,7 @@ sid::ReducedBody RodBody(const SliderCrankRod& rod, Eigen::Index modes, bool sti
 /// How a run is integrated and recorded.
 struct CrankRunOptions {
   bool stiffening = true;         ///< the rod's geometric stiffening in the equations of motion
+  bool planar = false;            ///< run as a planar scene (mbs/planar.h: in-plane columns only)
   double end_time = 0.4;          ///< [s]
   double output_interval = 5e-4;  ///< [s]
   mbs::OdeOptions integrator;
@@ -73,6 +74,7 @@ struct CrankRun {
   /// frame's origin and "tip"), positive along z_W x chord [m].
   std::vector<double> mid_deflection;
   long dropped_rows = 0;  ///< constraint rows dropped as redundant
+  long kept_velocities = 0, kept_rows = 0;  ///< the solves' velocity columns and constraint rows
   long steps = 0, rhs_evaluations = 0;
   double cpu_seconds = 0.0;  ///< process CPU time of the integration
 };
