@@ -8,7 +8,8 @@ clamped there), and the tip deflection in that frame, the y_B component of R_WB^
 output times, computed once for all runs (reference.py's output: the stored reference.json to
 2 s, which a run may end before, or run.sh's rerun). Differences: the tip's largest over the run relative to the reference's largest |tip|,
 the angle's largest in rad. Prints both, exits 1 if one exceeds its limit; writes a plot with
---plot and one headline line for bench/ (the first run's tip difference).
+--plot (the histories, and each run's tip difference against its CPU time, statistics/) and one
+headline line for bench/ (the first run's tip difference).
 
 Usage: /usr/bin/python3 compare.py REFERENCE.json --run RUN.h5 NAME TIP_LIMIT ANGLE_LIMIT_RAD ... [--plot PNG]
 """
@@ -26,18 +27,20 @@ from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
 
 
 def swing(path):
-    """times [s], the frame's angle about W z [rad] (unwrapped) and the tip deflection [m], and
-    flexmbs' integration time [s] from the run's report when it is beside the results."""
+    """times [s], the frame's angle about W z [rad] (unwrapped) and the tip deflection [m],
+    flexmbs' wall time [s] from the run's report when it is beside the results, and the run's
+    total CPU time [s] (statistics/)."""
     with h5py.File(path, "r") as f:
         t = f["time"][:]
         p_o, e = f["bodies/beam/position"][:], f["bodies/beam/orientation"][:]
         tip = f["bodies/beam/markers/tip"][:]
+        cpu = float(f["statistics/cpu_seconds"][list(f["statistics/parts"].asstr()[:]).index("total")])
     R = [rotation(ek) for ek in e]
     angle = np.unwrap([np.arctan2(Rk[1, 0], Rk[0, 0]) for Rk in R])
     deflection = np.array([(Rk.T @ (tk - pk))[1] for Rk, tk, pk in zip(R, tip, p_o)])
     report = pathlib.Path(path).with_suffix(".json")
     seconds = json.loads(report.read_text())["wall_seconds"] if report.exists() else None
-    return t, angle, deflection, seconds
+    return t, angle, deflection, seconds, cpu
 
 
 def main():
@@ -53,7 +56,7 @@ def main():
           f"{ref['cpu_seconds']} s CPU, energy drift {ref['energy_drift_j']:.1e} J")
     checks, curves, headline = Checks(), [], None
     for path, name, tip_limit, angle_limit in a.run:
-        t, angle, tip, seconds = swing(path)
+        t, angle, tip, seconds, cpu = swing(path)
         if len(t) > len(t_ref) or np.max(np.abs(t - t_ref[:len(t)])) > 1e-9:
             sys.exit(f"{path}: output times differ from the reference's ({len(t)} against {len(t_ref)})")
         t_ref, angle_ref, tip_ref = t_ref[:len(t)], angle_ref[:len(t)], tip_ref[:len(t)]
@@ -66,30 +69,37 @@ def main():
         for what, error, limit, unit in (("tip difference / largest |tip|", tip_error, float(tip_limit), ""),
                                          ("angle difference", angle_error, float(angle_limit), " rad")):
             checks.check(f"{name}: {what}", error <= limit, f"{error:.2e}{unit} (limit {limit:g}{unit})")
-        if seconds is not None:
-            print(f"     {name}: flexmbs simulate {seconds:.3f} s")
+        print(f"     {name}: flexmbs simulate {'' if seconds is None else f'{seconds:.3f} s wall, '}{cpu:.3f} s CPU")
         if headline is None:
             headline = (tip_error, seconds)
-        curves.append((name, t, angle, tip))
+        curves.append((name, t, angle, tip, tip_error, cpu))
     print_headline("11_flexible_pendulum", headline[0], "tip deflection / its largest value",
                    runtime_s=headline[1], peer="co-rotational beam (SciPy)", peer_runtime_s=ref["cpu_seconds"])
-    checks.finish(a.plot, lambda path: plot(path, t_ref, angle_ref, tip_ref, curves))
+    checks.finish(a.plot, lambda path: plot(path, t_ref, angle_ref, tip_ref, curves, ref["cpu_seconds"]))
 
 
-def plot(path, t_ref, angle_ref, tip_ref, curves):
+def plot(path, t_ref, angle_ref, tip_ref, curves, reference_cpu):
     plt = pyplot()
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    fig = plt.figure(figsize=(12, 6.5))
+    grid = fig.add_gridspec(2, 2, width_ratios=(2.2, 1))
+    top = fig.add_subplot(grid[0, 0])
+    bottom = fig.add_subplot(grid[1, 0], sharex=top)
+    cost = fig.add_subplot(grid[:, 1])
     top.plot(t_ref, np.degrees(angle_ref), "k-", label="co-rotational beam (SciPy)")
     bottom.plot(t_ref, tip_ref * 1e3, "k-", label="co-rotational beam (SciPy)")
-    for name, t, angle, tip in curves:
+    for name, t, angle, tip, tip_error, cpu in curves:
         top.plot(t, np.degrees(angle), "--", label=f"flexmbs, {name}")
-        bottom.plot(t, tip * 1e3, "--", label=f"flexmbs, {name}")
+        line, = bottom.plot(t, tip * 1e3, "--", label=f"flexmbs, {name}")
+        cost.loglog(cpu, tip_error, "o", color=line.get_color(), label=name)
     top.set_ylabel("swing angle [deg]")
     bottom.set_ylabel("tip deflection in the pin's frame [mm]")
     bottom.set_xlabel("t [s]")
     top.set_title("Flexible pendulum: reduced 3-D strip against a planar co-rotational beam")
-    for ax in (top, bottom):
-        ax.grid(alpha=0.3)
+    cost.set_xlabel("flexmbs simulate, CPU [s]")
+    cost.set_ylabel("largest tip difference / largest |tip|")
+    cost.set_title(f"error against CPU (the reference: {reference_cpu:g} s)", fontsize=9)
+    for ax in (top, bottom, cost):
+        ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7)
     save_figure(fig, path)
 

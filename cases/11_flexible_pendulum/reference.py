@@ -19,8 +19,16 @@ dU/dtheta = 0 (a constant linear map theta = R beta), and by the envelope theore
 the positions are f's position rows at those rotations. The mass is constant in the inertial
 frame, so M q'' = -f(q) + m g with no velocity terms; the lumping's error falls as h^2 (the
 convergence is in `check`). Node 0's x and y are held (the pin). Started straight along x, at
-rest. Integrated by SciPy's Radau (L-stable, order 5; the axial modes reach ~1e6 rad/s) with a
-finite-difference Jacobian (vectorized right-hand side).
+rest. Integrated by SciPy's Radau (L-stable, order 5; the axial modes reach ~1e6 rad/s) with the
+exact Jacobian: the condensed bending energy is (1/2) beta^T S beta with S constant
+(S = dU/dbeta's matrix at theta = R beta), so the tangent stiffness is, per element, EA/l0 n n^T +
+N (I - n n^T)/l + (S beta)_e d^2 beta_e/dd^2 on its chord d, plus G^T S G with G = dbeta/dq
+(`check` compares it with central differences of the forces). The swing turns the stiff axial
+directions during a step, so Radau's simplified Newton needs a fresh Jacobian nearly every step.
+The finite differences' Jacobian (2 n vectorized columns) took 106 s of CPU to 0.5 s and did not
+reach 2 s in 11 minutes of CPU (loaded machine); the exact one takes 34 s to 2 s (to 0.25 s: 4.4 s
+against 5.7 s, 708 LU factorisations against 1084). The two tables differ by 2.8e-6 m over 0.5 s,
+each within 1.7e-6 m of the exact Jacobian's run at rtol 1e-9: the integration's own error.
 
 Outputs at the requested times: the swing angle theta_0 (the pin section's turn, which the
 reduced body's frame follows: its modes are clamped at the pin) and the tip deflection
@@ -50,8 +58,11 @@ AREA = THICKNESS * WIDTH
 SECOND_MOMENT = WIDTH * THICKNESS**3 / 12.0
 GRAVITY = 9.81                     # m/s^2, along -y
 # The tip deflection over 0 .. 0.3 s (`check`): 10, 20, 40 elements differ from 80 by 5.9e-4,
-# 2.0e-4, 3.8e-5 m (order about 2.3: 80 within ~1e-5 m, 0.25 % of the largest tip); rtol 1e-9
-# moves 40 elements' by 2e-7 m.
+# 1.9e-4, 3.7e-5 m (order about 2.3: 80 within ~1e-5 m, 0.25 % of the largest tip); rtol 1e-9
+# moves 40 elements' by 7.9e-7 m. Over the whole swing the lumped masses' moment of inertia about
+# the pin, rho A L^3 (1/3 + 1/(6 N^2)), delays the swing at order 2: 40 and 80 elements differ by
+# 1.2e-3 rad and 3.9e-4 m of tip in 1.5 .. 2 s, so 80 elements' own error there is about a third of
+# that, 4e-4 rad and 1.3e-4 m (3 % of the largest tip; 2.8e-5 m, 0.6 %, in the first 0.5 s).
 ELEMENTS = 80
 RELATIVE_TOLERANCE = 1e-8
 
@@ -83,6 +94,10 @@ class Pendulum:
             C[e, e] += 3.0
             C[e + 1, e] += 3.0
         self.rotations = np.linalg.solve(A, C)                 # theta = rotations @ beta
+        # dU/dbeta_e = -3 k (t_a + t_b) at theta = R beta: (S beta)_e, S symmetric (the condensed
+        # bending energy's Hessian in the chord angles).
+        k = 2.0 * YOUNGS_MODULUS * SECOND_MOMENT / self.l0
+        self.bending = -3.0 * k * (self.rotations[:-1] + self.rotations[1:] - 2.0 * np.eye(elements))
 
     def positions(self, q):
         """(nodes, 2, ...): x, y of every node, for q of shape (size, ...) (a column per state)."""
@@ -118,6 +133,41 @@ class Pendulum:
         f[1:, 1] -= fy
         return f[1:].reshape(q.shape)
 
+    def stiffness(self, q):
+        """K = df/dq [N/m] on the free coordinates at q (size,): the condensed energy's Hessian."""
+        dx, dy, length, beta, _ = self.element_state(q)
+        c, s = dx / length, dy / length
+        axial = YOUNGS_MODULUS * AREA / self.l0
+        force = axial * (length - self.l0)
+        moment = self.bending @ beta
+        # Per element the 2 x 2 Hessian in its chord d = (dx, dy): u'' n n^T + N (I - n n^T) / l +
+        # (S beta)_e d^2 beta / dd^2, with d^2 beta / dd^2 = [[2cs, s^2 - c^2], [s^2 - c^2, -2cs]] / l^2.
+        nn = np.stack([np.stack([c * c, c * s]), np.stack([c * s, s * s])])
+        tt = np.stack([np.stack([s * s, -c * s]), np.stack([-c * s, c * c])])
+        turn = np.stack([np.stack([2 * c * s, s * s - c * c]), np.stack([s * s - c * c, -2 * c * s])])
+        local = axial * nn + force / length * tt + moment / length**2 * turn     # (2, 2, elements)
+        n = 2 * self.nodes
+        K = np.zeros((n, n))
+        G = np.zeros((self.elements, n))
+        for e in range(self.elements):
+            a, b = 2 * e, 2 * e + 2
+            block = local[:, :, e]
+            K[a:a + 2, a:a + 2] += block
+            K[b:b + 2, b:b + 2] += block
+            K[a:a + 2, b:b + 2] -= block
+            K[b:b + 2, a:a + 2] -= block
+            grad = np.array([-s[e], c[e]]) / length[e]                           # dbeta_e / dd
+            G[e, a:a + 2], G[e, b:b + 2] = -grad, grad
+        K += G.T @ self.bending @ G
+        return K[2:, 2:]
+
+    def jacobian(self, t, z):
+        """dz'/dz: [[0, I], [-M^-1 K, 0]]."""
+        J = np.zeros((2 * self.size, 2 * self.size))
+        J[:self.size, self.size:] = np.eye(self.size)
+        J[self.size:, :self.size] = -self.inverse_mass[:, None] * self.stiffness(z[:self.size])
+        return J
+
     def strain_energy(self, q):
         """U [J]."""
         _, _, length, beta, theta = self.element_state(q)
@@ -131,10 +181,9 @@ class Pendulum:
         return float(0.5 * np.sum(v * v / self.inverse_mass) + self.strain_energy(q) - self.gravity @ q)
 
     def rhs(self, t, z):
-        """z' for z of shape (2 size,) or (2 size, columns) (SciPy's vectorized form)."""
+        """z' for z of shape (2 size,)."""
         q, v = z[:self.size], z[self.size:]
-        force = self.gravity.reshape((-1,) + (1,) * (z.ndim - 1)) - self.internal_force(q)
-        return np.concatenate([v, self.inverse_mass.reshape(force.shape[:1] + (1,) * (z.ndim - 1)) * force])
+        return np.concatenate([v, self.inverse_mass * (self.gravity - self.internal_force(q))])
 
     def initial_state(self):
         q = np.zeros((self.elements, 2))
@@ -160,7 +209,7 @@ def simulate(elements, times, rtol=RELATIVE_TOLERANCE):
     start = time.process_time()
     z0 = model.initial_state()
     solution = scipy.integrate.solve_ivp(model.rhs, (0.0, max(times)), z0, method="Radau", t_eval=times,
-                                         rtol=rtol, atol=atol, vectorized=True)
+                                         rtol=rtol, atol=atol, jac=model.jacobian)
     if not solution.success:
         raise SystemExit(solution.message)
     cpu = time.process_time() - start
@@ -172,8 +221,23 @@ def simulate(elements, times, rtol=RELATIVE_TOLERANCE):
             "cpu_seconds": round(cpu, 2)}
 
 
+def stiffness_check(elements=80, step=1e-7):
+    """The largest difference of stiffness() from central differences of the forces (all columns at
+    once), relative to K's largest entry, at a bent strip turned by 1 rad and stretched."""
+    model = Pendulum(elements)
+    x = model.l0 * np.arange(1, model.nodes)
+    y = 0.01 * np.sin(np.pi * x) + 1e-6 * x
+    q = np.column_stack([x * math.cos(1.0) - y * math.sin(1.0), x * math.sin(1.0) + y * math.cos(1.0)]).reshape(-1)
+    columns = np.eye(model.size) * step
+    central = (model.internal_force(q[:, None] + columns) - model.internal_force(q[:, None] - columns)) / (2.0 * step)
+    exact = model.stiffness(q)
+    return float(np.max(np.abs(exact - central)) / np.max(np.abs(exact)))
+
+
 def check():
-    """The tip deflection's convergence over 0..0.3 s in the elements and the tolerance; prints JSON."""
+    """The tip deflection's convergence over 0..0.3 s in the elements and the tolerance, and the
+    Jacobian's stiffness against central differences; prints JSON."""
+    print(json.dumps({"stiffness_against_central_differences": stiffness_check()}))
     times = [0.05 * k for k in range(7)]
     runs = {f"{n} elements": simulate(n, times) for n in (10, 20, 40, 80)}
     runs["40 elements, rtol 1e-9"] = simulate(40, times, 1e-9)
@@ -188,7 +252,8 @@ def check():
 # `verify`: the stored table (reference.json, this script's output with its own settings) against a
 # rerun of its first samples, relative to the window's largest |tip|. The rerun's steps end at the
 # window's end, the table's did not: the two differ by the integration's tolerance (measured
-# 1.9e-5 over 0.02 s, 6.6e-8 m). A larger difference means the script or the data changed.
+# 4.8e-6 over 0.02 s, 1.7e-8 m; 2.4e-8 over 0.3 s). A larger difference means the script or the
+# data changed.
 VERIFY_TOLERANCE = 1e-4
 
 
