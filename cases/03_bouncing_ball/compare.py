@@ -97,9 +97,23 @@ def moreau_jean_errors(run):
     }
 
 
-def plot(event_driven, moreau_jean, path):
+def plot(event_driven, moreau_jean, errors, path):
     plt = pyplot()
-    figure, (height, energy) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+    figure = plt.figure(figsize=(13, 6))
+    grid = figure.add_gridspec(2, 2, width_ratios=(2.6, 1))
+    height = figure.add_subplot(grid[0, 0])
+    energy = figure.add_subplot(grid[1, 0], sharex=height)
+    cost = figure.add_subplot(grid[:, 1])
+    for name, run, error in (("event-driven", event_driven, errors["event-driven impact times [s]"]),
+                             ("Moreau-Jean, h = 1 ms", moreau_jean, errors["Moreau-Jean impact times to 3.5 s [s]"])):
+        cost.loglog(run["cpu"], error, "o", label=name)
+    cpu = (event_driven["cpu"], moreau_jean["cpu"])
+    cost.set_xlim(min(cpu) / 3, max(cpu) * 3)  # a decade at least: no crowded minor labels
+    cost.set_xlabel("flexmbs simulate, CPU [s] (statistics/)")
+    cost.set_ylabel("largest impact-time error [s]")
+    cost.set_title("error against CPU", fontsize=9)
+    cost.grid(alpha=0.3, which="both")
+    cost.legend(fontsize=8)
     height.plot(moreau_jean["t"], moreau_jean["z"], label="Moreau-Jean, h = 1 ms", lw=2.5, alpha=0.5)
     height.plot(event_driven["t"], event_driven["z"], "k", label="event-driven", lw=0.8)
     for t in closed_form_impacts(T_INF, slowest=0.05):
@@ -135,7 +149,7 @@ def main():
     print_headline("03_bouncing_ball", errors["event-driven impact times [s]"],
                    "event-driven impact times against the closed form [s]", runtime_s=event_driven["wall"],
                    peer="closed form")
-    checks.finish(args.plot, lambda path: plot(event_driven, moreau_jean, path))
+    checks.finish(args.plot, lambda path: plot(event_driven, moreau_jean, errors, path))
 
 
 if __name__ == "__main__":
