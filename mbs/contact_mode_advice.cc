@@ -4,13 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <utility>
 
 #include "core/error.h"
 #include "core/rotation.h"
+#include "mbs/contact_mode_advice_pcm.h"
 #include "mbs/flexible_body.h"
+#include "mbs/joint.h"
 #include "mbs/surface_contact_force.h"
 #include "mbs/surface_state.h"
 #include "mbs/unilateral_contact.h"
@@ -30,13 +33,15 @@ struct PairPoint {
 };
 
 /// A pair at the start: its name and type, its two bodies (kGround for the ground), its points,
-/// and its law's k [N/m^n] and n (none for a unilateral contact).
+/// and its law's k [N/m^n] and n (none for a unilateral contact; a PCM pair's fitted from its
+/// probe once the effective mass and speed are known, its one point the first touch).
 struct Pair {
   std::string name, type;
   int body_a = kGround, body_b = kGround;
   std::vector<PairPoint> points;
   bool unilateral = false;
   double stiffness = 0.0, exponent = 1.0;
+  std::shared_ptr<const PcmTouchProbe> pcm;
 };
 
 PairPoint FromContactPoint(const ContactPoint& point) {
@@ -58,6 +63,26 @@ Eigen::RowVectorXd ModalColumns(const MultibodySystem& system, int b, const Eige
 
 bool IsFlexible(const MultibodySystem& system, int b) {
   return b != kGround && dynamic_cast<const FlexibleBody*>(&system.body(b)) != nullptr;
+}
+
+/// A PCM pair with a reduced body's surface on either side, if its sides come together.
+std::optional<Pair> PcmPair(const MultibodySystem& system, const PcmContactForce& element, const ConstVectorRef& y0) {
+  if (!element.A().is_modal() && !element.B().is_modal()) return std::nullopt;
+  auto probe = std::make_shared<const PcmTouchProbe>(system, element, y0);
+  if (!probe->found()) return std::nullopt;
+  Pair pair;
+  pair.name = element.name();
+  pair.type = "pcm_contact";
+  pair.body_a = element.A().marker.body;
+  pair.body_b = element.B().marker.body;
+  PairPoint touch;
+  touch.gap = probe->gap();
+  touch.n_W = probe->normal_W();
+  touch.p_W = probe->point_W();
+  touch.gap_rate = probe->gap_rate();
+  pair.points.push_back(std::move(touch));
+  pair.pcm = std::move(probe);
+  return pair;
 }
 
 /// The pairs of `system` that touch a reduced body's surface, at y0.
@@ -91,6 +116,9 @@ std::vector<Pair> Pairs(const MultibodySystem& system, const ConstVectorRef& y0)
         pair.points.back().modal_a = point.n_W.transpose() * state.ModalJacobian(v++);
       }
       add_law(pair, surface->law());
+    } else if (const auto* pcm = dynamic_cast<const PcmContactForce*>(&element)) {
+      if (std::optional<Pair> one = PcmPair(system, *pcm, y0)) pairs.push_back(std::move(*one));
+      continue;
     } else {
       continue;
     }
@@ -139,12 +167,24 @@ std::vector<const PairPoint*> FirstPoints(const std::vector<PairPoint>& points) 
   return first;
 }
 
+/// Whether body b is welded to the ground by a fixed joint (a clamped plate).
+bool WeldedToGround(const MultibodySystem& system, int b) {
+  for (int k = 0; k < system.num_joints(); ++k) {
+    const Joint& joint = system.joint(k);
+    if (joint.type() != JointType::kFixed) continue;
+    const int i = joint.marker_i().body, j = joint.marker_j().body;
+    if ((i == b && j == kGround) || (j == b && i == kGround)) return true;
+  }
+  return false;
+}
+
 /// 1 / m_b along n at p [1/kg]: body b held rigid, n^T J M_rr^-1 J^T n with J the point's
 /// velocity by the frame's velocities (v_WBo_W, w_WB_B) and M_rr the body's rigid block at y0
-/// (Goldsmith, "Impact", 1960, ch. 4: the effective mass of an eccentric impact). 0 for the ground.
+/// (Goldsmith, "Impact", 1960, ch. 4: the effective mass of an eccentric impact). 0 for the ground
+/// and for a body welded to it.
 double InverseMass(const MultibodySystem& system, int b, const Eigen::Vector3d& n_W, const Eigen::Vector3d& p_W,
                    const ConstVectorRef& y0) {
-  if (b == kGround) return 0.0;
+  if (b == kGround || WeldedToGround(system, b)) return 0.0;
   const Eigen::Map<const Eigen::VectorXd> x = system.BodyPositions(y0, b);
   const Eigen::Matrix3d R_WB = RotationFromEulerParameters(x.segment<4>(3));
   const Eigen::Vector3d s_B = R_WB.transpose() * (p_W - x.head<3>());
@@ -176,8 +216,17 @@ std::optional<ContactModeAdvice> Advise(const MultibodySystem& system, const Pai
   const double fall = std::max(0.0, -system.gravity().dot(n_W));  // gravity pulls A towards B
   advice.impact_speed = std::sqrt(approach * approach + 2.0 * fall * gap);
   if (!(advice.impact_speed > 0.0)) return std::nullopt;
-  advice.effective_mass = 1.0 / (InverseMass(system, pair.body_a, n_W, p_W, y0) +
-                                 InverseMass(system, pair.body_b, n_W, p_W, y0));
+  const double inverse_mass = InverseMass(system, pair.body_a, n_W, p_W, y0) + InverseMass(system, pair.body_b, n_W, p_W, y0);
+  if (!(inverse_mass > 0.0)) return std::nullopt;  // both ends held
+  advice.effective_mass = 1.0 / inverse_mass;
+  advice.law_stiffness = advice.first_points * pair.stiffness;
+  advice.law_exponent = pair.exponent;
+  std::optional<PcmLawFit> fit;
+  if (pair.pcm) {
+    fit = FitPcmLaw(*pair.pcm, advice.effective_mass, advice.impact_speed);
+    advice.law_stiffness = fit->stiffness;
+    advice.law_exponent = fit->exponent;
+  }
 
   const auto& flexible = dynamic_cast<const FlexibleBody&>(system.body(body));
   const sid::ReducedBody& data = flexible.data();
@@ -188,6 +237,10 @@ std::optional<ContactModeAdvice> Advise(const MultibodySystem& system, const Pai
   Eigen::RowVectorXd load = Eigen::RowVectorXd::Zero(data.num_modes());
   for (const PairPoint* p : first) {
     const Eigen::RowVectorXd& row = end_a ? p->modal_a : p->modal_b;
+    if (row.size() == load.size()) load += row;
+  }
+  if (fit) {  // a PCM pair: the elements' load at the largest compression
+    const Eigen::RowVectorXd& row = end_a ? fit->load.modal_a : fit->load.modal_b;
     if (row.size() == load.size()) load += row;
   }
   const double largest = load.size() > 0 ? load.cwiseAbs().maxCoeff() : 0.0;
@@ -211,9 +264,9 @@ std::optional<ContactModeAdvice> Advise(const MultibodySystem& system, const Pai
     advice.contact_time = 1.0 / lowest;
     advice.cutoff_hz = kCutoffTimesContactTimeUnilateral / advice.contact_time;
   } else {
-    if (!(pair.stiffness > 0.0)) return std::nullopt;
-    advice.contact_time = PowerLawContactTime(advice.effective_mass, advice.impact_speed,
-                                              advice.first_points * pair.stiffness, pair.exponent);
+    if (!(advice.law_stiffness > 0.0)) return std::nullopt;
+    advice.contact_time =
+        PowerLawContactTime(advice.effective_mass, advice.impact_speed, advice.law_stiffness, advice.law_exponent);
     advice.cutoff_hz =
         (advice.correction_mode ? kCutoffTimesContactTimeWithCorrection : kCutoffTimesContactTimeWithout) /
         advice.contact_time;
@@ -238,10 +291,17 @@ double PowerLawContactTime(double mass, double speed, double stiffness, double e
 }
 
 std::string ContactModeAdvice::Describe() const {
+  // A PCM pair's fitted exponent names the features that meet first (mbs/contact_mode_advice_pcm.h).
+  const std::string features = law_exponent < 1.5   ? "faces flat on each other"
+                               : law_exponent < 2.5 ? "an edge on a face, or a curved cap"
+                                                    : "a vertex into a face, or an edge across an edge";
   const std::string source =
       unilateral ? fmt::format("the period of {}'s lowest loaded mode (rigid contact)", body)
-                 : fmt::format("the law's contact time at {:.3g} m/s, {:.3g} kg, {} point{}", impact_speed,
-                               effective_mass, first_points, first_points == 1 ? "" : "s");
+      : type == "pcm_contact"
+          ? fmt::format("the layers' F = {:.3g} delta^{:.3g} past first touch ({}) at {:.3g} m/s, {:.3g} kg",
+                        law_stiffness, law_exponent, features, impact_speed, effective_mass)
+          : fmt::format("the law's contact time at {:.3g} m/s, {:.3g} kg, {} point{}", impact_speed, effective_mass,
+                        first_points, first_points == 1 ? "" : "s");
   const std::string rule =
       unilateral ? fmt::format("{:g} / t_c, measured on a bar struck by a wall", kCutoffTimesContactTimeUnilateral)
       : correction_mode ? fmt::format("{:g} / t_c, as {} keeps a static correction mode",

@@ -41,6 +41,11 @@ struct ContactModeAdvice {
   int first_points = 0;           ///< the points that touch first (springs in parallel)
   double impact_speed = 0.0;      ///< v [m/s]: the initial approach speed and the fall through the gap
   double effective_mass = 0.0;    ///< m* [kg]: both bodies held rigid, along the normal at the first points
+  /// The power law F = k delta^n whose contact time is t_c (none for a unilateral contact): the
+  /// law's with the first points' springs in parallel, or a PCM pair's fitted to its layers' force
+  /// past first touch (mbs/contact_mode_advice_pcm.h).
+  double law_stiffness = 0.0;     ///< k [N/m^n]
+  double law_exponent = 1.0;      ///< n
   double contact_time = 0.0;      ///< t_c [s]
   bool correction_mode = false;   ///< the body keeps a static correction mode
   double cutoff_hz = 0.0;         ///< f_max [Hz]: the rule's
@@ -56,9 +61,11 @@ struct ContactModeAdvice {
 
 /// The advice for every contact pair of `system` that touches a reduced body's surface and
 /// approaches from y0 (moving towards it, or falling towards it under gravity; none for pairs
-/// apart and at rest): the force elements sphere_surface_contact and surface_plane_contact with
-/// a law k delta^n (k > 0), and the unilateral contacts with a flexible body at either end
-/// (surface_plane, sphere_surface, surface_surface), one advice per flexible body.
+/// apart and at rest, or with both ends held): the force elements sphere_surface_contact and
+/// surface_plane_contact with a law k delta^n (k > 0), pcm_contact with a reduced body's surface
+/// on either side (its layers' law fitted past first touch), and the unilateral contacts with a
+/// flexible body at either end (surface_plane, sphere_surface, surface_surface), one advice per
+/// flexible body. A body welded to the ground by a fixed joint counts as the ground in m*.
 std::vector<ContactModeAdvice> AdviseContactModes(const MultibodySystem& system, const ConstVectorRef& y0);
 
 }  // namespace flexmbs::mbs
