@@ -12,8 +12,9 @@
 // from the closed form's, the angles where the two count different pairs in contact, and both runs'
 // mean mesh force against T / r_b2. With --corners 1 the peer also lets wheel 1's tip corner
 // touch wheel 2's flank beyond the path of contact, which the closed form leaves out. The same
-// pair on massless elastic teeth (the FE tables of tests/support/driven_gear_pair.h) is timed
-// beside the rigid flanks' constant c' (steps per second, rigid against elastic).
+// pair on massless elastic teeth (the FE tables of tests/support/driven_gear_pair.h), and with
+// the tip corners off the line of action (the element's default; the rows above are the line's,
+// tip_corners: false, as the peer), are timed beside the rigid flanks' constant c'.
 //
 //   bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] [--polish 1]
 #include <fmt/format.h>
@@ -361,7 +362,9 @@ Run BestRun(const Settings& settings, double start, const std::string& gear_keys
 
 int Main(const Settings& settings) {
   using flexmbs::testing::DrivenGearPairScene, flexmbs::testing::kDrivenPairGearKeys;
-  mbs::Scene exact = Load(DrivenGearPairScene(0.0, kDrivenPairGearKeys, settings.end_time));
+  // The involutes on the line of action, as the peer searches them; the tip corners timed apart.
+  const std::string line_keys = std::string(kDrivenPairGearKeys) + "    tip_corners: false\n";
+  mbs::Scene exact = Load(DrivenGearPairScene(0.0, line_keys, settings.end_time));
   const auto* mesh = dynamic_cast<const mbs::SpurGearContact*>(&exact.system->force_element(1));
   const contact::GearPair pair = mesh->pair();
   const double start =
@@ -374,9 +377,9 @@ int Main(const Settings& settings) {
                                   settings.samples, settings.corners, settings.polish);
   const SearchAgreement agreement = CompareSearches(peer_probe, pair, start);
 
-  const Run best = BestRun(settings, start, kDrivenPairGearKeys);
-  const Run elastic =
-      BestRun(settings, start, std::string(kDrivenPairGearKeys) + testing::kDrivenPairFeTeeth);
+  const Run best = BestRun(settings, start, line_keys);
+  const Run corners = BestRun(settings, start, kDrivenPairGearKeys);
+  const Run elastic = BestRun(settings, start, line_keys + testing::kDrivenPairFeTeeth);
   mbs::Scene brute = Load(DrivenGearPairScene(start, "", settings.end_time));
   brute.system->AddForceElement(std::make_unique<BruteForceMesh>(
       brute.system->Marker("pinion", "axis"), brute.system->Marker("wheel", "axis"), pair, law,
@@ -394,6 +397,7 @@ int Main(const Settings& settings) {
                run.cpu, run.steps / run.cpu, run.mean_force / load);
   };
   row("closed form (SpurGearContact)", best);
+  row("closed form with tip corners", corners);
   row("closed form, elastic FE teeth", elastic);
   row(fmt::format("brute force, {} samples per flank", settings.samples).c_str(), slow);
   fmt::print("steps/s ratio closed form / brute force: {:.1f}; rigid / elastic teeth: {:.2f}\n",

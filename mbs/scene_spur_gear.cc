@@ -187,7 +187,7 @@ std::unique_ptr<ForceElement> ReadSpurGearContact(
     const std::function<MarkerRef(const YamlNode&)>& read_marker,
     const ToothTableProvider& tooth_table) {
   node.RejectUnknownKeys({"name", "type", "wheel1", "wheel2", "gear1", "gear2", "centre_distance",
-                          "backlash", "mesh_stiffness", "damping", "teeth"});
+                          "backlash", "mesh_stiffness", "damping", "teeth", "tip_corners"});
   const MarkerRef wheel1 = read_marker(node.Required("wheel1")),
                   wheel2 = read_marker(node.Required("wheel2"));
   contact::GearPairSpec spec{ReadWheel(node.Required("gear1")), ReadWheel(node.Required("gear2")),
@@ -197,6 +197,7 @@ std::unique_ptr<ForceElement> ReadSpurGearContact(
   };
   spec.centre_distance = optional("centre_distance", 0.0);
   spec.backlash = optional("backlash", 0.0);
+  if (node.Has("tip_corners")) spec.tip_corners = node.Required("tip_corners").AsBool();
   const double damping = optional("damping", 0.0);
   StiffnessEntry stiffness = ReadStiffness(node);
   contact::GearPair pair;

@@ -15,7 +15,9 @@ namespace flexmbs::mbs {
 /// The SpurGearContact `name` from its entry `node`: markers `wheel1`, `wheel2` (read by
 /// `read_marker`), wheels `gear1`, `gear2` ({module, teeth, face_width} required;
 /// pressure_angle default 20 deg, profile_shift 0, addendum_coefficient 1, dedendum_coefficient
-/// 1.25, tip_relief {amount, length, shape: linear (default) | parabolic}), optional `centre_distance` (default a_0), `backlash` (0), `damping` [N s/m] (0) and
+/// 1.25, tip_relief {amount, length, shape: linear (default) | parabolic}), optional
+/// `centre_distance` (default a_0), `backlash` (0), `tip_corners` (true: a tip corner may touch
+/// the mating flank off the line of action, contact::GearPairSpec), `damping` [N s/m] (0) and
 /// either `mesh_stiffness` c' [N/m^2] (1.4e10; `iso`: ISO 6336-1's c' of the pair) or `teeth`,
 /// massless elastic teeth (contact::MeshLaw): {gear1, gear2: {roll, compliance, centre_depth}
 /// (contact::ToothCompliance), youngs_modulus (2.1e11), poisson_ratio (0.3), reference_load

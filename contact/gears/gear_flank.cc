@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/error.h"
+
 namespace flexmbs::contact {
 namespace {
 
@@ -29,6 +31,24 @@ Eigen::Vector2d FlankNormal(const SpurGear& gear, int tooth, FlankSide side, dou
                             double phi) {
   const double beta = TangentAngle(gear, tooth, side, roll, phi);
   return Sign(side) * Eigen::Vector2d(-std::sin(beta), std::cos(beta));
+}
+
+FlankFoot FootOnFlank(const SpurGear& gear, int tooth, FlankSide side, double phi,
+                      const Eigen::Vector2d& p_OP) {
+  const double sigma = Sign(side);
+  const double r_b = gear.base_radius;
+  const double radius = p_OP.norm();
+  FLEXMBS_CHECK(radius > r_b, "FootOnFlank needs a point outside the base circle");
+  const double string = std::sqrt((radius - r_b) * (radius + r_b));  // L
+  const double beta = std::atan2(p_OP.y(), p_OP.x()) - sigma * std::atan2(string, r_b);
+  const double theta_0 = TangentAngle(gear, tooth, side, 0.0, phi);
+  const double roll = string / r_b + std::remainder(sigma * (theta_0 - beta) - string / r_b,
+                                                    2.0 * std::numbers::pi);
+  FlankFoot foot;
+  foot.roll = roll;
+  foot.gap = string - r_b * roll;
+  foot.normal = sigma * Eigen::Vector2d(-std::sin(beta), std::cos(beta));
+  return foot;
 }
 
 }  // namespace flexmbs::contact

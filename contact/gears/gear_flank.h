@@ -31,4 +31,23 @@ Eigen::Vector2d FlankPoint(const SpurGear& gear, int tooth, FlankSide side, doub
 Eigen::Vector2d FlankNormal(const SpurGear& gear, int tooth, FlankSide side, double roll,
                             double phi);
 
+/// A point's place against an involute flank along the flank's normal (FootOnFlank).
+struct FlankFoot {
+  double roll = 0.0;  ///< t [rad] of the foot, the flank point whose normal runs through the point
+  /// g [m]: the point's distance from the flank along its outward normal, > 0 outside the tooth.
+  double gap = 0.0;
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();  ///< the flank's outward normal at the foot
+};
+
+/// The foot on the flank of `tooth` on `side` (FlankPoint's terms, wheel angle phi [rad]) of the
+/// flank's normal through the point p_OP [m] (from the wheel's centre, pair-frame axes, outside
+/// the base circle). An involute's normals are the base circle's tangents, and the flank crosses
+/// each at right angles where its string is that tangent: the tangent from P touches the base
+/// circle at beta_P = angle(p_OP) - sigma atan(L / r_b), L = sqrt(|p_OP|^2 - r_b^2), the flank's
+/// point on it has roll t = sigma (theta_0 - beta_P) (taken, modulo 2 pi, nearest L / r_b), and P
+/// lies g = L - r_b t from it along the normal sigma u'(beta_P). Exact, no iteration; the foot may
+/// lie off the flank (t outside [0, tan(alpha_a)]), which the caller checks.
+FlankFoot FootOnFlank(const SpurGear& gear, int tooth, FlankSide side, double phi,
+                      const Eigen::Vector2d& p_OP);
+
 }  // namespace flexmbs::contact

@@ -64,8 +64,10 @@ MeshLoads EvaluateMesh(const GearPair& pair, const MeshLaw& law, double centre_d
   const Eigen::Vector2d p_O1O2(centre_distance, 0.0);
   for (const ToothPair& tp : MeshingToothPairs(pair, centre_distance, phi1, phi2)) {
     if (!(tp.gap < 0.0)) continue;
+    // delta' = -n_12 . (v2 - v1) at the contact point (exact for a corner too: the two
+    // points' offset lies along n_12, across which the turning adds nothing).
     const double rate =
-        Sign(tp.side) * (pair.gear1.base_radius * omega1 + pair.gear2.base_radius * omega2);
+        Cross(tp.p_O1C, tp.n_12) * omega1 - Cross(tp.p_O1C - p_O1O2, tp.n_12) * omega2;
     const double force = Evaluate(law.PairLaw(tp), -tp.gap, rate).force;
     if (force == 0.0) continue;
     loads.pairs.push_back({tp, force});

@@ -74,14 +74,17 @@ struct ToothPairLoad {
 /// The loads of a mesh: every pair in contact and the torques about +z [N m] on both wheels.
 struct MeshLoads {
   std::vector<ToothPairLoad> pairs;
-  double torque1 = 0.0;  ///< sum of p_O1C x (-F n_12): -sigma F r_b1 per pair
-  double torque2 = 0.0;  ///< sum of (p_O1C - O2) x (F n_12): -sigma F r_b2 per pair
+  /// sum of p_O1C x (-F n_12): -sigma F r_b1 per pair on the line of action
+  double torque1 = 0.0;
+  /// sum of (p_O1C - O2) x (F n_12): -sigma F r_b2 per pair on the line of action
+  double torque2 = 0.0;
 };
 
 /// The mesh loads of `pair` at centre distance a [m] (axes at rest), angles phi1, phi2 [rad] and
 /// angular velocities omega1, omega2 [rad/s] about +z: each tooth pair of MeshingToothPairs with
-/// a penetration delta = -g > 0 carries its law(delta, delta'), delta' = sigma (r_b1 omega1 + r_b2
-/// omega2) (the gap's rate, dg/dphi_i = -sigma r_bi).
+/// a penetration delta = -g > 0 carries its law(delta, delta'), delta' = -n_12 . (v2 - v1) the
+/// gap's rate at the contact point (sigma (r_b1 omega1 + r_b2 omega2) on the line of action,
+/// dg/dphi_i = -sigma r_bi; a corner's lever about the wheel whose corner it is is shorter).
 MeshLoads EvaluateMesh(const GearPair& pair, const MeshLaw& law, double centre_distance,
                        double phi1, double phi2, double omega1, double omega2);
 

@@ -246,6 +246,7 @@ GearPair MakeGearPair(const GearPairSpec& spec) {
   pair.path_start = pair.line_length - pair.gear2.base_radius * pair.gear2.tip_roll;
   pair.path_end = pair.gear1.base_radius * pair.gear1.tip_roll;
   pair.contact_ratio = (pair.path_end - pair.path_start) / pair.gear1.base_pitch;
+  pair.tip_corners = spec.tip_corners;
   CheckPairGeometry(pair, spec.backlash);
   return pair;
 }

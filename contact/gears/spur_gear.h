@@ -69,6 +69,11 @@ struct GearPairSpec {
   /// Normal backlash j [m] >= 0 added by thinner teeth (each wheel's tooth thinner by j/2 along
   /// the line of action): a tooth thickness allowance, on top of the backlash from a > a_0.
   double backlash = 0.0;
+  /// Whether a tooth's tip corner may touch the mating flank off the line of action
+  /// (MeshingToothPairs, ToothContact): under load a pair then enters before the path of
+  /// contact's start and leaves after its end. false: the involutes on the line only (the
+  /// textbook's path of contact).
+  bool tip_corners = true;
 };
 
 /// A pair's derived geometry at its centre distance. The transverse plane's pair frame: origin
@@ -93,6 +98,7 @@ struct GearPair {
   double path_end = 0.0;
   /// epsilon_alpha = (s_E - s_A) / p_b (ISO 21771 sec. 6.3).
   double contact_ratio = 0.0;
+  bool tip_corners = true;  ///< GearPairSpec::tip_corners
 };
 
 /// The pair of `spec` after the wheels' checks (MakeSpurGear, items "gear 1", "gear 2") and the

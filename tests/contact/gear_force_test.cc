@@ -16,11 +16,14 @@ using testing::InputErrorMessage;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-GearPair Pair(double centre_distance) {
+/// The pair; with `tip_corners` false the involutes touch on the line of action only (the
+/// closed forms below are the line's; gear_corner_test.cc adds the corners).
+GearPair Pair(double centre_distance, bool tip_corners = true) {
   GearPairSpec spec;
   spec.gear1 = SpurGearSpec{2e-3, 19, 20.0 * kDeg, 0.3, 1.0, 1.25, 0.02};
   spec.gear2 = SpurGearSpec{2e-3, 31, 20.0 * kDeg, -0.1, 1.0, 1.25, 0.025};  // b = min = 0.02 m
   spec.centre_distance = centre_distance;
+  spec.tip_corners = tip_corners;
   return MakeGearPair(spec);
 }
 
@@ -28,7 +31,7 @@ GearPair Pair(double centre_distance) {
 // mesh torque alone) the teeth have deflected by delta = T / (r_b1 c' b n) along the line of
 // action, n = 1 or 2 pairs in contact, and wheel 2 takes T r_b2 / r_b1.
 TEST(GearMeshForce, StaticDeflectionUnderATorqueIsTorqueOverBaseRadiusTimesMeshStiffness) {
-  const GearPair pair = Pair(0.0505);
+  const GearPair pair = Pair(0.0505, false);  // the line of action alone
   const GearMeshCompliance compliance;  // c' = 14 N/(mm um)
   const NormalLaw law = ToothPairLaw(compliance, pair);
   const double r_b1 = pair.gear1.base_radius, r_b2 = pair.gear2.base_radius;
@@ -118,7 +121,7 @@ TEST(GearMeshForce, DampingActsOnTheRateOfTheGapAndNeverPulls) {
 // double contact, the double one for epsilon_alpha - 1 of the cycle (epsilon_alpha from
 // the textbook's square roots, computed here).
 TEST(GearMeshForce, StaticTransmissionErrorIsPeriodicWithTheSingleDoubleContactPattern) {
-  const GearPair pair = Pair(0.0505);
+  const GearPair pair = Pair(0.0505, false);  // the line of action alone
   const NormalLaw law = ToothPairLaw({}, pair);
   const double r_b1 = pair.gear1.base_radius, torque = 20.0;
   const double single = torque / (r_b1 * 1.4e10 * 0.02);

@@ -32,16 +32,31 @@ Eigen::Vector2d Wheel2Point(const GearPair& pair, const ToothPair& tp, double ph
 
 TEST(GearMesh, FoundPointsLieOnBothTeethsInvolutesWithTheLineOfActionAsTheirNormal) {
   const GearPair pair = ShiftedPair(0.0505, 2e-5);
-  int pairs_seen = 0;
+  int pairs_seen = 0, corners_seen = 0;
   for (double phi1 = -0.3; phi1 < 0.3; phi1 += 0.0137) {
     const double phi2 = 0.71 - 0.5 * phi1;  // any angles: gaps of either sign
     for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2)) {
-      ++pairs_seen;
       const Eigen::Vector2d p1 = FlankPoint(pair.gear1, tp.tooth1, tp.side, tp.roll1, phi1);
       const Eigen::Vector2d p2 = Wheel2Point(pair, tp, phi2);
-      // The two flank points sit on the line of action through the contact point, g apart.
+      // The two flank points (or a tip corner and its foot on the other flank) sit on the normal
+      // through the contact point, g apart.
       EXPECT_LT((p2 - p1 - tp.gap * tp.n_12).norm(), 2e-16);  // measured 2.1e-17 m
       EXPECT_LT((0.5 * (p1 + p2) - tp.p_O1C).norm(), 2e-16);
+      // A corner's normal is the flank's it faces (wheel 1's outward, wheel 2's inward).
+      if (tp.contact == ToothContact::kTip2OnFlank1) {
+        ++corners_seen;
+        EXPECT_EQ(tp.roll2, pair.gear2.tip_roll);
+        EXPECT_LT((FlankNormal(pair.gear1, tp.tooth1, tp.side, tp.roll1, phi1) - tp.n_12).norm(),
+                  1e-14);
+      }
+      if (tp.contact == ToothContact::kTip1OnFlank2) {
+        ++corners_seen;
+        EXPECT_EQ(tp.roll1, pair.gear1.tip_roll);
+        EXPECT_LT((FlankNormal(pair.gear2, tp.tooth2, tp.side, tp.roll2, phi2) + tp.n_12).norm(),
+                  1e-14);
+      }
+      if (tp.contact != ToothContact::kFlanks) continue;
+      ++pairs_seen;
       // Each flank's outward normal is the line: wheel 1's along n_12, wheel 2's against it.
       EXPECT_LT((FlankNormal(pair.gear1, tp.tooth1, tp.side, tp.roll1, phi1) - tp.n_12).norm(),
                 1e-14);  // measured 1.1e-15
@@ -55,6 +70,7 @@ TEST(GearMesh, FoundPointsLieOnBothTeethsInvolutesWithTheLineOfActionAsTheirNorm
     }
   }
   EXPECT_GT(pairs_seen, 100);
+  EXPECT_GT(corners_seen, 50);
 }
 
 /// The least distance [m] between wheel 1's and wheel 2's flank curves of `tp`, by brute force:
@@ -101,7 +117,9 @@ TEST(GearMesh, PositiveGapIsTheLeastDistanceOfTheTwoFlanksFoundByBruteForce) {
   const double phi2 = TouchingAngle2(pair, pair.centre_distance, phi1, 0.0, FlankSide::kPositive);
   int checked = 0;
   for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2)) {
-    if (tp.side != FlankSide::kNegative) continue;  // the backlash side: g = j_bn = 1.01e-4 m
+    // The flanks on the backlash side (g = j_bn = 1.01e-4 m); a corner's gap is along the other
+    // flank's normal, not the two curves' least distance (gear_corner_test.cc).
+    if (tp.side != FlankSide::kNegative || tp.contact != ToothContact::kFlanks) continue;
     const double distance = FlankDistance(pair, tp, phi1, phi2);
     std::printf("[measured] brute-force flank distance - gap: %.3g m of %.3g m\n",
                 distance - tp.gap, tp.gap);
@@ -118,18 +136,27 @@ TEST(GearMesh, RigidPairWithoutLoadKeepsTheExactRatio) {
     const GearPair pair = ShiftedPair(0.0, 0.0);
     const double phi1_0 = 0.2;
     const double phi2_0 = TouchingAngle2(pair, pair.centre_distance, phi1_0, 0.0, side);
-    double phi2 = phi2_0, worst = 0.0;
+    double phi2 = phi2_0, worst = 0.0, nearest_corner = 1.0;
     const int steps = 3000;
     for (int i = 1; i <= steps; ++i) {
       const double phi1 = phi1_0 + 3.0 * (2.0 * std::numbers::pi / 19) * i / steps;
       phi2 = TouchingAngle2(pair, pair.centre_distance, phi1, phi2, side);
       worst = std::max(worst, std::abs(phi2 - phi2_0 + 19.0 / 31.0 * (phi1 - phi1_0)));
-      // No backlash at a_0: the other side touches too (to round-off), nothing penetrates.
+      // No backlash at a_0: the other side touches too (to round-off), nothing penetrates; the
+      // tip corners off the line stand off the mating flanks.
       for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2)) {
-        EXPECT_NEAR(tp.gap, 0.0, 2e-16);  // measured 2.6e-17 m
+        if (tp.contact == ToothContact::kFlanks) {
+          EXPECT_NEAR(tp.gap, 0.0, 2e-16);  // measured 2.6e-17 m
+        } else {
+          EXPECT_GT(tp.gap, 0.0);
+          nearest_corner = std::min(nearest_corner, tp.gap);
+        }
       }
     }
-    std::printf("[measured] phi2 + (z1/z2) phi1 drift over 3 mesh cycles: %.3g rad\n", worst);
+    std::printf(
+        "[measured] phi2 + (z1/z2) phi1 drift over 3 mesh cycles: %.3g rad; nearest corner %.3g "
+        "m\n",
+        worst, nearest_corner);
     EXPECT_LT(worst, 7e-15);  // measured 6.7e-16 rad
   }
 }
@@ -226,6 +253,10 @@ TEST(GearMesh, TipReliefDelaysContactByItsLengthAlongTheLine) {
     int touching = 0;
     for (const ToothPair& tp : MeshingToothPairs(pair, pair.centre_distance, phi1, phi2)) {
       if (tp.side != FlankSide::kPositive) continue;
+      if (tp.contact != ToothContact::kFlanks) {  // no load: a relieved corner stands off
+        EXPECT_GT(tp.gap, 0.0);
+        continue;
+      }
       const double s = r_b1 * tp.roll1;
       if (tp.gap <= 1e-15) {
         ++touching;

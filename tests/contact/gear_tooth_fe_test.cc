@@ -106,11 +106,12 @@ const contact::ElasticTeeth& CoarseTeeth() {
 // Under a constant torque T on wheel 1 (wheel 2 held), the static transmission error of the
 // FE-tooth mesh repeats with the mesh (2 pi / z1 of wheel 1), is T / (r_b1 b c(s)) in single and
 // T / (r_b1 b (c(s) + c(s + p_b))) in double contact with c from the pairs' places on the path,
-// and the share of double contact is epsilon_alpha - 1 (rigid flanks: a pair enters the mesh at
-// the path's start whatever the load); each pair's two tooth deflections and the flattening add
+// and the share of double contact is epsilon_alpha - 1 (the involutes on the line of action
+// alone, tip corners off: a pair enters the mesh at the path's start whatever the load;
+// gear_corner_test.cc has the corners); each pair's two tooth deflections and the flattening add
 // up to its penetration (the springs in series).
 TEST(ToothFe, StaticTransmissionErrorVariesWithTheStiffnessAlongThePathAndRepeatsWithTheMesh) {
-  const contact::GearPair pair = contact::MakeGearPair({Wheel(20), Wheel(40), 0.0, 0.0});
+  const contact::GearPair pair = contact::MakeGearPair({Wheel(20), Wheel(40), 0.0, 0.0, false});
   const contact::MeshLaw law(pair, CoarseTeeth(), 0.0);
   const double r_b1 = pair.gear1.base_radius, r_b2 = pair.gear2.base_radius;
   const double torque = 400.0, a = pair.centre_distance;

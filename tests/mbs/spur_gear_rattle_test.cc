@@ -129,8 +129,9 @@ RattleRun RunRattle(const Scene& scene) {
       [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
         const auto tooth_pairs = gears.ToothPairs(t, system, y);
         int count[2] = {0, 0};
-        for (const contact::ToothPair& tp : tooth_pairs)
-          ++count[tp.side == contact::FlankSide::kPositive];
+        for (const contact::ToothPair& tp : tooth_pairs)  // the pairs on the line of action
+          if (tp.contact == contact::ToothContact::kFlanks)
+            ++count[tp.side == contact::FlankSide::kPositive];
         if (run.samples.empty()) run.pairs[0] = count[0], run.pairs[1] = count[1];
         run.same_pairs = run.same_pairs && count[0] == run.pairs[0] && count[1] == run.pairs[1];
         double stiffness = 0.0;
