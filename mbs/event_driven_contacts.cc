@@ -16,6 +16,7 @@
 #include "mbs/constraint_solver.h"
 #include "mbs/contact_reactions.h"
 #include "mbs/cpu_time.h"
+#include "mbs/planar.h"
 #include "mbs/simulation_error.h"
 
 namespace flexmbs::mbs {
@@ -53,14 +54,15 @@ ConstrainedResponse Respond(const MultibodySystem& system, double t, const Const
   return response;
 }
 
-/// The rows of the listed points' velocities stacked, d per point: W_N (d = 1) or W_N, W_T1,
+/// The rows of the listed points' velocities stacked, d per point: W_N (d = 1), W_N, W_T1
+/// (d = 2: a planar scene, t1 the in-plane tangent, EventDrivenContacts::Evaluate) or W_N, W_T1,
 /// W_T2 (d = 3) (d k x n_u).
 MatrixXd LocalRows(const std::vector<UnilateralContactKinematics>& kinematics, Index nu, Index d) {
   MatrixXd W(d * static_cast<Index>(kinematics.size()), nu);
   for (std::size_t i = 0; i < kinematics.size(); ++i) {
     const Index row = d * static_cast<Index>(i);
     W.row(row) = kinematics[i].W_N;
-    if (d == 3) W.middleRows(row + 1, 2) = kinematics[i].W_T;
+    if (d > 1) W.middleRows(row + 1, d - 1) = kinematics[i].W_T.topRows(d - 1);
   }
   return W;
 }
@@ -75,7 +77,8 @@ struct Reactions {
 };
 
 /// The reactions of U = W r + q with d rows per point: the LCP (W, q) (d = 1; contact::SolveLcp) or
-/// the friction-contact problem (d = 3; contact::SolveFrictionNewton, then SolveContactReactions).
+/// the friction-contact problem (d = 3, or 2 in a planar scene; contact::SolveFrictionNewton, then
+/// SolveContactReactions).
 /// A solve that does not converge is a SimulationError at t naming `what`.
 Reactions SolveOrStop(const MatrixXd& W, const VectorXd& q, const VectorXd& mu, Index d, double tolerance, double t,
                       std::string_view what) {
@@ -92,10 +95,10 @@ Reactions SolveOrStop(const MatrixXd& W, const VectorXd& q, const VectorXd& mu, 
     // sticking points' margins vanish and their roots chatter. NSGS and Newton behind it if not.
     contact::FrictionNewtonOptions newton;
     newton.tolerance = tolerance;
-    contact::FrictionContactSolution solution = contact::SolveFrictionNewton({3, W, q, mu}, newton);
+    contact::FrictionContactSolution solution = contact::SolveFrictionNewton({static_cast<int>(d), W, q, mu}, newton);
     reactions.r = std::move(solution.r);
     status = solution;
-    if (!status.converged) status = SolveContactReactions(W, q, mu, tolerance, kNsgsSweeps, &reactions.r);
+    if (!status.converged) status = SolveContactReactions(W, q, mu, tolerance, kNsgsSweeps, &reactions.r, d);
   }
   if (!status.converged) {
     throw SimulationError(
@@ -111,10 +114,11 @@ VectorXd NormalEntries(const VectorXd& local, Index d) {
   return Eigen::Map<const VectorXd, 0, Eigen::InnerStride<>>(local.data(), local.size() / d, Eigen::InnerStride<>(d));
 }
 
-/// Of a local vector with 3 entries per point, the tangential pairs (2 x k).
-Eigen::Matrix2Xd TangentialEntries(const VectorXd& local) {
-  Eigen::Matrix2Xd pairs(2, local.size() / 3);
-  for (Index i = 0; i < pairs.cols(); ++i) pairs.col(i) = local.segment<2>(3 * i + 1);
+/// Of a local vector with d entries per point (d = 2 or 3), the tangential pairs (2 x k; the
+/// second 0 for d = 2, the out-of-plane tangent of a planar scene).
+Eigen::Matrix2Xd TangentialEntries(const VectorXd& local, Index d) {
+  Eigen::Matrix2Xd pairs = Eigen::Matrix2Xd::Zero(2, local.size() / d);
+  for (Index i = 0; i < pairs.cols(); ++i) pairs.col(i).head(d - 1) = local.segment(d * i + 1, d - 1);
   return pairs;
 }
 
@@ -134,13 +138,7 @@ EventDrivenContacts::EventDrivenContacts(const MultibodySystem& system,
                                          const EventDrivenOptions& options)
     : system_(system), options_(options) {
   for (int k = 0; k < system.num_unilateral_contacts(); ++k) {
-    const UnilateralContact& contact = system.unilateral_contact(k);
-    if (system.planar() && contact.law().friction > 0.0) {
-      throw InputError(fmt::format("contact '{}': friction {:g} in a planar scene: event_driven takes planar contacts "
-                                   "without friction so far (moreau_jean solves the two-sided planar cone)",
-                                   contact.name(), contact.law().friction));
-    }
-    for (int p = 0; p < contact.num_points(); ++p) points_.push_back({k, p});
+    for (int p = 0; p < system.unilateral_contact(k).num_points(); ++p) points_.push_back({k, p});
   }
 }
 
@@ -161,6 +159,7 @@ std::vector<UnilateralContactKinematics> EventDrivenContacts::Evaluate(
       evaluated_contact = ref.contact;
     }
     out[i] = contact_points.at(static_cast<std::size_t>(ref.point));
+    if (system_.planar()) UsePlanarTangents(out[i]);
   }
   return out;
 }
@@ -172,6 +171,7 @@ std::vector<UnilateralContactKinematics> EventDrivenContacts::EvaluateAll(
   for (int k = 0; k < system_.num_unilateral_contacts(); ++k) {
     for (UnilateralContactKinematics& point :
          system_.unilateral_contact(k).Evaluate(t, system_, y)) {
+      if (system_.planar()) UsePlanarTangents(point);
       out.push_back(std::move(point));
     }
   }
@@ -222,7 +222,7 @@ ClosedContactForces EventDrivenContacts::Derivative(double t, const ConstVectorR
   const auto kinematics = Evaluate(t, y, indices);
   const bool friction = std::any_of(closed.begin(), closed.end(),
                                     [](const ClosedPoint& p) { return p.tangential != Tangential::kFree; });
-  const Index d = friction ? 3 : 1;
+  const Index d = friction ? ContactDimension(system_) : 1;
   const MatrixXd rows = LocalRows(kinematics, nu, d);
   MatrixXd columns = rows.transpose();
   // The sticking points' cones in the friction-contact problem; a sliding point's friction
@@ -256,12 +256,12 @@ ClosedContactForces EventDrivenContacts::Derivative(double t, const ConstVectorR
   forces.lcp_iterations = reactions.status.iterations;
   forces.lcp_error = reactions.status.error;
   if (!friction) return forces;
-  forces.lambda_T = TangentialEntries(r);
-  forces.tangential_acceleration = TangentialEntries(a);
+  forces.lambda_T = TangentialEntries(r, d);
+  forces.tangential_acceleration = TangentialEntries(a, d);
   for (Index i = 0; i < k; ++i) {
-    forces.tangential_delassus(i) = 0.5 * (W(3 * i + 1, 3 * i + 1) + W(3 * i + 2, 3 * i + 2));
+    forces.tangential_delassus(i) = W.diagonal().segment(d * i + 1, d - 1).mean();
     if (closed[static_cast<std::size_t>(i)].tangential == Tangential::kSlide)
-      forces.lambda_T.col(i) = r(3 * i) * slide_friction.col(i);
+      forces.lambda_T.col(i) = r(d * i) * slide_friction.col(i);
   }
   return forces;
 }
@@ -275,7 +275,7 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y, const
     mu(i) = law.friction;
     e(i) = law.restitution;
   }
-  const Index d = k > 0 && mu.maxCoeff() > 0.0 ? 3 : 1;
+  const Index d = k > 0 && mu.maxCoeff() > 0.0 ? ContactDimension(system_) : 1;
   const MatrixXd rows = LocalRows(Evaluate(t, y, points), nu, d);
   const double solve_start = ProcessCpuSeconds();
   const ConstrainedResponse response = Respond(system_, t, y, rows.transpose());
@@ -304,8 +304,8 @@ ImpactResult EventDrivenContacts::Impact(double t, Eigen::Ref<VectorXd> y, const
   result.U_N_before = NormalEntries(U_before, d);
   result.U_N_after = NormalEntries(U_after, d);
   result.P_N = NormalEntries(reactions.r, d);
-  result.U_T_after = d == 3 ? TangentialEntries(U_after) : Eigen::Matrix2Xd::Zero(2, k);
-  result.P_T = d == 3 ? TangentialEntries(reactions.r) : Eigen::Matrix2Xd::Zero(2, k);
+  result.U_T_after = d > 1 ? TangentialEntries(U_after, d) : Eigen::Matrix2Xd::Zero(2, k);
+  result.P_T = d > 1 ? TangentialEntries(reactions.r, d) : Eigen::Matrix2Xd::Zero(2, k);
   result.lcp_error = reactions.status.error;
   return result;
 }
@@ -349,7 +349,7 @@ void EventDrivenContacts::ProjectClosed(double t, Eigen::Ref<VectorXd> y, const 
     held.push_back(kinematics[i].W_N);
     if (closed[i].tangential != Tangential::kStick) continue;
     held.push_back(kinematics[i].W_T.row(0));
-    held.push_back(kinematics[i].W_T.row(1));
+    if (!system_.planar()) held.push_back(kinematics[i].W_T.row(1));  // planar: t2 = z, idle
   }
   MatrixXd W(static_cast<Index>(held.size()), nu);
   for (std::size_t i = 0; i < held.size(); ++i) W.row(static_cast<Index>(i)) = held[i];

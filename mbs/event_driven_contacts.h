@@ -67,8 +67,6 @@ struct ImpactResult {
 /// The contact points of a system and their algebra. Holds a reference to the system.
 class EventDrivenContacts {
  public:
-  /// Throws InputError naming the contact for a contact with friction in a planar scene (not
-  /// built yet: Moreau-Jean takes it).
   EventDrivenContacts(const MultibodySystem& system, const EventDrivenOptions& options);
 
   /// Every point of every contact, contact by contact.
@@ -76,7 +74,8 @@ class EventDrivenContacts {
   int num_points() const { return static_cast<int>(points_.size()); }
 
   /// The kinematics of the listed points (indices into points()) at (t, y), each contact
-  /// evaluated once.
+  /// evaluated once. In a planar scene each point's tangents are t1 = z x n (in the plane) and
+  /// t2 = z (UsePlanarTangents), and the friction problems take d = 2 (W_N, W_T1).
   std::vector<UnilateralContactKinematics> Evaluate(double t, const ConstVectorRef& y,
                                                     const std::vector<int>& indices) const;
   /// All points' kinematics.

@@ -170,6 +170,15 @@ ContactTangents Tangents(const UnilateralContactKinematics& c, Index d) {
   return {t, t.dot(c.t1_W) * c.W_T.row(0) + t.dot(c.t2_W) * c.W_T.row(1)};
 }
 
+void UsePlanarTangents(UnilateralContactKinematics& c) {
+  const Eigen::Vector3d t1 = PlanarTangent(c.n_W), t2 = Eigen::Vector3d::UnitZ();
+  Eigen::Matrix2d turn;
+  turn << t1.dot(c.t1_W), t1.dot(c.t2_W), t2.dot(c.t1_W), t2.dot(c.t2_W);
+  c.W_T = (turn * c.W_T).eval();
+  c.t1_W = t1;
+  c.t2_W = t2;
+}
+
 void MakePlanar(MultibodySystem& system, const ConstVectorRef& y0) {
   const Eigen::Vector3d& g_W = system.gravity();
   if (std::abs(g_W.z()) > kPlanarTolerance * std::max(1.0, g_W.norm())) {

@@ -59,4 +59,9 @@ struct ContactTangents {
 /// (t . t1) W_T1 + (t . t2) W_T2.
 ContactTangents Tangents(const UnilateralContactKinematics& c, Eigen::Index d);
 
+/// Turns a planar contact point's tangent frame about n_W to t1 = PlanarTangent(n_W) (in the
+/// plane), t2 = z (n x t1 = t2 as before), with W_T's rows turned alike: the same kinematics in
+/// the frame whose first tangent is the planar problem's (event-driven's d = 2 rows W_N, W_T1).
+void UsePlanarTangents(UnilateralContactKinematics& c);
+
 }  // namespace flexmbs::mbs
