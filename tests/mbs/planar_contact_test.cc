@@ -17,6 +17,7 @@
 #include "mbs/planar.h"
 #include "mbs/rigid_body.h"
 #include "mbs/unilateral_contact.h"
+#include "tests/input_error.h"
 #include "tests/mbs/moreau_jean_support.h"
 
 namespace flexmbs::mbs {
@@ -166,6 +167,21 @@ TEST(PlanarContact, DiskOnAnInclineEventDrivenRollsOrSlidesWithTheClosedFormAcce
     EXPECT_NEAR(slip, expected_slip, 1e-12);
     EXPECT_EQ(run.contacts.back().contacts[0].sliding, !rolls);
   }
+}
+
+TEST(PlanarContact, AContactNormalOutOfThePlaneIsRefused) {
+  // The ground plane's normal turned 0.2 rad out of the plane about the line's direction.
+  ContactScene scene{std::make_unique<MultibodySystem>(Vector3d(0.0, -kG, 0.0)), VectorXd()};
+  MultibodySystem& system = *scene.system;
+  system.AddBody(std::make_unique<RigidBody>("disk", kMass, Vector3d::Zero(), Matrix3d::Identity() * 1e-3,
+                                             std::vector<RigidBodyMarker>{{"centre", Vector3d::Zero(), Matrix3d::Identity()}}));
+  const Matrix3d R_WP = Eigen::AngleAxisd(-std::numbers::pi / 2.0 + 0.2, Vector3d::UnitX()).toRotationMatrix();
+  system.AddUnilateralContact(std::make_unique<SpherePlaneUnilateral>(
+      "tilted", system.Marker("disk", "centre"), MarkerRef::Ground(Vector3d(0.0, -1.0, 0.0), R_WP), kRadius,
+      UnilateralLaw{0.0, 0.0}));
+  scene.y0 = system.NeutralState();
+  EXPECT_EQ(flexmbs::testing::InputErrorMessage([&] { MakePlanar(system, scene.y0); }),
+            "contact 'tilted': normal (0, 0.980067, 0.198669) is out of the plane xy");
 }
 
 }  // namespace

@@ -4,17 +4,22 @@
 // slider v_x, v_y, w_z. Against the spatial run of the same scene and against the independent
 // geometrically exact planar beam (slider_crank_exact.json, SciPy), with the solves' sizes and
 // the CPU ratio printed; the load check's refusals of a mode that is neither in- nor out-of-plane
-// and of a mesh that is not mirror-symmetric.
+// and of a mesh that is not mirror-symmetric, a body without mode shapes, an out-of-plane mode
+// started deflected or moving.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "mbs/flexible_body.h"
+#include "mbs/multibody_system.h"
+#include "mbs/planar.h"
 #include "tests/input_error.h"
 #include "tests/validation/slider_crank_model.h"
 
@@ -91,6 +96,25 @@ TEST(PlanarSliderCrank, PlanarRunIsTheSpatialRunAndMatchesTheExactBeam) {
   EXPECT_NE(shifted_message.find("body 'rod': its FE mesh is not mirror-symmetric about its xy plane: node 0 at"),
             std::string::npos)
       << shifted_message;
+  sid::ReducedBody no_shapes = body;
+  no_shapes.phi.resize(0, body.phi.cols());  // a file with its modes' integrals but no shapes on nodes
+  EXPECT_EQ(refusal(no_shapes),
+            "body 'rod': its file carries no mode shapes on the FE nodes to tell in-plane from out-of-plane modes");
+
+  // An out-of-plane mode (the first made a uniform z displacement, odd under z -> -z) is dropped;
+  // started deflected in it, the rod alone is refused.
+  sid::ReducedBody lifted = body;
+  for (Eigen::Index row = 0; row < lifted.phi.rows(); ++row) lifted.phi(row, 0) = row % 3 == 2 ? 1e-3 : 0.0;
+  mbs::MultibodySystem system(Eigen::Vector3d::Zero());
+  system.AddBody(std::make_unique<mbs::FlexibleBody>("rod", lifted, false));
+  Eigen::VectorXd y0 = system.NeutralState();
+  y0(7) = 2e-3;  // q of mode 1
+  EXPECT_EQ(flexmbs::testing::InputErrorMessage([&] { mbs::MakePlanar(system, y0); }),
+            "body 'rod': initial q of out-of-plane mode 1 = 0.002 must be 0");
+  y0(7) = 0.0;
+  y0(system.num_positions() + 6) = 0.5;  // its qdot
+  EXPECT_EQ(flexmbs::testing::InputErrorMessage([&] { mbs::MakePlanar(system, y0); }),
+            "body 'rod': initial qdot of mode 1 = 0.5 is out of the plane");
 }
 
 }  // namespace
