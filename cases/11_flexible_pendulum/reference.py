@@ -26,9 +26,10 @@ N (I - n n^T)/l + (S beta)_e d^2 beta_e/dd^2 on its chord d, plus G^T S G with G
 (`check` compares it with central differences of the forces). The swing turns the stiff axial
 directions during a step, so Radau's simplified Newton needs a fresh Jacobian nearly every step.
 The finite differences' Jacobian (2 n vectorized columns) took 106 s of CPU to 0.5 s and did not
-reach 2 s in 11 minutes of CPU (loaded machine); the exact one takes 34 s to 2 s (to 0.25 s: 4.4 s
-against 5.7 s, 708 LU factorisations against 1084). The two tables differ by 2.8e-6 m over 0.5 s,
-each within 1.7e-6 m of the exact Jacobian's run at rtol 1e-9: the integration's own error.
+reach 2 s in 11 minutes of CPU (80 elements, loaded machine); the exact one takes 34 s to 2 s
+(160 elements: 122 s; to 0.25 s at 80: 4.4 s against 5.7 s, 708 LU factorisations against 1084).
+At 80 elements the two tables differ by 2.8e-6 m over 0.5 s, each within 1.7e-6 m of the exact
+Jacobian's run at rtol 1e-9: the integration's own error.
 
 Outputs at the requested times: the swing angle theta_0 (the pin section's turn, which the
 reduced body's frame follows: its modes are clamped at the pin) and the tip deflection
@@ -57,13 +58,14 @@ WIDTH = 0.02                       # b [m]
 AREA = THICKNESS * WIDTH
 SECOND_MOMENT = WIDTH * THICKNESS**3 / 12.0
 GRAVITY = 9.81                     # m/s^2, along -y
-# The tip deflection over 0 .. 0.3 s (`check`): 10, 20, 40 elements differ from 80 by 5.9e-4,
-# 1.9e-4, 3.7e-5 m (order about 2.3: 80 within ~1e-5 m, 0.25 % of the largest tip); rtol 1e-9
+# The tip deflection over 0 .. 0.3 s (`check`): 10, 20, 40, 80 elements differ from 160 by 6.0e-4,
+# 2.0e-4, 4.6e-5, 9.3e-6 m (order 2: 160 within ~3e-6 m, 0.07 % of the largest tip); rtol 1e-9
 # moves 40 elements' by 7.9e-7 m. Over the whole swing the lumped masses' moment of inertia about
-# the pin, rho A L^3 (1/3 + 1/(6 N^2)), delays the swing at order 2: 40 and 80 elements differ by
-# 1.2e-3 rad and 3.9e-4 m of tip in 1.5 .. 2 s, so 80 elements' own error there is about a third of
-# that, 4e-4 rad and 1.3e-4 m (3 % of the largest tip; 2.8e-5 m, 0.6 %, in the first 0.5 s).
-ELEMENTS = 80
+# the pin, rho A L^3 (1/3 + 1/(6 N^2)), delays the swing, also at order 2 (`--elements N`, the
+# output times to 2 s): in 1.5 .. 2 s 40 and 80 elements differ by 3.9e-4 m of tip and 1.2e-3 rad,
+# 80 and 160 by 1.1e-4 m and 2.9e-4 rad (ratio 3.6 .. 4.3 over the swing), so 160 elements' own
+# error is about a third of the latter: 3.7e-5 m (0.85 % of the largest tip) and 1e-4 rad.
+ELEMENTS = 160
 RELATIVE_TOLERANCE = 1e-8
 
 
@@ -238,11 +240,11 @@ def check():
     """The tip deflection's convergence over 0..0.3 s in the elements and the tolerance, and the
     Jacobian's stiffness against central differences; prints JSON."""
     times = [0.05 * k for k in range(7)]
-    runs = {f"{n} elements": simulate(n, times) for n in (10, 20, 40, 80)}
+    runs = {f"{n} elements": simulate(n, times) for n in (10, 20, 40, 80, ELEMENTS)}
     runs["40 elements, rtol 1e-9"] = simulate(40, times, 1e-9)
-    finest = np.array(runs["80 elements"]["tip"])
+    finest = np.array(runs[f"{ELEMENTS} elements"]["tip"])
     report = {name: {"tip_mm": [round(w * 1e3, 6) for w in run["tip"]],
-                     "largest_tip_difference_to_80_m": float(np.max(np.abs(np.array(run["tip"]) - finest))),
+                     f"largest_tip_difference_to_{ELEMENTS}_m": float(np.max(np.abs(np.array(run["tip"]) - finest))),
                      "energy_drift_j": run["energy_drift_j"], "cpu_seconds": run["cpu_seconds"]}
               for name, run in runs.items()}
     report["stiffness_against_central_differences"] = stiffness_check()
