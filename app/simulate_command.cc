@@ -156,6 +156,7 @@ nlohmann::json ReportJson(const SimulateOptions& options, const mbs::Scene& scen
     j["max_active_contacts"] = stats.moreau_jean.max_active_contacts;
     j["contact_solver_iterations"] = stats.moreau_jean.solver_iterations;
     j["max_contact_solver_error"] = stats.moreau_jean.max_solver_error;
+    j["contact_solve_cpu_seconds"] = stats.moreau_jean.contact_solve_cpu_seconds;
   }
   if (scene.options.event_driven) {
     const mbs::EventDrivenStatistics& events = stats.event_driven;
@@ -167,6 +168,7 @@ nlohmann::json ReportJson(const SimulateOptions& options, const mbs::Scene& scen
     j["slips"] = events.slips;
     j["max_impact_points"] = events.max_impact_points;
     j["max_lcp_error"] = events.max_lcp_error;
+    j["contact_solve_cpu_seconds"] = events.contact_solve_cpu_seconds;
   }
   if (scene.options.integrator.method == mbs::OdeMethod::kImplicit) {
     j["newton"] = NewtonUsed(stats.integrator);
@@ -209,17 +211,17 @@ void PrintReportText(const SimulateOptions& options, const mbs::Scene& scene,
              stats.integrator.rhs_evaluations, stats.integrator.error_test_failures);
   if (scene.options.moreau_jean) {
     fmt::print("contacts        {} unilateral: {} steps with contact, at most {} active, {} solver iterations, largest "
-               "error {:.3g}\n",
+               "error {:.3g}, {:.3g} s of CPU\n",
                scene.system->num_unilateral_contacts(), stats.moreau_jean.contact_solves,
                stats.moreau_jean.max_active_contacts, stats.moreau_jean.solver_iterations,
-               stats.moreau_jean.max_solver_error);
+               stats.moreau_jean.max_solver_error, stats.moreau_jean.contact_solve_cpu_seconds);
   }
   if (scene.options.event_driven) {
     fmt::print("events          {} ({} impacts, at most {} points in one, {} closings, {} separations, {} sticks, "
-               "{} slips), largest contact-solve error {:.3g}\n",
+               "{} slips), largest contact-solve error {:.3g}, contact solves {:.3g} s of CPU\n",
                stats.event_driven.events, stats.event_driven.impacts, stats.event_driven.max_impact_points,
                stats.event_driven.closings, stats.event_driven.separations, stats.event_driven.sticks,
-               stats.event_driven.slips, stats.event_driven.max_lcp_error);
+               stats.event_driven.slips, stats.event_driven.max_lcp_error, stats.event_driven.contact_solve_cpu_seconds);
   }
   if (scene.options.integrator.method == mbs::OdeMethod::kImplicit) {
     fmt::print("newton          {} iterations, {} setups, {} solve\n", stats.integrator.newton_iterations,

@@ -76,16 +76,17 @@ TEST_F(SimulateContactsTest, TheDocumentedBouncingBallRunsAndRecordsItsImpacts) 
 }
 
 // statistics/contact_solve_cpu_seconds of docs/scene.md's two bouncing balls (Moreau-Jean,
-// event-driven): measured, non-negative and a share of the integration's CPU time.
+// event-driven): measured, positive, a share of the integration's CPU time, and the JSON report's.
 TEST_F(SimulateContactsTest, ContactSolvesAreAShareOfTheIntegrationsCpuTime) {
   for (const std::string heading : {"## Unilateral contacts (`contacts:`)", "### `method: event_driven`"}) {
     const std::string scene = SceneOfSection(heading);
     ASSERT_FALSE(scene.empty()) << heading;
-    const Outcome run = Simulate(scene);
+    const Outcome run = Simulate(scene, true);
     ASSERT_EQ(run.exit_code, 0) << heading << ": " << run.err;
     const flexmbs::h5::File file = flexmbs::h5::File::Open(results_);
     const flexmbs::h5::Group statistics = file.root().OpenGroup("statistics");
     const double contact = statistics.ReadScalar("contact_solve_cpu_seconds");
+    EXPECT_EQ(nlohmann::json::parse(run.out)["contact_solve_cpu_seconds"].get<double>(), contact) << heading;
     const double integration = statistics.ReadVector("cpu_seconds")(1);
     std::printf("%s: contact solves %.3g s of the integration's %.3g s CPU\n", heading.c_str(), contact, integration);
     EXPECT_EQ(statistics.ReadUnits("contact_solve_cpu_seconds"), "s");
