@@ -398,7 +398,8 @@ def main():
           f"{args.contact_size:g} m at the contacts; penalty {PENALTY:g} Pa/m")
     print(f"{'phi1/pitch':>10} {'nodes':>7} {'ccx s':>7} {'STE ccx um':>10} {'FE teeth':>9} "
           f"{'ISO c_th':>9} {'ISO c':>9} {'err FE':>8} {'err ISOth':>9} {'share ccx':>10} "
-          f"{'share FE':>9} {'share ISO':>9} {'T2/T-1':>8}")
+          f"{'share FE':>9} {'share ISO':>9} {'T2/T-1':>8} {'coupled':>9} {'err cpl':>8} "
+          f"{'share cpl':>10}")
     root = args.keep or tempfile.mkdtemp(prefix="flexmbs_gear_pair_")
     rows = []
     only = {int(i) for i in args.only.split(",")} if args.only else None
@@ -417,15 +418,21 @@ def main():
         share_ccx = {k % z1: m / total for k, m in magnitude.items() if m > 1e-6 * total}
         share_fe = shares(sample["fe_teeth"]["pairs"])
         share_iso = shares(sample["iso"]["pairs"])
+        # The teeth coupled through their rims (three-tooth segments, bench_gear_pair_fe): the
+        # same pairs as the FE teeth', in their order.
+        coupled = sample["coupled"]["ste"]
+        share_cpl = {int(k): v for k, v in sample["coupled"]["shares"]}
         row = dict(phi=sample["phi1"] / (2 * math.pi / z1), nodes=ccx["nodes"], seconds=ccx["seconds"],
                    ste=ste, fe=fe, iso=iso, iso_th=iso_th, share_ccx=share_ccx, share_fe=share_fe,
-                   share_iso=share_iso, misfit=ccx["torque_misfit"])
+                   share_iso=share_iso, misfit=ccx["torque_misfit"], coupled=coupled,
+                   share_cpl=share_cpl)
         rows.append(row)
         fmt_share = lambda s: "/".join(f"{s.get(k, 0.0):.3f}" for k in sorted(set(share_fe) | set(share_ccx)))
         print(f"{row['phi']:>10.3f} {row['nodes']:>7d} {row['seconds']:>7.1f} {ste * 1e6:>10.4f} "
               f"{fe * 1e6:>9.4f} {iso_th * 1e6:>9.4f} {iso * 1e6:>9.4f} {fe / ste - 1:>+8.4f} "
               f"{iso_th / ste - 1:>+9.4f} {fmt_share(share_ccx):>10} {fmt_share(share_fe):>9} "
-              f"{fmt_share(share_iso):>9} {row['misfit']:>+8.1e}", flush=True)
+              f"{fmt_share(share_iso):>9} {row['misfit']:>+8.1e} {coupled * 1e6:>9.4f} "
+              f"{coupled / ste - 1:>+8.4f} {fmt_share(share_cpl):>10}", flush=True)
     if not rows:
         return 0
     ste_err = max(abs(r["fe"] / r["ste"] - 1) for r in rows)
@@ -434,15 +441,20 @@ def main():
                     for r in rows for k in set(r["share_fe"]) | set(r["share_ccx"]))
     share_iso_err = max(abs(r["share_iso"].get(k, 0.0) - r["share_ccx"].get(k, 0.0))
                         for r in rows for k in set(r["share_iso"]) | set(r["share_ccx"]))
+    cpl_err = max(abs(r["coupled"] / r["ste"] - 1) for r in rows)
+    share_cpl_err = max(abs(r["share_cpl"].get(k, 0.0) - r["share_ccx"].get(k, 0.0))
+                        for r in rows for k in set(r["share_cpl"]) | set(r["share_ccx"]))
     ccx_seconds = sum(r["seconds"] for r in rows) / len(rows)
-    print(f"largest STE error: FE teeth {ste_err:.3g}, ISO c'_th {iso_err:.3g}; largest load-share "
-          f"error: FE teeth {share_err:.3g}, ISO {share_iso_err:.3g}")
+    print(f"largest STE error: FE teeth {ste_err:.3g}, coupled teeth {cpl_err:.3g}, ISO c'_th "
+          f"{iso_err:.3g}; largest load-share error: FE teeth {share_err:.3g}, coupled "
+          f"{share_cpl_err:.3g}, ISO {share_iso_err:.3g}")
     print(f"time per CalculiX solve (two per roll angle: the turn for T by a secant): {ccx_seconds:.3g} s; "
           f"flexmbs static transmission error "
           f"{data['ste_seconds']:.3g} s ({ccx_seconds / data['ste_seconds']:.3g}x), one mesh "
           f"evaluation {data['mesh_seconds']:.3g} s ({ccx_seconds / data['mesh_seconds']:.3g}x); "
           f"flexmbs' FE tables once {data['fe_table_seconds']:.3g} s")
-    print("headline " + json.dumps(dict(ste_error_fe=ste_err, ste_error_iso_th=iso_err,
+    print("headline " + json.dumps(dict(ste_error_fe=ste_err, ste_error_coupled=cpl_err,
+                                        ste_error_iso_th=iso_err,
                                         share_error_fe=share_err, share_error_iso=share_iso_err,
                                         ccx_seconds_per_angle=ccx_seconds,
                                         flexmbs_seconds_per_angle=data["ste_seconds"])))

@@ -19,6 +19,20 @@ struct ToothGeometryOptions {
   /// The bore's depth below the root circle / m: r_i = r_f - rim_depth m (>= 0.2 r_f).
   double rim_depth = 3.5;
   double mesh_size = 0.25;  ///< the elements' edge / m
+  /// Teeth on the segment: 1, or 3 (the loaded tooth between its two neighbours, the cuts
+  /// segment_pitches beyond the neighbours' centre lines): the neighbours' coupling through the rim.
+  int teeth = 1;
+};
+
+/// Where a neighbour tooth meets the line of action of the loaded tooth's load point k (the line
+/// through it along its normal, tangent to the base circle): that line crosses the neighbour's
+/// flank at roll t_k + 2 pi / z (the neighbour on the loaded flank's side, +x) or t_k - 2 pi / z
+/// (the other), and its centre line at `centre_point`; `valid` where that roll lies on the
+/// neighbour's involute (form circle to tip), where a second tooth pair can be in contact.
+struct NeighbourPoint {
+  bool valid = false;
+  double roll = 0.0;                                  ///< the neighbour's roll there [rad]
+  Eigen::Vector2d centre_point = Eigen::Vector2d::Zero();  ///< [m], tooth frame of the loaded tooth
 };
 
 /// The outline and the points the FE model needs.
@@ -31,12 +45,16 @@ struct ToothGeometry {
   std::vector<Eigen::Vector2d> load_point;    ///< the flank points [m], tooth frame
   std::vector<Eigen::Vector2d> load_normal;   ///< their outward normals (lines of action)
   std::vector<Eigen::Vector2d> centre_point;  ///< where each line crosses the centre line x = 0
+  /// With three teeth, per load point: the neighbour on the loaded flank's side (ahead, +x) and
+  /// the other (behind), embedded where valid; empty for one tooth.
+  std::vector<NeighbourPoint> ahead, behind;
 };
 
 /// The tooth of `gear` (unthinned, MakeSpurGear) in its tooth frame (contact/gears/tooth_profile.h)
 /// with `loads` >= 2 load points at roll angles from the form circle to the tip, equally spaced.
-/// The load points and centre points are mesh vertices (curve ends, points embedded in the face).
-/// InputError from RightFlankProfile, or for options out of range.
+/// The load points and centre points are mesh vertices (curve ends, points embedded in the face);
+/// with options.teeth = 3 the loaded tooth sits between two neighbours (ToothGeometry::ahead,
+/// behind). InputError from RightFlankProfile, or for options out of range (teeth not 1 or 3).
 ToothGeometry MakeToothGeometry(const contact::SpurGear& gear, const ToothGeometryOptions& options,
                                 int loads);
 

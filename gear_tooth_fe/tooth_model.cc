@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "core/error.h"
 #include "fem/assembly.h"
@@ -69,35 +70,46 @@ bool Clamped(const Eigen::Vector3d& p, const ToothGeometry& g, double tolerance)
   return std::abs(std::abs(xy.x()) * c - xy.y() * s) <= tolerance;
 }
 
-}  // namespace
+/// The segment of `options` solved: its outline, mesh, free DOFs and the displacements of one
+/// load case per load point (a unit force along -n at the loaded tooth's flank point, i.e.
+/// w = 1 / b per face width), the cut faces and the bore clamped, z held (plane strain).
+struct SolvedSegment {
+  ToothGeometry geometry;
+  fem::Mesh mesh;
+  std::vector<int> free_index;  ///< per DOF 3 n + i its column in u, -1 where held
+  Eigen::MatrixXd u;            ///< free DOFs x load cases
+  double tolerance = 0.0;       ///< [m] for finding vertices
+};
 
-ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
-                                       const contact::ToothMaterial& material,
-                                       const ToothModelOptions& options) {
+SolvedSegment SolveSegment(const contact::SpurGear& gear, const contact::ToothMaterial& material,
+                           const ToothModelOptions& options) {
   fem::IsotropicMaterial steel{"tooth", material.youngs_modulus, material.poisson_ratio, 7850.0};
   fem::ValidateMaterial(steel, "FE tooth");
-  const ToothGeometry g = MakeToothGeometry(gear, options.geometry, options.loads);
+  SolvedSegment s;
+  s.geometry = MakeToothGeometry(gear, options.geometry, options.loads);
+  const ToothGeometry& g = s.geometry;
   const ScratchGeo geo(g.geo);
-  fem::Mesh mesh = fem::ImportMesh(
+  s.mesh = fem::ImportMesh(
       geo.path(), {options.geometry.mesh_size * gear.spec.module, options.element_order}, {});
+  fem::Mesh& mesh = s.mesh;
   for (fem::ElementBlock& block : mesh.blocks) block.material = steel;
   const Eigen::SparseMatrix<double> K =
       fem::AssembleSystem(mesh, fem::MassMatrixKind::kLumped).stiffness;
 
   // Free DOFs: x and y of every node off the clamped boundary (plane strain: z held).
-  const double tolerance = 1e-7 * gear.tip_radius;
-  std::vector<int> free_index(static_cast<std::size_t>(mesh.num_dofs()), -1);
+  s.tolerance = 1e-7 * gear.tip_radius;
+  s.free_index.assign(static_cast<std::size_t>(mesh.num_dofs()), -1);
   int free_count = 0;
   for (Eigen::Index n = 0; n < mesh.num_nodes(); ++n) {
-    if (Clamped(mesh.nodes.col(n), g, tolerance)) continue;
-    for (int i = 0; i < 2; ++i) free_index[static_cast<std::size_t>(3 * n + i)] = free_count++;
+    if (Clamped(mesh.nodes.col(n), g, s.tolerance)) continue;
+    for (int i = 0; i < 2; ++i) s.free_index[static_cast<std::size_t>(3 * n + i)] = free_count++;
   }
   std::vector<Eigen::Triplet<double>> entries;
   for (int col = 0; col < K.outerSize(); ++col) {
-    const int j = free_index[static_cast<std::size_t>(col)];
+    const int j = s.free_index[static_cast<std::size_t>(col)];
     if (j < 0) continue;
     for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it) {
-      const int i = free_index[static_cast<std::size_t>(it.row())];
+      const int i = s.free_index[static_cast<std::size_t>(it.row())];
       if (i >= 0) entries.emplace_back(i, j, it.value());
     }
   }
@@ -107,41 +119,77 @@ ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
   FLEXMBS_CHECK(factor.info() == Eigen::Success,
                 "the FE tooth's stiffness is not positive definite");
 
-  // One load case per load point: a unit force along -n, i.e. w = 1 / b per face width.
   const std::size_t loads = g.roll.size();
   Eigen::MatrixXd f = Eigen::MatrixXd::Zero(free_count, static_cast<Eigen::Index>(loads));
   for (std::size_t k = 0; k < loads; ++k) {
-    const std::vector<int> nodes = NodesAt(mesh, g.load_point[k], tolerance);
+    const std::vector<int> nodes = NodesAt(mesh, g.load_point[k], s.tolerance);
     const std::vector<double> weights = EdgeWeights(nodes.size());
     for (std::size_t a = 0; a < nodes.size(); ++a) {
       for (int i = 0; i < 2; ++i) {
-        const int dof = free_index[static_cast<std::size_t>(3 * nodes[a] + i)];
+        const int dof = s.free_index[static_cast<std::size_t>(3 * nodes[a] + i)];
         FLEXMBS_CHECK(dof >= 0, "an FE tooth's load point lies on the clamped boundary");
         f(dof, static_cast<Eigen::Index>(k)) = -weights[a] * g.load_normal[k](i);
       }
     }
   }
-  const Eigen::MatrixXd u = factor.solve(f);
+  s.u = factor.solve(f);
+  return s;
+}
 
-  ToothModelResult result;
-  result.nodes = mesh.num_nodes();
-  result.elements = mesh.num_elements();
-  contact::ToothCompliance& table = result.compliance;
-  for (std::size_t k = 0; k < loads; ++k) {
-    const std::vector<int> nodes = NodesAt(mesh, g.centre_point[k], tolerance);
-    double deflection = 0.0;
-    for (const int n : nodes) {
-      for (int i = 0; i < 2; ++i) {
-        const int dof = free_index[static_cast<std::size_t>(3 * n + i)];
-        deflection -= u(dof, static_cast<Eigen::Index>(k)) * g.load_normal[k](i);
-      }
+/// The displacement along -n of the nodes through `point` (averaged) in load case k, times the
+/// face width: the deflection per load per face width [m^2/N].
+double Deflection(const SolvedSegment& s, const Eigen::Vector2d& point, const Eigen::Vector2d& n,
+                  std::size_t k) {
+  const std::vector<int> nodes = NodesAt(s.mesh, point, s.tolerance);
+  double deflection = 0.0;
+  for (const int node : nodes) {
+    for (int i = 0; i < 2; ++i) {
+      const int dof = s.free_index[static_cast<std::size_t>(3 * node + i)];
+      deflection -= s.u(dof, static_cast<Eigen::Index>(k)) * n(i);
     }
-    deflection /= static_cast<double>(nodes.size());
+  }
+  return deflection / static_cast<double>(nodes.size()) * s.geometry.face_width;
+}
+
+}  // namespace
+
+ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
+                                       const contact::ToothMaterial& material,
+                                       const ToothModelOptions& options) {
+  const SolvedSegment s = SolveSegment(gear, material, options);
+  const ToothGeometry& g = s.geometry;
+  ToothModelResult result;
+  result.nodes = s.mesh.num_nodes();
+  result.elements = s.mesh.num_elements();
+  contact::ToothCompliance& table = result.compliance;
+  for (std::size_t k = 0; k < g.roll.size(); ++k) {
     table.roll.push_back(g.roll[k]);
-    table.compliance.push_back(deflection * g.face_width);  // deflection / w, w = 1 / b
+    table.compliance.push_back(Deflection(s, g.centre_point[k], g.load_normal[k], k));
     table.centre_depth.push_back((g.load_point[k] - g.centre_point[k]).norm());
   }
   return result;
+}
+
+ToothCoupling ToothCouplingFromFe(const contact::SpurGear& gear,
+                                  const contact::ToothMaterial& material,
+                                  ToothModelOptions options) {
+  options.geometry.teeth = 3;
+  const SolvedSegment s = SolveSegment(gear, material, options);
+  const ToothGeometry& g = s.geometry;
+  ToothCoupling coupling;
+  coupling.nodes = s.mesh.num_nodes();
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < g.roll.size(); ++k) {
+    coupling.roll.push_back(g.roll[k]);
+    coupling.compliance.push_back(Deflection(s, g.centre_point[k], g.load_normal[k], k));
+    coupling.ahead_roll.push_back(g.ahead[k].roll);
+    coupling.ahead.push_back(
+        g.ahead[k].valid ? Deflection(s, g.ahead[k].centre_point, g.load_normal[k], k) : none);
+    coupling.behind_roll.push_back(g.behind[k].roll);
+    coupling.behind.push_back(
+        g.behind[k].valid ? Deflection(s, g.behind[k].centre_point, g.load_normal[k], k) : none);
+  }
+  return coupling;
 }
 
 }  // namespace flexmbs::gear_tooth_fe

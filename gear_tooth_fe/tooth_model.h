@@ -4,6 +4,8 @@
 // and one sparse factorisation gives the tooth's deflection under a load along the line of action
 // at each load point of the flank.
 
+#include <vector>
+
 #include "contact/gears/spur_gear.h"
 #include "gear_tooth_fe/tooth_geo.h"
 #include "contact/gears/tooth_stiffness.h"
@@ -32,5 +34,25 @@ struct ToothModelResult {
 ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
                                        const contact::ToothMaterial& material,
                                        const ToothModelOptions& options);
+
+/// The loaded tooth between its two neighbours on a three-tooth segment (ToothGeometryOptions::
+/// teeth = 3): for a load on the loaded tooth's flank at roll t_k, its own deflection and the
+/// neighbours' where the same line of action crosses their centre lines (ToothGeometry::ahead,
+/// behind), along the line, per load per face width [m^2/N]. In double contact the other pair's
+/// tooth is such a neighbour: `ahead` the one at roll t_k + 2 pi / z on that line, `behind` at
+/// t_k - 2 pi / z; these are the cross-compliances the one-tooth table leaves out.
+struct ToothCoupling {
+  std::vector<double> roll;        ///< t_k [rad]
+  std::vector<double> compliance;  ///< the loaded tooth's own q_k on the three-tooth segment
+  std::vector<double> ahead_roll, ahead;    ///< t_k + 2 pi / z; deflection (NaN off the flank)
+  std::vector<double> behind_roll, behind;  ///< t_k - 2 pi / z; deflection (NaN off the flank)
+  long nodes = 0;                           ///< the mesh's nodes
+};
+
+/// ToothCoupling of `gear`'s tooth (options.geometry.teeth set to 3; the rest as
+/// ToothComplianceFromFe). InputError as ToothComplianceFromFe.
+ToothCoupling ToothCouplingFromFe(const contact::SpurGear& gear,
+                                  const contact::ToothMaterial& material,
+                                  ToothModelOptions options);
 
 }  // namespace flexmbs::gear_tooth_fe
