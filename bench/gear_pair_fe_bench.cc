@@ -11,8 +11,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <Eigen/LU>
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -85,68 +83,26 @@ std::string CouplingJson(const gear_tooth_fe::ToothCoupling& c, const contact::T
     return fmt::format("[{}]", fmt::join(items, ", "));
   };
   return fmt::format(
-      "{{\"nodes\": {}, \"roll\": {}, \"single\": {}, \"own\": {}, \"ahead_roll\": {}, "
-      "\"ahead\": {}, \"behind_roll\": {}, \"behind\": {}}}",
-      c.nodes, list(c.roll), list(single.compliance), list(c.compliance), list(c.ahead_roll),
-      list(c.ahead), list(c.behind_roll), list(c.behind));
+      "{{\"nodes\": {}, \"roll\": {}, \"single\": {}, \"own\": {}, \"ahead\": {}, "
+      "\"behind\": {}}}",
+      c.nodes, list(c.rim.roll), list(single.compliance), list(c.compliance.compliance),
+      list(c.rim.ahead), list(c.rim.behind));
 }
 
-/// `values` at roll t, linear in `rolls` between the finite samples (extrapolated past them).
-double Interpolate(const std::vector<double>& rolls, const std::vector<double>& values, double t) {
-  std::vector<double> x, y;
-  for (std::size_t k = 0; k < rolls.size(); ++k) {
-    if (std::isfinite(values[k])) x.push_back(rolls[k]), y.push_back(values[k]);
-  }
-  std::size_t k = 0;
-  while (k + 2 < x.size() && t > x[k + 1]) ++k;
-  return y[k] + (y[k + 1] - y[k]) * (t - x[k]) / (x[k + 1] - x[k]);
-}
-
-/// The static transmission error [m] at phi1 of teeth coupled through their rims (the three-tooth
-/// segments' ToothCoupling of both wheels; `coupled` false: the segments' own compliances alone):
-/// the line's pairs in contact all take the lag delta, delta 1 = C F with C_ii = (q1 + q2 +
-/// flattening / w_ref) / b at the pair's rolls and, in double contact, C_AB = (q1 ahead(t1_B) +
-/// q2 behind(t2_B)) / b (pair A's teeth from pair B's load; A the pair nearer wheel 1's tip),
-/// C_BA = (q1 behind(t1_A) + q2 ahead(t2_A)) / b; T = r_b1 sum F gives delta = T / (r_b1 1' C^-1 1).
-/// Returns the STE and each pair's [wheel 1's tooth, share of the load] as JSON.
-std::pair<double, std::vector<std::string>> CoupledSte(const contact::GearPair& pair,
-                                                  const contact::ElasticTeeth& teeth,
-                                                  const gear_tooth_fe::ToothCoupling& c1,
-                                                  const gear_tooth_fe::ToothCoupling& c2, double phi1,
-                                                  double phi2_0, double torque, bool coupled) {
-  std::vector<contact::ToothPair> line;
-  for (const contact::ToothPair& tp :
-       contact::MeshingToothPairs(pair, pair.centre_distance, phi1, phi2_0)) {
-    if (tp.side == contact::FlankSide::kPositive && tp.contact == contact::ToothContact::kFlanks &&
-        tp.gap <= 1e-15)
-      line.push_back(tp);
-  }
-  const double b = pair.gear1.spec.face_width, w = teeth.reference_load;
-  const auto n = static_cast<Eigen::Index>(line.size());
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const contact::ToothPair& tp = line[static_cast<std::size_t>(i)];
-    const double h1 = contact::InterpolateCompliance(teeth.tooth1, tp.roll1).centre_depth;
-    const double h2 = contact::InterpolateCompliance(teeth.tooth2, tp.roll2).centre_depth;
-    C(i, i) = (Interpolate(c1.roll, c1.compliance, tp.roll1) +
-               Interpolate(c2.roll, c2.compliance, tp.roll2) +
-               contact::WeberFlattening(w, pair.gear1.base_radius * tp.roll1,
-                                        pair.gear2.base_radius * tp.roll2, h1, h2,
-                                        teeth.material) / w) / b;
-  }
-  if (coupled && n == 2) {
-    const Eigen::Index a = line[0].roll1 > line[1].roll1 ? 0 : 1, b_ = 1 - a;
-    const contact::ToothPair &A = line[static_cast<std::size_t>(a)],
-                             &B = line[static_cast<std::size_t>(b_)];
-    C(a, b_) = (Interpolate(c1.roll, c1.ahead, B.roll1) + Interpolate(c2.roll, c2.behind, B.roll2)) / b;
-    C(b_, a) = (Interpolate(c1.roll, c1.behind, A.roll1) + Interpolate(c2.roll, c2.ahead, A.roll2)) / b;
-  }
-  const Eigen::VectorXd f = C.lu().solve(Eigen::VectorXd::Ones(n));
-  const double delta = torque / (pair.gear1.base_radius * f.sum());
-  std::vector<std::string> shares;  // [wheel 1's tooth, its share]
-  for (Eigen::Index i = 0; i < n; ++i)
-    shares.push_back(fmt::format("[{}, {:.17g}]", line[static_cast<std::size_t>(i)].tooth1, f(i) / f.sum()));
-  return {delta, shares};
+/// The static transmission error [m] at phi1 of `law` and each loaded pair's [wheel 1's tooth,
+/// share of the load] as JSON.
+std::string ShareJson(const contact::GearPair& pair, const contact::MeshLaw& law, double phi1,
+                      double phi2_0, double torque) {
+  const double a = pair.centre_distance;
+  const double delta = contact::StaticTransmissionError(pair, law, a, phi1, torque);
+  const contact::MeshLoads loads =
+      contact::EvaluateMesh(pair, law, a, phi1, phi2_0 + delta / pair.gear2.base_radius, 0, 0);
+  double total = 0.0;
+  for (const contact::ToothPairLoad& p : loads.pairs) total += p.force;
+  std::vector<std::string> shares;
+  for (const contact::ToothPairLoad& p : loads.pairs)
+    shares.push_back(fmt::format("[{}, {:.17g}]", p.pair.tooth1, p.force / total));
+  return fmt::format("{{\"ste\": {:.17g}, \"shares\": [{}]}}", delta, fmt::join(shares, ", "));
 }
 
 /// Seconds per call of `f`, repeated for about 0.2 s.
@@ -181,6 +137,14 @@ int Main(int angles, double torque) {
       gear_tooth_fe::ToothCouplingFromFe(gear2, teeth.material, {});
   const double coupling_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - coupling_start).count();
+  // The teeth on the three-tooth segments, alone (segment3) and coupled through the rims.
+  contact::ElasticTeeth segments = teeth;
+  segments.tooth1 = coupling1.compliance;
+  segments.tooth2 = coupling2.compliance;
+  const contact::MeshLaw segment3(pair, segments, 0.0);
+  segments.rim1 = coupling1.rim;
+  segments.rim2 = coupling2.rim;
+  const contact::MeshLaw rims(pair, segments, 0.0);
   const contact::IsoMeshStiffness iso_stiffness = contact::IsoSinglePairStiffness(Wheel(20), Wheel(40));
   const contact::MeshLaw iso = contact::ToothPairLaw({iso_stiffness.single_pair, 0.0}, pair);
   const contact::MeshLaw iso_th = contact::ToothPairLaw({iso_stiffness.theoretical, 0.0}, pair);
@@ -189,17 +153,14 @@ int Main(int angles, double torque) {
   for (int k = 0; k < angles; ++k) {
     const double phi1 = 2.0 * kPi / 20.0 * k / angles;
     const double phi2_0 = contact::TouchingAngle2(pair, a, phi1, 0.0, contact::FlankSide::kPositive);
-    const auto coupled = CoupledSte(pair, teeth, coupling1, coupling2, phi1, phi2_0, torque, true);
-    const auto segment = CoupledSte(pair, teeth, coupling1, coupling2, phi1, phi2_0, torque, false);
     samples.push_back(fmt::format("{{\"phi1\": {:.17g}, \"phi2\": {:.17g}, \"fe_teeth\": {}, "
-                                  "\"iso\": {}, \"iso_theoretical\": {}, \"segment3\": {{\"ste\": "
-                                  "{:.17g}, \"shares\": [{}]}}, \"coupled\": {{\"ste\": {:.17g}, "
-                                  "\"shares\": [{}]}}}}",
+                                  "\"iso\": {}, \"iso_theoretical\": {}, \"segment3\": {}, "
+                                  "\"coupled\": {}}}",
                                   phi1, phi2_0, ModelJson(pair, elastic, phi1, phi2_0, torque),
                                   ModelJson(pair, iso, phi1, phi2_0, torque),
-                                  ModelJson(pair, iso_th, phi1, phi2_0, torque), segment.first,
-                                  fmt::join(segment.second, ", "), coupled.first,
-                                  fmt::join(coupled.second, ", ")));
+                                  ModelJson(pair, iso_th, phi1, phi2_0, torque),
+                                  ShareJson(pair, segment3, phi1, phi2_0, torque),
+                                  ShareJson(pair, rims, phi1, phi2_0, torque)));
   }
   const double phi1 = 0.3 * 2.0 * kPi / 20.0;
   const double phi2_0 = contact::TouchingAngle2(pair, a, phi1, 0.0, contact::FlankSide::kPositive);

@@ -179,14 +179,16 @@ ToothCoupling ToothCouplingFromFe(const contact::SpurGear& gear,
   ToothCoupling coupling;
   coupling.nodes = s.mesh.num_nodes();
   const double none = std::numeric_limits<double>::quiet_NaN();
+  contact::RimCoupling& rim = coupling.rim;
   for (std::size_t k = 0; k < g.roll.size(); ++k) {
-    coupling.roll.push_back(g.roll[k]);
-    coupling.compliance.push_back(Deflection(s, g.centre_point[k], g.load_normal[k], k));
-    coupling.ahead_roll.push_back(g.ahead[k].roll);
-    coupling.ahead.push_back(
+    coupling.compliance.roll.push_back(g.roll[k]);
+    coupling.compliance.compliance.push_back(
+        Deflection(s, g.centre_point[k], g.load_normal[k], k));
+    coupling.compliance.centre_depth.push_back((g.load_point[k] - g.centre_point[k]).norm());
+    rim.roll.push_back(g.roll[k]);
+    rim.ahead.push_back(
         g.ahead[k].valid ? Deflection(s, g.ahead[k].centre_point, g.load_normal[k], k) : none);
-    coupling.behind_roll.push_back(g.behind[k].roll);
-    coupling.behind.push_back(
+    rim.behind.push_back(
         g.behind[k].valid ? Deflection(s, g.behind[k].centre_point, g.load_normal[k], k) : none);
   }
   return coupling;

@@ -42,11 +42,12 @@ ToothModelResult ToothComplianceFromFe(const contact::SpurGear& gear,
 /// tooth is such a neighbour: `ahead` the one at roll t_k + 2 pi / z on that line, `behind` at
 /// t_k - 2 pi / z; these are the cross-compliances the one-tooth table leaves out.
 struct ToothCoupling {
-  std::vector<double> roll;        ///< t_k [rad]
-  std::vector<double> compliance;  ///< the loaded tooth's own q_k on the three-tooth segment
-  std::vector<double> ahead_roll, ahead;    ///< t_k + 2 pi / z; deflection (NaN off the flank)
-  std::vector<double> behind_roll, behind;  ///< t_k - 2 pi / z; deflection (NaN off the flank)
-  long nodes = 0;                           ///< the mesh's nodes
+  /// The loaded tooth's own table on the three-tooth segment (ToothComplianceFromFe's columns).
+  contact::ToothCompliance compliance;
+  /// The neighbours' deflections at the same rolls: ahead (t_k + 2 pi / z), behind (t_k - 2 pi /
+  /// z); NaN off the neighbour's flank.
+  contact::RimCoupling rim;
+  long nodes = 0;  ///< the mesh's nodes
 };
 
 /// ToothCoupling of `gear`'s tooth (options.geometry.teeth set to 3; the rest as

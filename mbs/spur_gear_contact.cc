@@ -8,6 +8,7 @@
 #include <numbers>
 #include <utility>
 
+#include "core/error.h"
 #include "mbs/multibody_system.h"
 #include "mbs/simulation_error.h"
 
@@ -33,7 +34,15 @@ SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef w
       wheel1_(std::move(wheel1)),
       wheel2_(std::move(wheel2)),
       pair_(std::move(pair)),
-      law_(std::move(law)) {}
+      law_(std::move(law)) {
+  if (law_.coupled()) {
+    throw InputError(fmt::format(
+        "spur gear contact '{}': teeth coupled through the rims (ElasticTeeth::rim1, rim2) are "
+        "not taken by the force element yet (contact::EvaluateMesh and StaticTransmissionError "
+        "take them)",
+        name_));
+  }
+}
 
 CompliantContact SpurGearContact::PairLaw(const contact::ToothPair& tp) const {
   return CompliantContact(CompliantContactLaw{law_.PairLaw(tp), {}}, wheel2_, wheel1_);

@@ -30,7 +30,9 @@ namespace flexmbs::mbs {
 /// r_b1 + r_b2 of each other or are more than 8.1 deg from parallel (a marker's z reversed).
 class SpurGearContact final : public ForceElement {
  public:
-  /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw.
+  /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw;
+  /// InputError (one line) for a law coupled through the rims (contact::MeshLaw::coupled: the
+  /// pairs' joint solve is not in the element).
   SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
                   contact::MeshLaw law);
   const std::string& name() const override { return name_; }

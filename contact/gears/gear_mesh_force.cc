@@ -1,5 +1,6 @@
 #include "contact/gears/gear_mesh_force.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -45,6 +46,39 @@ NormalLaw MeshLaw::PairLaw(const ToothPair& tp) const {
   return LinearLaw(TeethPairStiffness(*teeth_, pair_, t1, t2) * face_width_, damping_);
 }
 
+std::vector<double> MeshLaw::Forces(const std::vector<ToothPair>& pairs,
+                                    const std::vector<double>& rates) const {
+  FLEXMBS_CHECK(rates.size() == pairs.size(), "MeshLaw::Forces needs a rate per pair");
+  std::vector<double> forces;
+  if (!coupled() || pairs.size() != 2 || pairs[0].side != pairs[1].side) {
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      forces.push_back(Evaluate(PairLaw(pairs[i]), -pairs[i].gap, rates[i]).force);
+    return forces;
+  }
+  const std::size_t a = pairs[0].roll1 > pairs[1].roll1 ? 0 : 1, b = 1 - a;
+  const ToothPair &A = pairs[a], &B = pairs[b];
+  const RimCoupling &rim1 = *teeth_->rim1, &rim2 = *teeth_->rim2;
+  Eigen::Matrix2d C;
+  C(a, a) = 1.0 / PairLaw(A).stiffness;
+  C(b, b) = 1.0 / PairLaw(B).stiffness;
+  C(a, b) = (RimCouplingAt(rim1.roll, rim1.ahead, B.roll1) +
+             RimCouplingAt(rim2.roll, rim2.behind, B.roll2)) / face_width_;
+  C(b, a) = (RimCouplingAt(rim1.roll, rim1.behind, A.roll1) +
+             RimCouplingAt(rim2.roll, rim2.ahead, A.roll2)) / face_width_;
+  const Eigen::Vector2d delta(-pairs[0].gap, -pairs[1].gap);
+  Eigen::Vector2d elastic = C.inverse() * delta;
+  for (Eigen::Index i = 0; i < 2; ++i) {
+    if (elastic(i) < 0.0) {  // that pair would pull: the other alone
+      elastic(i) = 0.0;
+      elastic(1 - i) = delta(1 - i) / C(1 - i, 1 - i);
+    }
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    forces.push_back(std::max(0.0, elastic(static_cast<Eigen::Index>(i)) + damping_ * rates[i]));
+  }
+  return forces;
+}
+
 ToothPairDeflection MeshLaw::Deflection(const ToothPair& tp, double force) const {
   if (!teeth_) return {};
   const auto [t1, t2] = Rolls(tp);
@@ -62,13 +96,19 @@ MeshLoads EvaluateMesh(const GearPair& pair, const MeshLaw& law, double centre_d
                        double phi1, double phi2, double omega1, double omega2) {
   MeshLoads loads;
   const Eigen::Vector2d p_O1O2(centre_distance, 0.0);
+  std::vector<ToothPair> touching;
+  std::vector<double> rates;
   for (const ToothPair& tp : MeshingToothPairs(pair, centre_distance, phi1, phi2)) {
     if (!(tp.gap < 0.0)) continue;
+    touching.push_back(tp);
     // delta' = -n_12 . (v2 - v1) at the contact point (exact for a corner too: the two
     // points' offset lies along n_12, across which the turning adds nothing).
-    const double rate =
-        Cross(tp.p_O1C, tp.n_12) * omega1 - Cross(tp.p_O1C - p_O1O2, tp.n_12) * omega2;
-    const double force = Evaluate(law.PairLaw(tp), -tp.gap, rate).force;
+    rates.push_back(Cross(tp.p_O1C, tp.n_12) * omega1 - Cross(tp.p_O1C - p_O1O2, tp.n_12) * omega2);
+  }
+  const std::vector<double> forces = law.Forces(touching, rates);
+  for (std::size_t i = 0; i < touching.size(); ++i) {
+    const ToothPair& tp = touching[i];
+    const double force = forces[i];
     if (force == 0.0) continue;
     loads.pairs.push_back({tp, force});
     loads.torque1 += Cross(tp.p_O1C, -force * tp.n_12);

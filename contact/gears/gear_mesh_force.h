@@ -48,6 +48,16 @@ class MeshLaw {
   MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping);
   /// The law of tooth pair `tp`.
   NormalLaw PairLaw(const ToothPair& tp) const;
+  /// The forces [N] of `pairs` in contact (penetrations -g > 0) at the penetrations' rates
+  /// `rates` [m/s]: each its PairLaw's, or, for elastic teeth with both rims' coupling and two
+  /// pairs on one side, together: delta = C F_e with C_ii = 1 / (c(t1, t2) b) and, pair A the one
+  /// nearer wheel 1's tip, C_AB = (rim1 ahead(t1_B) + rim2 behind(t2_B)) / b (A's teeth under B's
+  /// load), C_BA = (rim1 behind(t1_A) + rim2 ahead(t2_A)) / b; a pair whose F_e would pull is
+  /// dropped (the other takes delta / C_jj); F = max(0, F_e + c delta').
+  std::vector<double> Forces(const std::vector<ToothPair>& pairs,
+                             const std::vector<double>& rates) const;
+  /// Whether the pairs in contact are coupled through the rims (Forces).
+  bool coupled() const { return teeth_ && teeth_->rim1 && teeth_->rim2; }
   /// The deflections under a load F [N] on `tp` (elastic teeth; zeros otherwise).
   ToothPairDeflection Deflection(const ToothPair& tp, double force) const;
   bool elastic() const { return teeth_.has_value(); }

@@ -106,6 +106,17 @@ ToothComplianceAt InterpolateCompliance(const ToothCompliance& tooth, double rol
           (1.0 - s) * tooth.centre_depth[k] + s * tooth.centre_depth[k + 1]};
 }
 
+double RimCouplingAt(const std::vector<double>& roll, const std::vector<double>& values, double t) {
+  std::vector<double> x, y;
+  for (std::size_t k = 0; k < roll.size() && k < values.size(); ++k) {
+    if (std::isfinite(values[k])) x.push_back(roll[k]), y.push_back(values[k]);
+  }
+  FLEXMBS_CHECK(x.size() >= 2, "a rim coupling column needs two or more finite samples");
+  std::size_t k = 0;
+  while (k + 2 < x.size() && t > x[k + 1]) ++k;
+  return y[k] + (y[k + 1] - y[k]) * (t - x[k]) / (x[k + 1] - x[k]);
+}
+
 double TeethPairStiffness(const ElasticTeeth& teeth, const GearPair& pair, double roll1,
                           double roll2) {
   const ToothComplianceAt q1 = InterpolateCompliance(teeth.tooth1, roll1);

@@ -4,6 +4,7 @@
 // the path of contact from two teeth's compliances along their flanks (an FE tooth,
 // gear_tooth_fe/) in series with Weber's Hertzian flattening.
 
+#include <optional>
 #include <vector>
 
 #include "contact/gears/spur_gear.h"
@@ -69,12 +70,28 @@ struct ToothComplianceAt {
 };
 ToothComplianceAt InterpolateCompliance(const ToothCompliance& tooth, double roll);
 
+/// A tooth's coupling to its neighbours through the rim (gear_tooth_fe::ToothCouplingFromFe):
+/// for a load per face width on the flank at roll[k], the deflection [m^2/N] per load per face
+/// width of the neighbour the same line of action crosses one pitch of roll ahead (roll[k] +
+/// 2 pi / z) and behind (roll[k] - 2 pi / z); NaN where that neighbour's point is off its flank.
+struct RimCoupling {
+  std::vector<double> roll, ahead, behind;
+};
+
+/// `values` (a RimCoupling column over `roll`) at roll t, linear between its finite samples and
+/// extrapolated past them. FLEXMBS_CHECK: two or more finite samples.
+double RimCouplingAt(const std::vector<double>& roll, const std::vector<double>& values, double t);
+
 /// Two elastic teeth in mesh: each wheel's tooth compliance, the material and the load per face
 /// width w_ref [N/m] at which the (weakly nonlinear) flattening is linearised.
 struct ElasticTeeth {
   ToothCompliance tooth1, tooth2;
   ToothMaterial material;
   double reference_load = 3e5;  ///< w_ref [N/m] (300 N/mm, ISO 6336-1's 100 N/mm and above)
+  /// Optional, both or neither: the wheels' coupling through their rims. With them two pairs in
+  /// contact on one side share a 2 x 2 compliance (MeshLaw::Forces); tooth1, tooth2 are then the
+  /// same segments' own compliances (ToothCouplingFromFe's), not the one-tooth tables.
+  std::optional<RimCoupling> rim1, rim2;
 };
 
 /// InputError unless E > 0, 0 <= nu < 0.5 and the reference load w_ref > 0 [N/m] (all finite).

@@ -479,6 +479,25 @@ TEST(SpurGearContact, TipReliefEntryReachesTheWheel) {
   EXPECT_EQ(mesh.pair().gear2.spec.tip_relief_exponent, 2);
 }
 
+// Elastic teeth coupled through the rims (contact::ElasticTeeth::rim1, rim2) are solved together
+// by contact::EvaluateMesh; the force element, which evaluates each pair on its own, refuses them
+// in one line rather than drop the coupling.
+TEST(SpurGearContact, RefusesTeethCoupledThroughTheRims) {
+  MultibodySystem system(Eigen::Vector3d::Zero());
+  const contact::GearPair pair = AddFreeWheelsInMesh(system);
+  contact::ElasticTeeth teeth;
+  teeth.tooth1 = teeth.tooth2 = {{0.1, 0.6}, {1e-11, 3e-11}, {2e-3, 1e-3}};
+  teeth.rim1 = teeth.rim2 = contact::RimCoupling{{0.1, 0.6}, {2e-12, 1e-12}, {1e-12, 2e-12}};
+  const std::string message = flexmbs::testing::InputErrorMessage([&] {
+    SpurGearContact("coupled", system.Marker("pinion", "axis"), system.Marker("wheel", "axis"),
+                    pair, contact::MeshLaw(pair, teeth, 0.0));
+  });
+  EXPECT_NE(message.find("spur gear contact 'coupled': teeth coupled through the rims"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
 // tip_corners: on by default, off when the entry says false; anything but a boolean is refused
 // in one line at the key.
 TEST(SpurGearContact, TipCornersEntryReachesThePairAndRefusesANonBoolean) {
