@@ -36,7 +36,6 @@ enum class SolverRows {
 /// M and S of one state, factorised. In a planar scene (MultibodySystem::planar) M^-1 stands for
 /// S M~^-1 S^T with S the kept velocity columns and M~ = M(s, s) per body (docs/mbs.md, "Planar
 /// scenes"): the accelerations, projections and Delassus matrices of the guided, in-plane motion.
-
 class ConstraintSolver {
  public:
   /// S with at most this many rows is factorised dense with pivoting: below about 30-50 rows the
