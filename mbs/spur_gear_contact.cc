@@ -35,11 +35,11 @@ SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef w
       wheel2_(std::move(wheel2)),
       pair_(std::move(pair)),
       law_(std::move(law)) {
-  if (law_.coupled()) {
+  if (law_.static_only()) {
     throw InputError(fmt::format(
-        "spur gear contact '{}': teeth coupled through the rims (ElasticTeeth::rim1, rim2) are "
-        "not taken by the force element yet (contact::EvaluateMesh and StaticTransmissionError "
-        "take them)",
+        "spur gear contact '{}': teeth coupled through the rims (ElasticTeeth::rim1, rim2) or "
+        "with the flattening at each pair's load are not taken by the force element yet "
+        "(contact::EvaluateMesh and StaticTransmissionError take them)",
         name_));
   }
 }

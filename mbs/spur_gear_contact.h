@@ -31,8 +31,8 @@ namespace flexmbs::mbs {
 class SpurGearContact final : public ForceElement {
  public:
   /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw;
-  /// InputError (one line) for a law coupled through the rims (contact::MeshLaw::coupled: the
-  /// pairs' joint solve is not in the element).
+  /// InputError (one line) for a law coupled through the rims or with the flattening at load
+  /// (contact::MeshLaw::static_only: not in the element).
   SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
                   contact::MeshLaw law);
   const std::string& name() const override { return name_; }

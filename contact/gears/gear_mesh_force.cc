@@ -33,6 +33,29 @@ MeshLaw::MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping)
       face_width_(std::min(pair.gear1.spec.face_width, pair.gear2.spec.face_width)),
       damping_(damping) {
   CheckElasticTeeth(*teeth_);
+  if (coupled() && teeth_->flattening_at_load) {
+    throw InputError(
+        "elastic teeth: the rims' coupling and the flattening at each pair's load together are "
+        "not built; give one");
+  }
+}
+
+double MeshLaw::ForceAtLoad(const ToothPair& tp, double delta) const {
+  const auto [t1, t2] = Rolls(tp);
+  const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
+  const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
+  const double rho1 = pair_.gear1.base_radius * t1, rho2 = pair_.gear2.base_radius * t2;
+  // The approach at load w grows with w; at w = delta / (q1 + q2) the teeth alone take delta.
+  const auto approach = [&](double w) {
+    return (q1.compliance + q2.compliance) * w +
+           WeberFlattening(w, rho1, rho2, q1.centre_depth, q2.centre_depth, teeth_->material);
+  };
+  double lo = 0.0, hi = delta / (q1.compliance + q2.compliance);
+  while (hi - lo > 1e-15 * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (approach(mid) < delta ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi) * face_width_;
 }
 
 std::pair<double, double> MeshLaw::Rolls(const ToothPair& tp) const {
@@ -50,6 +73,14 @@ std::vector<double> MeshLaw::Forces(const std::vector<ToothPair>& pairs,
                                     const std::vector<double>& rates) const {
   FLEXMBS_CHECK(rates.size() == pairs.size(), "MeshLaw::Forces needs a rate per pair");
   std::vector<double> forces;
+  if (teeth_ && teeth_->flattening_at_load) {
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const double delta = -pairs[i].gap;
+      const double elastic = delta > 0.0 ? ForceAtLoad(pairs[i], delta) : 0.0;
+      forces.push_back(std::max(0.0, elastic + damping_ * rates[i]));
+    }
+    return forces;
+  }
   if (!coupled() || pairs.size() != 2 || pairs[0].side != pairs[1].side) {
     for (std::size_t i = 0; i < pairs.size(); ++i)
       forces.push_back(Evaluate(PairLaw(pairs[i]), -pairs[i].gap, rates[i]).force);

@@ -44,7 +44,8 @@ class MeshLaw {
   /// Every tooth pair takes `law` (implicit: a NormalLaw is the constant-stiffness mesh).
   MeshLaw(NormalLaw law);  // NOLINT(google-explicit-constructor)
   /// Elastic teeth of `pair` with a damping c >= 0 [N s/m] per tooth pair in contact.
-  /// InputError from CheckElasticTeeth, or LinearLaw's for a negative damping.
+  /// InputError from CheckElasticTeeth, or LinearLaw's for a negative damping, or for the rims'
+  /// coupling together with the flattening at load (not built).
   MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping);
   /// The law of tooth pair `tp`.
   NormalLaw PairLaw(const ToothPair& tp) const;
@@ -53,11 +54,17 @@ class MeshLaw {
   /// pairs on one side, together: delta = C F_e with C_ii = 1 / (c(t1, t2) b) and, pair A the one
   /// nearer wheel 1's tip, C_AB = (rim1 ahead(t1_B) + rim2 behind(t2_B)) / b (A's teeth under B's
   /// load), C_BA = (rim1 behind(t1_A) + rim2 ahead(t2_A)) / b; a pair whose F_e would pull is
-  /// dropped (the other takes delta / C_jj); F = max(0, F_e + c delta').
+  /// dropped (the other takes delta / C_jj); F = max(0, F_e + c delta'). With
+  /// ElasticTeeth::flattening_at_load, each pair's F_e = b w with w the load per face width that
+  /// solves (q1 + q2) w + delta_H(w) = delta (WeberFlattening at w: delta_H ~ w ln(1/w); bisection
+  /// to 1e-15 of w's bracket [0, delta / (q1 + q2)]).
   std::vector<double> Forces(const std::vector<ToothPair>& pairs,
                              const std::vector<double>& rates) const;
   /// Whether the pairs in contact are coupled through the rims (Forces).
   bool coupled() const { return teeth_ && teeth_->rim1 && teeth_->rim2; }
+  /// Whether Forces differs from the pairs' PairLaw (coupled, or the flattening at each pair's
+  /// load): then only EvaluateMesh and StaticTransmissionError take it, not the force element.
+  bool static_only() const { return coupled() || (teeth_ && teeth_->flattening_at_load); }
   /// The deflections under a load F [N] on `tp` (elastic teeth; zeros otherwise).
   ToothPairDeflection Deflection(const ToothPair& tp, double force) const;
   bool elastic() const { return teeth_.has_value(); }
@@ -67,6 +74,8 @@ class MeshLaw {
  private:
   /// t_i held at or above the first roll angle of the tooth's table (the form circle).
   std::pair<double, double> Rolls(const ToothPair& tp) const;
+  /// The elastic force [N] of pair `tp` at penetration delta > 0 with its flattening at its load.
+  double ForceAtLoad(const ToothPair& tp, double delta) const;
 
   NormalLaw law_;
   std::optional<ElasticTeeth> teeth_;

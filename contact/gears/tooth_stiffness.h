@@ -92,6 +92,9 @@ struct ElasticTeeth {
   /// contact on one side share a 2 x 2 compliance (MeshLaw::Forces); tooth1, tooth2 are then the
   /// same segments' own compliances (ToothCouplingFromFe's), not the one-tooth tables.
   std::optional<RimCoupling> rim1, rim2;
+  /// true: each pair's flattening at its own load (MeshLaw::Forces solves the series
+  /// (q1 + q2) w + delta_H(w) = delta per pair), not linearised at w_ref.
+  bool flattening_at_load = false;
 };
 
 /// InputError unless E > 0, 0 <= nu < 0.5 and the reference load w_ref > 0 [N/m] (all finite).

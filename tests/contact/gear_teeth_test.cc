@@ -3,10 +3,16 @@
 // rack, the compliance table's interpolation, and the refused outlines.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
+#include <string>
+#include <vector>
 
+#include "contact/gears/gear_mesh_force.h"
 #include "contact/gears/tooth_profile.h"
 #include "contact/gears/tooth_stiffness.h"
 #include "tests/input_error.h"
@@ -71,6 +77,96 @@ TEST(WeberFlattening, MatchesTheIntegratedHertzianStressField) {
   std::printf("[measured] Weber %.10g m, SciPy %.10g m, relative %.2g\n", delta, kSciPy,
               delta / kSciPy - 1.0);
   EXPECT_NEAR(delta / kSciPy, 1.0, 1e-3);  // measured -1.6e-4 (the (a / h)^2 terms)
+}
+
+/// Runs tests/contact/weber_flattening_reference.py --stdin on `lines` ("w rho1 rho2 h1 h2");
+/// its numbers, or empty with `skip` set.
+std::vector<double> SciPyFlattening(const std::string& lines, std::string* skip) {
+  const std::string script =
+      std::string(FLEXMBS_SOURCE_DIR) + "/tests/contact/weber_flattening_reference.py";
+  const std::string input = std::filesystem::temp_directory_path() /
+                            ("flexmbs_weber_" + std::to_string(::getpid()) + ".txt");
+  std::FILE* file = std::fopen(input.c_str(), "w");
+  std::fputs(lines.c_str(), file);
+  std::fclose(file);
+  std::FILE* pipe = ::popen(("/usr/bin/python3 " + script + " --stdin < " + input).c_str(), "r");
+  std::vector<double> values;
+  double v = 0.0;
+  while (pipe != nullptr && std::fscanf(pipe, "%lf", &v) == 1) values.push_back(v);
+  const int status = pipe != nullptr ? ::pclose(pipe) : -1;
+  std::filesystem::remove(input);
+  if (status != 0) *skip = "the SciPy reference did not run (no /usr/bin/python3 or SciPy)";
+  return values;
+}
+
+// With the flattening at each pair's own load (ElasticTeeth::flattening_at_load), a pair's force
+// solves (q1 + q2) w + delta_H(w) = delta: the flattening the law leaves at its load, delta - (q1 +
+// q2) w, is the approach integrated from the Hertzian stress field at that load (SciPy quad, the
+// reference above) over loads from 70 to 1100 N/mm; at w_ref it is the linearised law; the
+// stiffness grows with the load (delta_H ~ w ln(1/w)).
+TEST(WeberFlattening, PairForceAtItsLoadLeavesTheIntegratedFlatteningAtThatLoad) {
+  GearPairSpec spec{Wheel(20, 0.0), Wheel(40, 0.0), 0.0, 0.0, false};
+  const GearPair pair = MakeGearPair(spec);
+  ElasticTeeth teeth;
+  teeth.tooth1 = teeth.tooth2 = {{0.05, 0.7}, {1.5e-11, 1.5e-11}, {2e-3, 2e-3}};
+  const MeshLaw linear(pair, teeth, 0.0);
+  teeth.flattening_at_load = true;
+  const MeshLaw at_load(pair, teeth, 0.0);
+  const double phi1 = 0.75 * 2.0 * std::numbers::pi / 20;  // single contact near the pitch point
+  const double a = pair.centre_distance, b = 0.04;
+  const auto single = [&](const MeshLaw& law, double delta) {
+    const double phi2 =
+        TouchingAngle2(pair, a, phi1, 0.0, FlankSide::kPositive) + delta / pair.gear2.base_radius;
+    const MeshLoads loads = EvaluateMesh(pair, law, a, phi1, phi2, 0.0, 0.0);
+    EXPECT_EQ(loads.pairs.size(), 1u);
+    return loads.pairs.front();
+  };
+  std::string lines;
+  std::vector<double> implied, w_at;
+  char line[160];
+  for (const double delta : {3e-6, 15e-6, 45e-6}) {
+    const ToothPairLoad load = single(at_load, delta);
+    const double w = load.force / b;
+    w_at.push_back(w);
+    implied.push_back(-load.pair.gap - 3e-11 * w);
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g 2e-3 2e-3\n", w,
+                  pair.gear1.base_radius * load.pair.roll1, pair.gear2.base_radius * load.pair.roll2);
+    lines += line;
+  }
+  std::string skip;
+  const std::vector<double> scipy = SciPyFlattening(lines, &skip);
+  if (!skip.empty()) GTEST_SKIP() << skip;
+  ASSERT_EQ(scipy.size(), 3u);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::printf("[measured] w %.4g N/mm: flattening %.6g m, SciPy %.6g m (%.2g)\n", w_at[i] * 1e-3,
+                implied[i], scipy[i], implied[i] / scipy[i] - 1.0);
+    worst = std::max(worst, std::abs(implied[i] / scipy[i] - 1.0));
+  }
+  // Measured -1.2e-4, -8.6e-4, -3.5e-3 at 59, 327, 1055 N/mm: Weber's form is the asymptote for
+  // h >> a, and the half width a grows like sqrt(w).
+  EXPECT_LT(worst, 1e-2);
+  // At w_ref the two laws agree; the secant stiffness F / delta grows with the load.
+  double delta_ref = 15e-6;  // the approach at w_ref; wheel 2's roll moves with its lag
+  for (int i = 0; i < 4; ++i) {
+    const ToothPairLoad probe = single(linear, delta_ref);
+    delta_ref = 3e-11 * 3e5 + WeberFlattening(3e5, pair.gear1.base_radius * probe.pair.roll1,
+                                              pair.gear2.base_radius * probe.pair.roll2, 2e-3,
+                                              2e-3, teeth.material);
+  }
+  const double at_ref = single(at_load, delta_ref).force, lin_ref = single(linear, delta_ref).force;
+  const double soft = single(at_load, 3e-6).force / 3e-6, stiff = single(at_load, 45e-6).force / 45e-6;
+  std::printf("[measured] at w_ref: %.3g apart; secant stiffness at 3 and 45 um against the "
+              "linearised %.4g, %.4g\n",
+              at_ref / lin_ref - 1.0, soft / (lin_ref / delta_ref), stiff / (lin_ref / delta_ref));
+  EXPECT_NEAR(at_ref / lin_ref, 1.0, 1e-12);  // measured 4.4e-14
+  EXPECT_LT(soft, stiff);                      // measured 0.912 and 1.081 of the linearised
+  // With the rims' coupling as well: not built, one line.
+  teeth.rim1 = teeth.rim2 = RimCoupling{{0.05, 0.7}, {2e-12, 1e-12}, {1e-12, 2e-12}};
+  const std::string both = InputErrorMessage([&] { MeshLaw(pair, teeth, 0.0); });
+  EXPECT_NE(both.find("elastic teeth: the rims' coupling and the flattening at each pair's load"),
+            std::string::npos)
+      << both;
 }
 
 // ISO 6336-1:2019 sec. 9.3 gives c' ~ 14 N/(mm um) for steel pairs of the basic rack; method B's
