@@ -11,7 +11,9 @@ error (the largest difference of the impulse transferred up to a step, in m v), 
 (the largest impulse of a step over h), wall time; checks the limits README.md gives; writes a
 plot with --plot.
 
-Usage: /usr/bin/python3 compare.py OUT --runs 4,8c,... [--plot PNG]
+Usage: /usr/bin/python3 compare.py OUT --runs 4,8c,... [--planar] [--steps H,... [--sweep F,...]] [--plot PNG]
+--planar: the planar runs against the spatial ones (planar.py); --steps: the time-step sweep
+(step_sweep.py) of the formulations --sweep names (default penalty).
 """
 import argparse
 import json
@@ -23,10 +25,10 @@ import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
 from headline import Checks, print_headline, pyplot, save_figure  # noqa: E402 (cases/headline.py)
-from results_frames import rotation  # noqa: E402 (cases/results_frames.py)
+import planar  # noqa: E402
+import step_sweep  # noqa: E402
+from beam_results import STEP, history_error, momentum_impulses  # noqa: E402
 
-MASS, SPEED, STEP = 7.536, 1.0, 1e-6     # the beam [kg] (rho V), its speed [m/s], the step [s]
-P_CM_B = np.array([0.3, 0.02, 0.02])       # its centre of mass in B [m]
 FORMULATIONS = ("velocity", "position", "penalty")
 # What README.md promises (measured beside each; the LCP floors are the full model's nodal
 # impacts, docs/contact.md).
@@ -44,23 +46,13 @@ LIMITS = {
 MOMENTUM_CHECK = 3e-6
 
 
-def momentum_impulses(f):
-    """Per output interval, the beam's momentum gained along +y: the stop's impulse [N s]."""
-    v = f["bodies/beam/velocity"][:]
-    w = f["bodies/beam/angular_velocity"][:]
-    e = f["bodies/beam/orientation"][:]
-    v_cm = np.array([v[k] + rotation(e[k]) @ np.cross(w[k], P_CM_B) for k in range(len(v))])
-    return MASS * np.diff(v_cm[:, 1])
-
-
-def history_error(a, b):
-    return np.abs(np.cumsum(a) - np.cumsum(b)).max() / (MASS * SPEED)
-
-
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("out", type=pathlib.Path)
     p.add_argument("--runs", required=True, help="comma-separated mode counts, 'c' for the correction mode")
+    p.add_argument("--planar", action="store_true", help="compare the planar runs with the spatial ones")
+    p.add_argument("--steps", help="comma-separated steps of the step sweep [s], e.g. 2e-6,2.5e-7")
+    p.add_argument("--sweep", default="penalty", help="comma-separated formulations of the step sweep")
     p.add_argument("--plot")
     a = p.parse_args()
     runs = a.runs.split(",")
@@ -90,15 +82,24 @@ def main():
             continue
         value = table[(formulation, run)][measure]
         checks.check(f"{formulation} {run}: {measure}", abs(value) <= limit, f"error {value:+.2e} (limit {limit:g})")
-    print_headline("06_beam_on_stop", abs(table[("penalty", runs[-1])]["peak"]), f"penalty peak force, {runs[-1]} modes",
+    planar_table, planar_text = None, ""
+    if a.planar:
+        planar_table, odd, elastic = planar.rows(a.out, FORMULATIONS)
+        planar.report(planar_table, odd, elastic, checks)
+        planar_text = f" (planar against spatial: {planar.largest(planar_table):.1e})"
+    curves = step_sweep.report(a.out, a.steps.split(","), a.sweep.split(","), checks) if a.steps else None
+    print_headline("06_beam_on_stop", abs(table[("penalty", runs[-1])]["peak"]),
+                   f"penalty peak force, {runs[-1]} modes{planar_text}",
                    runtime_s=table[("penalty", runs[-1])]["seconds"], peer="full FE model (SciPy)",
                    peer_runtime_s=json.loads((a.out / "full_penalty.json").read_text())["wall_seconds"])
-    checks.finish(a.plot, lambda path: plot(path, a.out, runs, table))
+    checks.finish(a.plot, lambda path: plot(path, a.out, runs, table, planar_table, curves))
 
 
-def plot(path, out, runs, table):
+def plot(path, out, runs, table, planar_table, curves):
+    """The penalty's stop force, every run's history error against its wall time, and where
+    they ran, the planar runs' tip against the spatial one and the step sweep's errors."""
     plt = pyplot()
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, ((left, right), (lower_left, lower_right)) = plt.subplots(2, 2, figsize=(11, 8.4))
     t = 1e3 * STEP * np.arange(1, 1001)
     full = np.load(out / "full_penalty.npy")
     left.plot(t, full / STEP / 1e3, "k", linewidth=2, label="full FE model (SciPy)")
@@ -119,6 +120,14 @@ def plot(path, out, runs, table):
     right.set_ylabel("impulse-history error [m v]")
     right.legend(fontsize=8)
     right.grid(alpha=0.3, which="both")
+    if planar_table:
+        planar.plot(lower_left, planar_table, STEP)
+    else:
+        lower_left.set_axis_off()
+    if curves:
+        step_sweep.plot(lower_right, curves)
+    else:
+        lower_right.set_axis_off()
     fig.suptitle("beam on a stop: reduced (modes, c = pad correction mode) against the full FE model")
     save_figure(fig, path)
 

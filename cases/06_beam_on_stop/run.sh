@@ -4,13 +4,37 @@
 # simulates each in three formulations (impact on velocity level, on position level, a penalty
 # spring per pad vertex; Moreau-Jean by 1 us for 1 ms), integrates the full FE model in each
 # formulation with SciPy (full_model.py, flexmbs' K and M) and prints the table of impulse,
-# history and peak-force errors against wall time, with a plot (compare.py). --short: 4 and 16
-# modes with the correction mode only (CTest).
+# history and peak-force errors against wall time, with a plot (compare.py). Beside it: the beam
+# posed in the plane (beam_planar.geo, 16 modes + c) run spatial and with `planar: xy` in each
+# formulation, and Moreau-Jean's step sweep of the 16 + c runs (an output every step).
+# --short: 4 and 16 modes with the correction mode only, the sweep's 2 us against 0.25 us (CTest).
 # Usage: run.sh [path/to/flexmbs] [--short]
 set -euo pipefail
 source "$(dirname "$0")/../case_setup.sh" "${1:-flexmbs}"
 runs="4,8,16,32,4c,8c,16c,32c"
-[ "${2:-}" = "--short" ] && runs="4c,16c"
+steps="8e-6,4e-6,2e-6,5e-7,1.25e-7"
+sweep="penalty,velocity"
+if [ "${2:-}" = "--short" ]; then
+  runs="4c,16c"
+  steps="2e-6,2.5e-7"
+  sweep="penalty"
+fi
+
+# Writes the three formulations' scenes of run $1 with the body file $2 (the first line $3 if
+# given) and simulates each: $out/<formulation>_$1.{yaml,h5,json}.
+simulate() {
+  local run="$1" sid="$2" first="${3:-}" formulation
+  { if [ -n "$first" ]; then echo "$first"; fi; sed "s|file: out/beam.sid.h5|file: $sid|" scene_lcp.yaml; } \
+    > "$out/velocity_$run.yaml"
+  sed -e "s|theta: 0.5|theta: 1|" -e "s|impact_level: velocity|impact_level: position|" "$out/velocity_$run.yaml" \
+    > "$out/position_$run.yaml"
+  { if [ -n "$first" ]; then echo "$first"; fi; sed "s|file: out/beam.sid.h5|file: $sid|" scene_penalty.yaml; } \
+    > "$out/penalty_$run.yaml"
+  for formulation in velocity position penalty; do
+    "$flexmbs" simulate "$out/${formulation}_$run.yaml" -o "$out/${formulation}_$run.h5" --json \
+      > "$out/${formulation}_$run.json"
+  done
+}
 
 "$flexmbs" mesh beam.yaml --matrix-market "$out/beam" > /dev/null
 for formulation in velocity position penalty; do
@@ -24,13 +48,23 @@ for run in ${runs//,/ }; do
     { if [ "${run%c}" = "$run" ]; then grep -v -e "correction_modes:" -e "node_set: pad, direction"; else cat; fi; } \
     > "$body.yaml"
   "$flexmbs" reduce "$body.yaml" -o "$body.sid.h5" > /dev/null
-  sed "s|file: out/beam.sid.h5|file: $body.sid.h5|" scene_lcp.yaml > "$out/velocity_$run.yaml"
-  sed -e "s|theta: 0.5|theta: 1|" -e "s|impact_level: velocity|impact_level: position|" "$out/velocity_$run.yaml" \
-    > "$out/position_$run.yaml"
-  sed "s|file: out/beam.sid.h5|file: $body.sid.h5|" scene_penalty.yaml > "$out/penalty_$run.yaml"
-  for formulation in velocity position penalty; do
-    "$flexmbs" simulate "$out/${formulation}_$run.yaml" -o "$out/${formulation}_$run.h5" --json \
-      > "$out/${formulation}_$run.json"
+  simulate "$run" "$body.sid.h5"
+done
+
+# The posed beam (16 modes and the correction mode), spatial and planar.
+sed "s|file: ../../meshes/beam_stop.geo|file: $here/beam_planar.geo|" beam.yaml > "$out/beam_planar.yaml"
+"$flexmbs" reduce "$out/beam_planar.yaml" -o "$out/beam_planar.sid.h5" > /dev/null
+simulate posed "$out/beam_planar.sid.h5"
+simulate planar "$out/beam_planar.sid.h5" "planar: xy"
+
+# The step sweep: the 16 + c runs at the other steps, an output every step.
+for formulation in ${sweep//,/ }; do
+  for step in ${steps//,/ }; do
+    sed -e "s|output_interval: 1.0e-6|output_interval: $step|" -e "s|step: 1.0e-6|step: $step|" \
+      "$out/${formulation}_16c.yaml" > "$out/step_${formulation}_$step.yaml"
+    "$flexmbs" simulate "$out/step_${formulation}_$step.yaml" -o "$out/step_${formulation}_$step.h5" --json \
+      > "$out/step_${formulation}_$step.json"
   done
 done
-/usr/bin/python3 compare.py "$out" --runs "$runs" --plot "$out/beam_on_stop.png"
+/usr/bin/python3 compare.py "$out" --runs "$runs" --planar --steps "$steps" --sweep "$sweep" \
+  --plot "$out/beam_on_stop.png"
