@@ -5,6 +5,7 @@
 // error it smooths at the mesh's switches.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
