@@ -306,8 +306,12 @@ std::string ContactModeAdvice::Describe() const {
       unilateral ? fmt::format("{:g} / t_c, measured on a bar struck by a wall", kCutoffTimesContactTimeUnilateral)
       : correction_mode ? fmt::format("{:g} / t_c, as {} keeps a static correction mode",
                                       kCutoffTimesContactTimeWithCorrection, body)
-                        : fmt::format("{:g} / t_c; a static correction mode of the surface would halve it",
-                                      kCutoffTimesContactTimeWithout);
+      : type == "pcm_contact"
+          ? fmt::format("{:g} / t_c; measured on PCM strikes it is not enough without a static correction mode of "
+                        "the surface (peak +1.5 to +6.5 %): keep one, then {:g} / t_c",
+                        kCutoffTimesContactTimeWithout, kCutoffTimesContactTimeWithCorrection)
+          : fmt::format("{:g} / t_c; a static correction mode of the surface would halve it",
+                        kCutoffTimesContactTimeWithout);
   return fmt::format("contact '{}' ({}) on {}: contact time {:.3g} us ({}); keep the modes it loads up to "
                      "{:.4g} kHz ({}); {} keeps {} loaded modes up to {:.4g} kHz, {} above",
                      element, type, body, 1e6 * contact_time, source, 1e-3 * cutoff_hz, rule, body, loaded_modes,
