@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "mbs/scene_surface.h"
 #include "mbs/scene_values.h"
+#include "mbs/sphere_segment_unilateral.h"
 #include "mbs/surface_unilateral.h"
 
 namespace flexmbs::mbs {
@@ -92,6 +93,21 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
     const UnilateralLaw law = ReadLaw(node, name);
     return At(node, [&] { return std::make_unique<SpherePlaneUnilateral>(name, sphere, plane, radius, law); });
   }
+  if (kind == "sphere_segment") {
+    node.RejectUnknownKeys({"name", "type", "sphere", "segment", "ends", "radius", "law", "restitution", "friction"});
+    const MarkerRef sphere = read_marker(node.Required("sphere")), segment = read_marker(node.Required("segment"));
+    const YamlNode ends_node = node.Required("ends");
+    const std::vector<YamlNode> ends = ends_node.AsList();
+    if (ends.size() != 2) {
+      ends_node.Fail(fmt::format("contact '{}': {} entries, not the segment's two ends", name, ends.size()));
+    }
+    const double radius = ReadPositiveLength(node, "radius", fmt::format("contact '{}'", name));
+    const UnilateralLaw law = ReadLaw(node, name);
+    return At(node, [&] {
+      return std::make_unique<SphereSegmentUnilateral>(name, sphere, segment, ReadVector3(ends[0]), ReadVector3(ends[1]),
+                                                       radius, law);
+    });
+  }
   if (kind == "sphere_sphere") {
     node.RejectUnknownKeys({"name", "type", "sphere1", "sphere2", "radius1", "radius2", "law", "restitution", "friction"});
     const MarkerRef sphere1 = read_marker(node.Required("sphere1")), sphere2 = read_marker(node.Required("sphere2"));
@@ -160,8 +176,8 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                         b.num_modes, law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, box_plane, cylinder_plane, "
-                        "surface_plane, sphere_surface, surface_surface",
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_segment, sphere_sphere, box_plane, "
+                        "cylinder_plane, surface_plane, sphere_surface, surface_surface",
                         name, kind));
 }
 
