@@ -126,6 +126,8 @@ nlohmann::json AdviceJson(const std::vector<mbs::ContactModeAdvice>& advice) {
                     {"first_points", a.first_points},
                     {"effective_mass_kg", a.effective_mass},
                     {"impact_speed_m_s", a.impact_speed},
+                    {"law_stiffness", a.law_stiffness},
+                    {"law_exponent", a.law_exponent},
                     {"contact_time_s", a.contact_time},
                     {"correction_mode", a.correction_mode},
                     {"cutoff_hz", a.cutoff_hz},

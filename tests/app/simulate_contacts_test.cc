@@ -322,6 +322,8 @@ TEST_F(SimulateContactsTest, SphereOnAFlexibleSurfaceBouncesAndGetsModeAdvice) {
     EXPECT_NEAR(advice["effective_mass_kg"].get<double>(), mass, 1e-12 * mass);
     EXPECT_NEAR(advice["impact_speed_m_s"].get<double>(), 1.0, 1e-12);
     EXPECT_NEAR(advice["contact_time_s"].get<double>(), t_c, 1e-9 * t_c);
+    EXPECT_NEAR(advice["law_stiffness"].get<double>(), k, 1e-12 * k);  // the scene's Hertz law by the same formula: round-off
+    EXPECT_EQ(advice["law_exponent"].get<double>(), 1.5);
     EXPECT_EQ(advice["correction_mode"].get<bool>(), correction);
     EXPECT_NEAR(advice["cutoff_hz"].get<double>(), (correction ? 1.5 : 3.0) / t_c, 1e-6 / t_c);
     const int loaded = advice["loaded_modes"].get<int>();
