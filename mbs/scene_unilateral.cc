@@ -176,8 +176,8 @@ std::unique_ptr<UnilateralContact> ReadUnilateralContact(const YamlNode& node, c
                                                         b.num_modes, law);
     });
   }
-  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_segment, sphere_sphere, box_plane, "
-                        "cylinder_plane, surface_plane, sphere_surface, surface_surface",
+  type.Fail(fmt::format("contact '{}': '{}' must be one of: sphere_plane, sphere_sphere, box_plane, cylinder_plane, "
+                        "surface_plane, sphere_surface, surface_surface, sphere_segment",
                         name, kind));
 }
 
