@@ -137,7 +137,7 @@ void ConstraintSolver::SetPattern() {
     for (const int b : JointBodies(system.joint(k))) {
       if (b == kGround) continue;
       body_row_start_[static_cast<std::size_t>(b) + 1] += count;
-      row_nonzeros += system.velocity_block(b).size;
+      row_nonzeros += NumColumns(b);
     }
     for (Index row = first; row < first + count; ++row) {
       G_.outerIndexPtr()[row + 1] = static_cast<int>(G_.outerIndexPtr()[row] + row_nonzeros);
@@ -160,8 +160,12 @@ void ConstraintSolver::SetPattern() {
         Index& next = next_row[static_cast<std::size_t>(b)];
         row_at_body_[static_cast<std::size_t>(row)][slot] = {b, next - body_row_start_[static_cast<std::size_t>(b)]};
         body_rows_[static_cast<std::size_t>(next++)] = row;
-        const Index offset = system.velocity_block(b).start, n = system.velocity_block(b).size;
-        for (Index column = offset; column < offset + n; ++column) *inner++ = static_cast<int>(column);
+        const Index offset = system.velocity_block(b).start;
+        if (kept_.empty()) {
+          for (Index column = 0; column < system.velocity_block(b).size; ++column) *inner++ = static_cast<int>(offset + column);
+        } else {
+          for (const Index column : kept_[static_cast<std::size_t>(b)]) *inner++ = static_cast<int>(offset + column);
+        }
       }
     }
   }
@@ -187,25 +191,21 @@ void ConstraintSolver::FormBodyBlocks(const Eigen::MatrixXd& G) {
     if (count == 0) continue;
     const Index offset = system_.velocity_block(b).start, n = system_.velocity_block(b).size;
     const Eigen::Map<const Eigen::Matrix<Index, Eigen::Dynamic, 1>> R_b(body_rows_.data() + first, count);
-    const MatrixXd G_b_T = G(R_b, Eigen::seqN(offset, n)).transpose();
-    // A planar scene's body: M_b^-1 is S_b M_b(s, s)^-1 S_b^T over its kept columns s.
-    MatrixXd Y, Minv_G_b_T;
-    if (kept_.empty()) {
-      Y = mass_factors_[ub].matrixL().solve(G_b_T);
-      Minv_G_b_T = mass_factors_[ub].matrixU().solve(Y);
-    } else {
-      Y = mass_factors_[ub].matrixL().solve(G_b_T(kept_[ub], Eigen::all));
-      Minv_G_b_T = MatrixXd::Zero(n, count);
-      const MatrixXd solved = mass_factors_[ub].matrixU().solve(Y);
-      Minv_G_b_T(kept_[ub], Eigen::all) = solved;
-    }
+    // A planar scene's body: M_b^-1 is S_b M_b(s, s)^-1 S_b^T over its kept columns s, and G_, Minv_GT_
+    // hold those columns only.
+    const MatrixXd G_b_T = kept_.empty() ? MatrixXd(G(R_b, Eigen::seqN(offset, n)).transpose())
+                                         : MatrixXd(G(R_b, Eigen::seqN(offset, n))(Eigen::all, kept_[ub]).transpose());
+    const MatrixXd Y = mass_factors_[ub].matrixL().solve(G_b_T);
+    const MatrixXd Minv_G_b_T = mass_factors_[ub].matrixU().solve(Y);
+    const Index first_column = offset + (kept_.empty() ? 0 : kept_[ub].front()), columns = G_b_T.rows();
     for (Index l = 0; l < count; ++l) {
       const Index row = R_b(l);
       // b's columns open the row if b is its joint's first body, else close it.
-      const Index start = G_.innerIndexPtr()[G_.outerIndexPtr()[row]] == offset ? G_.outerIndexPtr()[row]
-                                                                                  : G_.outerIndexPtr()[row + 1] - n;
-      Eigen::Map<VectorXd>(G_.valuePtr() + start, n) = G_b_T.col(l);
-      Eigen::Map<VectorXd>(Minv_GT_.valuePtr() + start, n) = Minv_G_b_T.col(l);
+      const Index start = G_.innerIndexPtr()[G_.outerIndexPtr()[row]] == first_column
+                              ? G_.outerIndexPtr()[row]
+                              : G_.outerIndexPtr()[row + 1] - columns;
+      Eigen::Map<VectorXd>(G_.valuePtr() + start, columns) = G_b_T.col(l);
+      Eigen::Map<VectorXd>(Minv_GT_.valuePtr() + start, columns) = Minv_G_b_T.col(l);
     }
     Eigen::Map<MatrixXd>(schur_blocks_.data() + schur_block_start_[ub], count, count).noalias() =
         Y.transpose().lazyProduct(Y);  // coefficient by coefficient: symmetric to the bit
@@ -248,6 +248,10 @@ void ConstraintSolver::FactoriseSchur() {
   }
   dense_factor_.compute(scaled_schur());
   smallest_pivot_ = std::min(smallest_pivot_, dense_factor_.vectorD().minCoeff());
+}
+
+Eigen::Index ConstraintSolver::NumColumns(int b) const {
+  return kept_.empty() ? system_.velocity_block(b).size : static_cast<Index>(kept_[static_cast<std::size_t>(b)].size());
 }
 
 Eigen::Map<const Eigen::MatrixXd> ConstraintSolver::BodySchur(int b) const {

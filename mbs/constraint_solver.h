@@ -66,9 +66,11 @@ class ConstraintSolver {
   /// S^-1 r on the solver's rows (r of size m, all rows): the result has size m, 0 on the rows
   /// left out. Precondition: not rank deficient.
   Eigen::VectorXd SolveSchur(const ConstVectorRef& r) const;
-  /// G (m x n_u, all rows) with the blocks of the bodies each row touches.
+  /// G (m x n_u, all rows) with the blocks of the bodies each row touches; in a planar scene only
+  /// their kept columns (u and u' are zero in the dropped ones, and M^-1 G^T is zero there).
   const Eigen::SparseMatrix<double, Eigen::RowMajor>& constraint_jacobian() const { return G_; }
-  /// M^-1 G^T (n_u x m, all rows; column k nonzero in the bodies row k touches).
+  /// M^-1 G^T (n_u x m, all rows; column k nonzero in the bodies row k touches, in a planar scene
+  /// in their kept columns).
   const Eigen::SparseMatrix<double>& mass_inverse_G_transpose() const { return Minv_GT_; }
   /// The stacked rows S is formed from, ascending.
   const std::vector<Eigen::Index>& rows() const { return rows_; }
@@ -99,6 +101,8 @@ class ConstraintSolver {
   /// out_b = M_b^-1 r_b for body b (a planar scene's body: S_b M_b(s, s)^-1 S_b^T r_b over its
   /// kept columns s, zero in the dropped ones).
   void SolveBodyMass(int b, const ConstVectorRef& r_b, Eigen::Ref<Eigen::VectorXd> out_b) const;
+  /// The number of body b's columns in G_ and Minv_GT_: its kept ones in a planar scene, else all.
+  Eigen::Index NumColumns(int b) const;
   /// Body b's G_b M_b^-1 G_b^T over its rows.
   Eigen::Map<const Eigen::MatrixXd> BodySchur(int b) const;
   /// The scaled S (lower triangle) as (i, j, value) with i >= j, positions in rows(), to `add`.

@@ -1,12 +1,15 @@
 // Planar scenes (mbs/planar.h, docs/mbs.md "Planar scenes"): a pendulum in planar mode against
 // its exact period (elliptic integral), a chain of pendulums planar against the same chain run
 // spatially (ODE methods, explicit and implicit with the sparse Newton solve) with the sizes of
-// the solves and the CPU ratio printed, and the load check's refusals of out-of-plane bodies.
+// the solves and the CPU ratio printed, the constraint solver's G and M^-1 G^T over the kept
+// columns only, and the load check's refusals of out-of-plane bodies.
 #include "mbs/planar.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -17,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "mbs/constraint_solver.h"
 #include "mbs/joint.h"
 #include "mbs/multibody_system.h"
 #include "mbs/rigid_body.h"
@@ -114,6 +118,44 @@ StateComparison Compare(const MultibodySystem& system, const VectorXd& a, const 
     }
   }
   return result;
+}
+
+TEST(Planar, ConstraintSolverHoldsTheKeptColumnsOnly) {
+  // A chain of 3 links turned to 0.4 rad, moving: G and M^-1 G^T of the solver against the dense
+  // algebra over the kept columns s, G(:, s) and S M(s, s)^-1 S^T G^T, with no entry stored in a
+  // dropped column.
+  Chain chain(3, 0.4);
+  MakePlanar(*chain.system, chain.y0);
+  MultibodySystem& system = *chain.system;
+  for (int k = 0; k < 3; ++k) chain.y0(system.num_positions() + system.velocity_offset(k) + 5) = 0.3 * (k + 1);
+  const Eigen::MatrixXd G = system.Constraints(0.0, chain.y0).G;
+  const ConstraintSolver solver(system, 0.0, chain.y0, G);
+  std::vector<Eigen::Index> kept;
+  Eigen::MatrixXd Minv = Eigen::MatrixXd::Zero(system.num_velocities(), system.num_velocities());
+  for (int b = 0; b < system.num_bodies(); ++b) {
+    std::vector<Eigen::Index> s;
+    for (const Eigen::Index column : system.KeptVelocities(b)) s.push_back(system.velocity_offset(b) + column);
+    const Eigen::MatrixXd M_kept = system.BodyMassMatrix(b, chain.y0)(system.KeptVelocities(b), system.KeptVelocities(b));
+    const Eigen::MatrixXd M_kept_inverse = M_kept.inverse();
+    Minv(s, s) = M_kept_inverse;
+    kept.insert(kept.end(), s.begin(), s.end());
+  }
+  Eigen::MatrixXd G_kept = Eigen::MatrixXd::Zero(G.rows(), G.cols());
+  G_kept(Eigen::all, kept) = G(Eigen::all, kept);
+  const Eigen::MatrixXd Minv_GT = Minv * G.transpose();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor>& G_solver = solver.constraint_jacobian();
+  for (Eigen::Index row = 0; row < G_solver.outerSize(); ++row) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(G_solver, row); it; ++it) {
+      EXPECT_NE(std::find(kept.begin(), kept.end(), it.col()), kept.end()) << "row " << row << " column " << it.col();
+    }
+  }
+  // The ground joint's 5 rows on its body's 3 kept columns, the other two joints' on two bodies' 6.
+  EXPECT_EQ(G_solver.nonZeros(), 5 * 3 + 2 * 5 * 6);
+  EXPECT_EQ((Eigen::MatrixXd(G_solver) - G_kept).cwiseAbs().maxCoeff(), 0.0);
+  const double error = (Eigen::MatrixXd(solver.mass_inverse_G_transpose()) - Minv_GT).norm() / Minv_GT.norm();
+  std::printf("planar solver: M^-1 G^T against the dense reduced algebra %.2e\n", error);
+  // Measured: 4.9e-16.
+  EXPECT_LT(error, 4e-15);
 }
 
 TEST(Planar, PendulumPeriodMatchesTheEllipticIntegral) {
