@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "reduction/basis_algebra.h"
 #include "reduction/interior_problem.h"
+#include "reduction/mirror_modes.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -77,6 +78,7 @@ ReducedBasis CraigBamptonBasis(const FeModel& model, const BoundaryConditions& c
     basis.relative_residuals.tail(n_n) = s.relative_residuals;
     basis.residual_floors.tail(n_n) = s.residual_floors;
   }
+  SplitEqualModesByMirror(model, &basis);
   ComputeReducedMatrices(model, &basis);
   basis.description =
       n_n > 0 ? fmt::format("Craig-Bampton ({}): {} constraint modes, {} fixed-interface normal modes up to {:.6g} Hz",

@@ -10,6 +10,7 @@
 #include "fem/mass_properties.h"
 #include "reduction/basis_algebra.h"
 #include "reduction/interior_problem.h"
+#include "reduction/mirror_modes.h"
 
 namespace flexmbs::reduction {
 namespace {
@@ -209,6 +210,7 @@ ReducedBasis FreeFreeBasisFrom(const FeModel& model, const FreeFreeOptions& opti
   basis.kinds.assign(static_cast<std::size_t>(kRigid), ModeKind::kRigid);
   basis.kinds.resize(static_cast<std::size_t>(kRigid + num_elastic), ModeKind::kNormal);
   for (Index k = 0; k < num_elastic; ++k) basis.names.push_back(fmt::format("normal_{}", k + 1));
+  SplitEqualModesByMirror(model, &basis);
   ComputeReducedMatrices(model, &basis);
   basis.description = fmt::format(
       "free-free normal modes: 6 rigid-body modes ({}), {} elastic modes up to {:.6g} Hz",
@@ -293,6 +295,7 @@ ReducedBasis FixedInterfaceBasisFrom(const FeModel& model, const BoundaryConditi
   basis.frequency_hz = eigensolvers::FrequenciesHz(s.eigenvalues);
   basis.relative_residuals = s.relative_residuals;
   basis.residual_floors = s.residual_floors;
+  SplitEqualModesByMirror(model, &basis);
   ComputeReducedMatrices(model, &basis);
   basis.description = fmt::format("fixed-interface normal modes ({}): {} modes up to {:.6g} Hz",
                                   DescribeConditions(conditions), s.modes.cols(),
