@@ -4,7 +4,8 @@
 // the corner, beyond and below: the side), continuous where the regions meet; W_N against the
 // gap's difference quotients along a motion; a frictionless disk sliding off a segment's end
 // leaves the corner at the closed-form angle cos(theta) = (2 + v0^2 / (g r)) / 3, at the time the
-// quadrature of the pivoting motion gives, and flies on the closed-form parabola; bad ends refused.
+// quadrature of the pivoting motion gives, and flies on the closed-form parabola (event-driven;
+// Moreau-Jean within a step and to first order in h); bad ends refused.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -161,33 +162,52 @@ TEST(SphereSegmentUnilateral, NormalRowIsTheGapsRateInEachRegion) {
   EXPECT_LT(worst, 4e-10);
 }
 
-TEST(SphereSegmentUnilateral, ADiskSlidesOffTheEndAtTheClosedFormAngleAndTime) {
-  // A frictionless disk slides along the segment y = 0, x in [-1, 0], at v0 and reaches its end at
-  // t_c = 0.2 / v0; it then pivots about the corner (its centre on the circle of radius r about
-  // it; no friction, so it does not turn), v^2 = v0^2 + 2 g r (1 - cos theta), and the normal
-  // force m g cos(theta) - m v^2 / r vanishes at cos(theta*) = (2 + v0^2 / (g r)) / 3 (derived
-  // from the energy and the radial equation of the pivoting motion; v0 = 0 gives the textbook
-  // particle leaving a smooth sphere at cos(theta) = 2/3), at t* = t_c + int_0^theta* r / v(theta)
-  // dtheta.
-  constexpr double v0 = 0.5;
-  const double cos_star = (2.0 + v0 * v0 / (kG * kRadius)) / 3.0, theta_star = std::acos(cos_star);
-  const auto speed = [&](double theta) {
-    return std::sqrt(v0 * v0 + 2.0 * kG * kRadius * (1.0 - std::cos(theta)));
-  };
-  constexpr int kIntervals = 4000;  // composite Simpson on a smooth integrand
-  double integral = 0.0;
-  for (int i = 0; i <= kIntervals; ++i) {
-    const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-    integral += weight * kRadius / speed(theta_star * i / kIntervals);
-  }
-  integral *= theta_star / kIntervals / 3.0;
-  // SciPy's quad of the same integral (estimated error 1.3e-15): 0.11681551345886043 s.
-  EXPECT_NEAR(integral, 0.11681551345886043, 1e-14);
-  const double t_corner = 0.2 / v0, t_star = t_corner + integral;
+/// A frictionless disk sliding along the segment y = 0, x in [-1, 0], from x = -0.2 m at v0 reaches
+/// its end at t_c = 0.2 / v0; it then pivots about the corner (its centre on the circle of radius r
+/// about it; no friction, so it does not turn), v^2 = v0^2 + 2 g r (1 - cos theta), and the normal
+/// force m g cos(theta) - m v^2 / r vanishes at cos(theta*) = (2 + v0^2 / (g r)) / 3 (derived from
+/// the energy and the radial equation of the pivoting motion; v0 = 0 gives the textbook particle
+/// leaving a smooth sphere at cos(theta) = 2/3), at t* = t_c + int_0^theta* r / v(theta) dtheta;
+/// then it flies on a parabola from (r sin theta*, r cos theta*) at sqrt(g r cos theta*) along the
+/// circle.
+struct SlideOff {
+  static constexpr double v0 = 0.5;
+  double cos_star = 0.0, theta_star = 0.0, t_star = 0.0;
 
-  testing::ContactScene scene =
-      DiskAndSegment(Vector3d(-0.2, kRadius, 0.0), Vector3d(v0, 0.0, 0.0), 0.0, true);
-  MakePlanar(*scene.system, scene.y0);
+  SlideOff() {
+    cos_star = (2.0 + v0 * v0 / (kG * kRadius)) / 3.0;
+    theta_star = std::acos(cos_star);
+    constexpr int kIntervals = 4000;  // composite Simpson on a smooth integrand
+    double integral = 0.0;
+    for (int i = 0; i <= kIntervals; ++i) {
+      const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      const double theta = theta_star * i / kIntervals;
+      integral +=
+          weight * kRadius / std::sqrt(v0 * v0 + 2.0 * kG * kRadius * (1.0 - std::cos(theta)));
+    }
+    t_star = 0.2 / v0 + integral * theta_star / kIntervals / 3.0;
+  }
+  /// The centre's position at t >= t_star [m].
+  Vector3d CentreInFlight(double t) const {
+    const double flight = t - t_star, v_star = std::sqrt(kG * kRadius * cos_star);
+    const Vector3d p_star(kRadius * std::sin(theta_star), kRadius * cos_star, 0.0);
+    const Vector3d v_dir(cos_star, -std::sin(theta_star), 0.0);
+    return p_star + v_star * v_dir * flight + 0.5 * Vector3d(0.0, -kG, 0.0) * flight * flight;
+  }
+  /// The scene: the disk at x = -0.2 m on the ground's segment, planar.
+  static testing::ContactScene Scene() {
+    testing::ContactScene scene =
+        DiskAndSegment(Vector3d(-0.2, kRadius, 0.0), Vector3d(v0, 0.0, 0.0), 0.0, true);
+    MakePlanar(*scene.system, scene.y0);
+    return scene;
+  }
+};
+
+TEST(SphereSegmentUnilateral, ADiskSlidesOffTheEndAtTheClosedFormAngleAndTime) {
+  const SlideOff exact;
+  // SciPy's quad of the same integral (estimated error 1.3e-15): 0.11681551345886043 s.
+  EXPECT_NEAR(exact.t_star - 0.4, 0.11681551345886043, 1e-14);
+  testing::ContactScene scene = SlideOff::Scene();
   constexpr double kEnd = 0.6;  // t* = 0.5168 s, then 0.083 s of flight
   const testing::EventRun run = testing::RunEventDriven(scene, kEnd, 0.01, 1e-4);
   std::vector<double> separations;
@@ -195,27 +215,45 @@ TEST(SphereSegmentUnilateral, ADiskSlidesOffTheEndAtTheClosedFormAngleAndTime) {
     if (event.kind == ContactEventKind::kSeparation) separations.push_back(event.time);
   }
   ASSERT_EQ(separations.size(), 1u) << run.events.size() << " events";
-  // Departure: the centre at the angle theta* from the vertical above the corner (0, 0), its
-  // velocity sqrt(g r cos theta*) along the circle; then a parabola to the end.
-  const double v_star = std::sqrt(kG * kRadius * cos_star), flight = kEnd - t_star;
-  const Vector3d p_star(kRadius * std::sin(theta_star), kRadius * cos_star, 0.0);
-  const Vector3d v_dir(cos_star, -std::sin(theta_star), 0.0);
-  const Vector3d p_end =
-      p_star + v_star * v_dir * flight + 0.5 * Vector3d(0.0, -kG, 0.0) * flight * flight;
   const MultibodySystem& system = *scene.system;
-  const Vector3d p_sim = system.BodyPositions(run.y.back(), 0).head<3>();
+  const double end_error =
+      (system.BodyPositions(run.y.back(), 0).head<3>() - exact.CentreInFlight(kEnd)).norm();
   const double spin = system.BodyVelocities(run.y.back(), 0)(5);
   std::printf(
       "disk off the segment's end: separation at %.15f s, closed form %.15f s (error %.2e s); "
       "position at %.2f s off the closed-form flight by %.2e m; spin %.1e rad/s; %zu events\n",
-      separations[0], t_star, separations[0] - t_star, kEnd, (p_sim - p_end).norm(), spin,
+      separations[0], exact.t_star, separations[0] - exact.t_star, kEnd, end_error, spin,
       run.events.size());
   // Measured: separation 6.6e-11 s late (the root of the contact force, which leaves 0 linearly),
   // end position 5.7e-12 m (the motion is continuous through the separation), spin 6.0e-17 rad/s
   // (round-off: no friction turns it).
-  EXPECT_NEAR(separations[0], t_star, 6e-10);
-  EXPECT_LT((p_sim - p_end).norm(), 5e-11);
+  EXPECT_NEAR(separations[0], exact.t_star, 6e-10);
+  EXPECT_LT(end_error, 5e-11);
   EXPECT_LT(std::abs(spin), 1e-15);
+}
+
+TEST(SphereSegmentUnilateral, MoreauJeanLetsTheDiskGoWithinAStepOfTheClosedFormTime) {
+  const SlideOff exact;
+  constexpr double kStep = 1e-4, kEnd = 0.6;
+  testing::ContactScene scene = SlideOff::Scene();
+  const testing::StepHistory history = testing::RunMoreauJean(scene, kStep, kEnd);
+  // The last step with an impulse: the normal force goes to 0 linearly at t*, so the step
+  // containing t* may carry none.
+  std::size_t last = 0;
+  for (std::size_t k = 1; k < history.steps.size(); ++k) {
+    if (history.steps[k].contacts[0].P_N > 0.0) last = k;
+  }
+  const double end_error =
+      (scene.system->BodyPositions(history.y.back(), 0).head<3>() - exact.CentreInFlight(kEnd))
+          .norm();
+  std::printf(
+      "Moreau-Jean (h = %g s): the last step with an impulse ends at %.6f s, closed form t* %.6f s "
+      "(%.2e s); position at %.2f s off the closed-form flight by %.2e m\n",
+      kStep, history.t[last], exact.t_star, history.t[last] - exact.t_star, kEnd, end_error);
+  // Measured: the last impulse's step ends 1.55e-5 s (0.16 h) before t*, the position 7.7e-5 m
+  // off (the scheme's first order in h).
+  EXPECT_LT(std::abs(history.t[last] - exact.t_star), kStep);
+  EXPECT_LT(end_error, 2e-4);
 }
 
 TEST(SphereSegmentUnilateral, BadEndsAreRefused) {
