@@ -2,12 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <array>
 #include <cmath>
-#include <map>
 #include <vector>
 
 #include "core/error.h"
+#include "core/mirror_symmetry.h"
 #include "core/rotation.h"
 #include "mbs/flexible_body.h"
 
@@ -21,27 +20,18 @@ using Eigen::Index;
 }
 
 /// mirror[n]: the FE node at (x, y, -z) of node n (B components), paired to kMirrorDistance of
-/// the mesh's size; refuses a mesh that is not mirror-symmetric about B's xy plane.
+/// the mesh's size (core/mirror_symmetry.h); refuses a mesh that is not mirror-symmetric about B's
+/// xy plane.
 std::vector<Index> MirrorNodes(const FlexibleBody& body) {
   const Eigen::Matrix3Xd& nodes = body.data().node_positions;
-  const double quantum = kMirrorDistance * std::max(1e-300, nodes.cwiseAbs().maxCoeff());
-  const auto key = [&](const Eigen::Vector3d& p) {
-    return std::array<long long, 3>{std::llround(p.x() / quantum), std::llround(p.y() / quantum),
-                                    std::llround(p.z() / quantum)};
-  };
-  std::map<std::array<long long, 3>, Index> by_position;
-  for (Index n = 0; n < nodes.cols(); ++n) by_position[key(nodes.col(n))] = n;
-  std::vector<Index> mirror(static_cast<std::size_t>(nodes.cols()));
+  const std::vector<Index> mirror = MirrorPointsAboutXy(nodes, kMirrorDistance);
   for (Index n = 0; n < nodes.cols(); ++n) {
+    if (mirror[static_cast<std::size_t>(n)] >= 0) continue;
     const Eigen::Vector3d p = nodes.col(n);
-    const auto found = by_position.find(key(Eigen::Vector3d(p.x(), p.y(), -p.z())));
-    if (found == by_position.end()) {
-      Refuse(fmt::format("body '{}'", body.name()),
-             fmt::format("its FE mesh is not mirror-symmetric about its xy plane: node {} at ({:g}, {:g}, {:g}) m has no "
-                         "mirror image",
-                         n, p.x(), p.y(), p.z()));
-    }
-    mirror[static_cast<std::size_t>(n)] = found->second;
+    Refuse(fmt::format("body '{}'", body.name()),
+           fmt::format("its FE mesh is not mirror-symmetric about its xy plane: node {} at ({:g}, {:g}, {:g}) m has no "
+                       "mirror image",
+                       n, p.x(), p.y(), p.z()));
   }
   return mirror;
 }
@@ -57,16 +47,12 @@ std::vector<Index> InPlaneModeColumns(const FlexibleBody& body) {
     Refuse(fmt::format("body '{}'", body.name()),
            "its file carries no mode shapes on the FE nodes to tell in-plane from out-of-plane modes");
   }
-  const std::vector<Index> mirror = MirrorNodes(body);
+  const Eigen::MatrixXd reflected = ReflectedAboutXy(MirrorNodes(body), phi);
   std::vector<Index> columns;
   for (Index j = 0; j < n; ++j) {
-    Eigen::VectorXd reflected(phi.rows());
-    for (std::size_t node = 0; node < mirror.size(); ++node) {
-      const Index from = 3 * mirror[node], to = 3 * static_cast<Index>(node);
-      reflected.segment<3>(to) << phi(from, j), phi(from + 1, j), -phi(from + 2, j);
-    }
     const double norm = phi.col(j).norm();
-    const double even = (reflected - phi.col(j)).norm() / norm, odd = (reflected + phi.col(j)).norm() / norm;
+    const double even = (reflected.col(j) - phi.col(j)).norm() / norm;
+    const double odd = (reflected.col(j) + phi.col(j)).norm() / norm;
     if (even <= kPlanarModeSymmetry) {
       columns.push_back(6 + j);
     } else if (odd > kPlanarModeSymmetry) {
