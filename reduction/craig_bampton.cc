@@ -118,6 +118,7 @@ ReducedBasis OrthonormalizeBasis(const FeModel& model, const ReducedBasis& input
   basis.original_kinds = input.kinds;
   basis.original_names = input.names;
   basis.original_transform = ritz.transform;
+  SplitEqualModesByMirror(model, &basis);
   ComputeReducedMatrices(model, &basis);
   const ModeCounts from = input.Counts();
   basis.description = fmt::format(

@@ -6,9 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "basis_test_support.h"
+#include "mbs/flexible_body.h"
+#include "mbs/multibody_system.h"
+#include "mbs/planar.h"
 #include "reduction/craig_bampton.h"
+#include "reduction/sid_body_builder.h"
+#include "tests/input_error.h"
 #include "tests/support/test_problems.h"
 
 namespace flexmbs::reduction {
@@ -44,18 +52,25 @@ Body SquareBeam(bool centred) {
   return body;
 }
 
-// The least of |P phi - phi| and |P phi + phi| of |phi|, P the reflection z -> -z found by
-// brute force over the nodes (1e-12 m), independent of the library's pairing.
-Eigen::VectorXd MirrorDepartures(const Eigen::Matrix3Xd& nodes, const Eigen::MatrixXd& Phi) {
+// P Phi, P the reflection z -> -z (the mirror node's u_x, u_y, -u_z) with the mirror nodes found
+// by brute force (1e-12 m), independent of the library's pairing.
+Eigen::MatrixXd Reflected(const Eigen::Matrix3Xd& nodes, const Eigen::MatrixXd& Phi) {
   Eigen::MatrixXd reflected(Phi.rows(), Phi.cols());
   for (Index n = 0; n < nodes.cols(); ++n) {
     const Eigen::Vector3d image(nodes(0, n), nodes(1, n), -nodes(2, n));
     Index m = 0;
-    while ((nodes.col(m) - image).norm() > 1e-12) ++m;  // runs past the end (and fails) if none
+    while (m + 1 < nodes.cols() && (nodes.col(m) - image).norm() > 1e-12) ++m;
+    EXPECT_LE((nodes.col(m) - image).norm(), 1e-12) << "node " << n << " has no mirror image";
     reflected.row(3 * n) = Phi.row(3 * m);
     reflected.row(3 * n + 1) = Phi.row(3 * m + 1);
     reflected.row(3 * n + 2) = -Phi.row(3 * m + 2);
   }
+  return reflected;
+}
+
+// Per column: the least of |P phi - phi| and |P phi + phi|, of |phi|.
+Eigen::VectorXd MirrorDepartures(const Eigen::Matrix3Xd& nodes, const Eigen::MatrixXd& Phi) {
+  const Eigen::MatrixXd reflected = Reflected(nodes, Phi);
   Eigen::VectorXd departure(Phi.cols());
   for (Index j = 0; j < Phi.cols(); ++j) {
     departure(j) = std::min((reflected.col(j) - Phi.col(j)).norm(), (reflected.col(j) + Phi.col(j)).norm()) /
@@ -156,8 +171,62 @@ TEST(MirrorModes, ClampedPairsAndCraigBamptonNormalModesSplit) {
   tip.interfaces.push_back({"root", testing::NodesAt(centred.mesh, 0, 0.0), Coupling::kRigid, std::nullopt, {}});
   const ReducedBasis cb = CraigBamptonBasis(centred.model(), tip, eigen, testing::Spectra());
   const Eigen::VectorXd departures = MirrorDepartures(centred.mesh.nodes, cb.Phi).tail(8);
-  std::printf("[ numbers  ] Craig-Bampton normal modes: departure max %.2g\n", departures.maxCoeff());
+  // The orthonormalised form's normal modes (of the reduced system, by a dense eigen-solve) too;
+  // the off-centre beam's are mixed.
+  const auto orthonormal_departures = [&](const Body& b) {
+    tip.interfaces[0].nodes = testing::NodesAt(b.mesh, 0, 0.0);
+    const ReducedBasis orthonormal = OrthonormalizeBasis(b.model(), CraigBamptonBasis(b.model(), tip, eigen, testing::Spectra()));
+    const Index normal = orthonormal.Counts().normal;
+    EXPECT_EQ(normal, 8);
+    return Eigen::VectorXd(MirrorDepartures(centred.mesh.nodes, orthonormal.Phi).tail(normal));
+  };
+  const Eigen::VectorXd orthonormal = orthonormal_departures(centred), orthonormal_raw = orthonormal_departures(corner);
+  std::printf("[ numbers  ] Craig-Bampton normal modes: departure max %.2g; orthonormalised: %.2g (before %.2g)\n",
+              departures.maxCoeff(), orthonormal.maxCoeff(), orthonormal_raw.maxCoeff());
   EXPECT_LE(departures.maxCoeff(), kSplitBound);
+  EXPECT_LE(orthonormal.maxCoeff(), kSplitBound);
+  EXPECT_GT(orthonormal_raw.maxCoeff(), kMixed);
+}
+
+// The planar check (mbs::MakePlanar, a free-free body in a scene's xy plane) keeps the split
+// beam's even modes, found here by the brute-force reflection, and refuses the raw basis's first
+// mode, half of a mixed pair, as it refused case 06's beam.
+TEST(MirrorModes, APlanarSceneKeepsTheSplitSquareBeamsEvenModesAndRefusesTheRawPairs) {
+  const Body centred = SquareBeam(true), corner = SquareBeam(false);
+  FreeFreeOptions options;
+  options.eigen.num_modes = 9;  // whole pairs (a tenth cuts one, see above)
+  const ReducedBasis split = FreeFreeModalBasis(centred.model(), options, testing::Spectra());
+  const ReducedBasis raw = FreeFreeModalBasis(corner.model(), options, testing::Spectra());
+  const auto kept_columns = [&](const ReducedBasis& free_free) {
+    // The elastic columns (the floating frame carries the rigid motion).
+    ReducedBasis basis = free_free;
+    basis.Phi = free_free.Phi.rightCols(9);
+    basis.kinds.erase(basis.kinds.begin(), basis.kinds.begin() + 6);
+    basis.names.erase(basis.names.begin(), basis.names.begin() + 6);
+    basis.frequency_hz = free_free.frequency_hz.tail(9);
+    basis.relative_residuals = free_free.relative_residuals.tail(9);
+    basis.residual_floors = free_free.residual_floors.tail(9);
+    ComputeReducedMatrices(centred.model(), &basis);
+    SidSpec sid;
+    sid.geometric_stiffening = false;
+    const fem::SystemMatrices views{centred.K, centred.M};
+    sid::ReducedBody data = BuildReducedBody({centred.mesh, views, fem::MassMatrixKind::kConsistent, sid}, basis);
+    data.name = "beam";
+    mbs::MultibodySystem system(Eigen::Vector3d::Zero());
+    const int b = system.AddBody(std::make_unique<mbs::FlexibleBody>("beam", std::move(data), false));
+    mbs::MakePlanar(system, system.NeutralState());
+    return system.KeptVelocities(b);
+  };
+  const Eigen::MatrixXd elastic = split.Phi.rightCols(9);
+  const Eigen::MatrixXd reflected = Reflected(centred.mesh.nodes, elastic);
+  std::vector<Index> expected = {0, 1, 5};  // v_x, v_y, w_z, then the even modes' columns
+  for (Index j = 0; j < 9; ++j) {
+    if ((reflected.col(j) - elastic.col(j)).norm() <= kSplitBound * elastic.col(j).norm()) expected.push_back(6 + j);
+  }
+  EXPECT_EQ(expected.size(), 3u + 4u);  // one of each of the 3 pairs, one of the 3 single modes
+  EXPECT_EQ(kept_columns(split), expected);
+  const std::string refusal = testing::InputErrorMessage([&] { kept_columns(raw); });
+  EXPECT_NE(refusal.find("body 'beam' mode 1 'normal_1': neither in-plane nor out-of-plane"), std::string::npos) << refusal;
 }
 
 }  // namespace
