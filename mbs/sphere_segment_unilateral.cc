@@ -40,8 +40,13 @@ SphereSegmentUnilateral::SphereSegmentUnilateral(std::string name, MarkerRef sph
 
 UnilateralContactKinematics SphereSegmentUnilateral::Geometry(const MarkerKinematics& a,
                                                               const MarkerKinematics& b) const {
-  const contact::Segment segment{b.p_WM_W + b.R_WM * p_ME1_M_, b.p_WM_W + b.R_WM * p_ME2_M_,
-                                 b.R_WM.col(2)};
+  const Eigen::Vector3d p_WE1_W = b.p_WM_W + b.R_WM * p_ME1_M_,
+                        p_WE2_W = b.p_WM_W + b.R_WM * p_ME2_M_;
+  // The marker's z made exactly perpendicular to the segment (the ends lie at one z within 1e-9 of
+  // their distance, and a node marker's frame is orthonormal to round-off only).
+  const Eigen::Vector3d d_W = (p_WE2_W - p_WE1_W).normalized();
+  const Eigen::Vector3d e_W = (b.R_WM.col(2) - b.R_WM.col(2).dot(d_W) * d_W).normalized();
+  const contact::Segment segment{p_WE1_W, p_WE2_W, e_W};
   UnilateralContactKinematics k;
   static_cast<contact::PointContactKinematics&>(k) =
       contact::SphereSegment({a.p_WM_W, radius_}, segment);
