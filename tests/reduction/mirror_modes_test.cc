@@ -152,6 +152,12 @@ TEST(MirrorModes, FreeFreePairsOfASquareBeamComeOutEvenOrOddAndTheRestBitForBit)
   EXPECT_GT(MirrorDepartures(centred.mesh.nodes, split.Phi)(15), kMixed);
   // The rigid modes (kind kRigid) are never touched.
   EXPECT_TRUE(split.Phi.leftCols(6) == raw.Phi.leftCols(6));
+  // A split basis is left as it is: its clusters are already even or odd (C diagonal).
+  ReducedBasis again = split;
+  SplitEqualModesByMirror(centred.model(), &again);
+  EXPECT_TRUE(again.Phi == split.Phi);
+  EXPECT_TRUE(again.frequency_hz == split.frequency_hz);
+  EXPECT_TRUE(again.relative_residuals == split.relative_residuals);
 }
 
 TEST(MirrorModes, ClampedPairsAndCraigBamptonNormalModesSplit) {
