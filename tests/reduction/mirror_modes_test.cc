@@ -158,6 +158,25 @@ TEST(MirrorModes, FreeFreePairsOfASquareBeamComeOutEvenOrOddAndTheRestBitForBit)
   EXPECT_TRUE(again.Phi == split.Phi);
   EXPECT_TRUE(again.frequency_hz == split.frequency_hz);
   EXPECT_TRUE(again.relative_residuals == split.relative_residuals);
+  // A cluster the reflection does not map onto itself is left as it is: an even mode and the
+  // mixture of another even and an odd one, given one frequency (C's eigenvalues off +-1).
+  std::vector<Index> even, odd;
+  for (Index j = 6; j < 15; ++j) {
+    const Eigen::VectorXd reflected = Reflected(centred.mesh.nodes, split.Phi.col(j));
+    ((reflected - split.Phi.col(j)).norm() <= kSplitBound * split.Phi.col(j).norm() ? even : odd).push_back(j);
+  }
+  ASSERT_GE(even.size(), 2u);
+  ASSERT_GE(odd.size(), 1u);
+  ReducedBasis skewed = split;
+  skewed.Phi.resize(split.Phi.rows(), 2);
+  skewed.Phi << split.Phi.col(even[0]), (split.Phi.col(even[1]) + split.Phi.col(odd[0])) / std::sqrt(2.0);
+  skewed.kinds.assign(2, ModeKind::kNormal);
+  skewed.names = {"a", "b"};
+  skewed.frequency_hz = Eigen::VectorXd::Constant(2, split.frequency_hz(even[0]));
+  skewed.relative_residuals = skewed.residual_floors = Eigen::VectorXd::Zero(2);
+  const Eigen::MatrixXd skewed_Phi = skewed.Phi;
+  SplitEqualModesByMirror(centred.model(), &skewed);
+  EXPECT_TRUE(skewed.Phi == skewed_Phi);
 }
 
 TEST(MirrorModes, ClampedPairsAndCraigBamptonNormalModesSplit) {
