@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <vector>
 
@@ -57,7 +58,7 @@ void SplitCluster(const FeModel& model, const std::vector<Index>& mirror, Index 
   for (Index k = 0; k < count; ++k) {
     const std::size_t from = order[static_cast<std::size_t>(k)];
     basis->Phi.col(first + k) = columns[from];
-    basis->frequency_hz(first + k) = std::sqrt(std::max(0.0, values[from])) / (2.0 * M_PI);
+    basis->frequency_hz(first + k) = std::sqrt(std::max(0.0, values[from])) / (2.0 * std::numbers::pi);
     basis->relative_residuals(first + k) = residual;
     basis->residual_floors(first + k) = floor;
   }
@@ -68,7 +69,7 @@ void SplitCluster(const FeModel& model, const std::vector<Index>& mirror, Index 
 void SplitEqualModesByMirror(const FeModel& model, ReducedBasis* basis) {
   const std::vector<Index> mirror = MirrorPointsAboutXy(model.nodes, kMirrorNodeDistance);
   if (std::find(mirror.begin(), mirror.end(), Index{-1}) != mirror.end()) return;
-  const auto lambda = [&](Index j) { return std::pow(2.0 * M_PI * basis->frequency_hz(j), 2); };
+  const auto lambda = [&](Index j) { return std::pow(2.0 * std::numbers::pi * basis->frequency_hz(j), 2); };
   const auto normal = [&](Index j) { return basis->kinds[static_cast<std::size_t>(j)] == ModeKind::kNormal; };
   const Index n = basis->num_modes();
   for (Index first = 0; first < n;) {

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -91,7 +92,7 @@ ReducedMatrixErrors ReducedErrors(const ReducedBasis& basis, Index first) {
   e.orthonormality = (M - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff();
   e.off_diagonal = (K - Eigen::MatrixXd(K.diagonal().asDiagonal())).cwiseAbs().maxCoeff() / K.diagonal().maxCoeff();
   for (Index j = 0; j < n; ++j) {
-    e.frequency = std::max(e.frequency, std::abs(K(j, j) - std::pow(2.0 * M_PI * basis.frequency_hz(first + j), 2)) / K(j, j));
+    e.frequency = std::max(e.frequency, std::abs(K(j, j) - std::pow(2.0 * std::numbers::pi * basis.frequency_hz(first + j), 2)) / K(j, j));
   }
   return e;
 }
