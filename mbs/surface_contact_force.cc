@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "contact/geometry/sphere_surface.h"
@@ -13,6 +14,23 @@
 #include "mbs/surface_unilateral.h"
 
 namespace flexmbs::mbs {
+namespace {
+
+/// Units of round-off, eps (|p| + |p_plane|), within which a vertex's gap to the plane is a tie.
+constexpr double kTieRoundOffs = 4.0;
+
+/// The penetration delta [m] of a vertex at p_W [m] into a plane through p_plane_W [m], zero where
+/// it is within the round-off of its own evaluation. A gap that is zero (a face landing flat at
+/// the first touch) comes out as +-1e-18 m by the sign of the round-off in the normal (a quarter
+/// turn's cosine, 6.1e-17); the theta method's linearisation at the step's start would take the
+/// vertices on the one side as springs and not their mirror images (tests/mbs/beam_stop_test.cc).
+double TieToZero(double penetration, const Eigen::Vector3d& p_W, const Eigen::Vector3d& p_plane_W) {
+  const double round_off =
+      kTieRoundOffs * std::numeric_limits<double>::epsilon() * (p_W.norm() + p_plane_W.norm());
+  return std::abs(penetration) <= round_off ? 0.0 : penetration;
+}
+
+}  // namespace
 
 SphereSurfaceContact::SphereSurfaceContact(std::string name, MarkerRef sphere, double radius, MarkerRef origin,
                                            sid::ContactSurface surface, Eigen::Index num_modes,
@@ -80,7 +98,7 @@ std::vector<ContactPoint> SurfacePlaneContact::Points(const MultibodySystem& sys
     point.b = plane;
     point.n_W = plane.R_WM.col(2);
     point.p_Wc_W = surface.mesh().vertices_W.col(static_cast<Eigen::Index>(v));
-    point.penetration = -point.n_W.dot(point.p_Wc_W - plane.p_WM_W);
+    point.penetration = TieToZero(-point.n_W.dot(point.p_Wc_W - plane.p_WM_W), point.p_Wc_W, plane.p_WM_W);
     if (point.penetration > 0.0) {
       point.modal_a = surface.ModalJacobian(static_cast<int>(v));
       point.modal_velocity_a_W = point.modal_a * surface.modal_velocities();
