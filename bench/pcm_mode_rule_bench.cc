@@ -39,20 +39,6 @@ using Eigen::VectorXd;
 constexpr double kSide = 0.2, kThickness = 0.01, kRadius = 0.02, kSpeed = 0.3;
 const Vector3d kCentre(0.5 * kSide + 1.3e-3, 0.5 * kSide + 0.7e-3, 0.0);  // off the nodes, as tests/mbs/pcm_plate_test.cc
 
-/// The icosphere's faces below -0.6 R (level 4: 5120 triangles in all).
-contact::PolygonMesh LowerCap() {
-  const contact::PolygonMesh sphere = contact::testing::Icosphere(Vector3d::Zero(), kRadius, 4);
-  contact::PolygonMesh cap{sphere.vertices_W, {}, {}};
-  for (std::size_t f = 0; f < sphere.face_sizes.size(); ++f) {
-    bool low = true;
-    for (int k = 0; k < 3; ++k) low = low && sphere.vertices_W(2, sphere.face_vertices[3 * f + k]) < -0.6 * kRadius;
-    if (!low) continue;
-    cap.face_sizes.push_back(3);
-    for (int k = 0; k < 3; ++k) cap.face_vertices.push_back(sphere.face_vertices[3 * f + k]);
-  }
-  return cap;
-}
-
 struct Run {
   double peak = 0.0, cpu = 0.0, contact_time = 0.0, cutoff_hz = 0.0;
 };
@@ -77,8 +63,10 @@ Run Strike(const sid::ReducedBody* plate, const contact::ElasticLayer& layer) {
     B = mbs::PcmSurface{"flat", mbs::MarkerRef::Ground(Vector3d::Zero()), flat, layer, false};
   }
   system.AddForceElement(std::make_unique<mbs::PcmContactForce>(
-      "strike", mbs::PcmSurface{"cap", mbs::MarkerRef::OnBody(ball, 0), LowerCap(), layer, false}, std::move(B), 0.0,
-      contact::RegularisedCoulomb{0.0, 1e-3}, 3e-3));
+      "strike",
+      mbs::PcmSurface{"cap", mbs::MarkerRef::OnBody(ball, 0),
+                      contact::testing::LowerCap(kRadius, 4), layer, false},
+      std::move(B), 0.0, contact::RegularisedCoulomb{0.0, 1e-3}, 3e-3));
   VectorXd y = system.NeutralState(), x_ball(7), u_ball = VectorXd::Zero(6);
   x_ball << kCentre + Vector3d(0.0, 0.0, kThickness + kRadius + 1e-5), 1.0, 0.0, 0.0, 0.0;
   u_ball(2) = -kSpeed;

@@ -127,6 +127,19 @@ PolygonMesh RandomTriangles(int count, double size, double edge, std::uint32_t s
   return TriangleMesh(points, triangles);
 }
 
+PolygonMesh LowerCap(double radius, int level) {
+  const PolygonMesh sphere = Icosphere(Eigen::Vector3d::Zero(), radius, level);
+  PolygonMesh cap{sphere.vertices_W, {}, {}};
+  for (std::size_t f = 0; f < sphere.face_sizes.size(); ++f) {
+    bool low = true;
+    for (int k = 0; k < 3; ++k) low = low && sphere.vertices_W(2, sphere.face_vertices[3 * f + k]) < -0.6 * radius;
+    if (!low) continue;
+    cap.face_sizes.push_back(3);
+    for (int k = 0; k < 3; ++k) cap.face_vertices.push_back(sphere.face_vertices[3 * f + k]);
+  }
+  return cap;
+}
+
 PolygonMesh MirroredInX(PolygonMesh mesh) {
   mesh.vertices_W.row(0) *= -1.0;
   auto face = mesh.face_vertices.begin();

@@ -14,6 +14,11 @@ namespace flexmbs::contact::testing {
 /// counter-clockwise seen from outside, closed.
 PolygonMesh Icosphere(const Eigen::Vector3d& centre, double radius, int level);
 
+/// The faces of Icosphere(centre 0, radius, level) whose three vertices lie below z = -0.6 radius:
+/// the lower cap, where a sphere falling onto a plate can touch it (all of the sphere's vertices
+/// kept).
+PolygonMesh LowerCap(double radius, int level);
+
 /// How a quad becomes triangles: two by the diagonal from its first corner, or four about its
 /// centre (which keeps the quad's mirror symmetries).
 enum class QuadSplit { kDiagonal, kFan };

@@ -131,21 +131,6 @@ const testing::ClampedBox& ModalPlate() {
   return plate;
 }
 
-/// The lower cap of the icosphere of `level` and radius kRadius (its faces below -0.6 R): where the
-/// plate can touch it.
-contact::PolygonMesh LowerCap(int level) {
-  const contact::PolygonMesh sphere = contact::testing::Icosphere(Vector3d::Zero(), kRadius, level);
-  contact::PolygonMesh cap{sphere.vertices_W, {}, {}};
-  for (std::size_t f = 0; f < sphere.face_sizes.size(); ++f) {
-    bool low = true;
-    for (int k = 0; k < 3; ++k) low = low && sphere.vertices_W(2, sphere.face_vertices[3 * f + k]) < -0.6 * kRadius;
-    if (!low) continue;
-    cap.face_sizes.push_back(3);
-    for (int k = 0; k < 3; ++k) cap.face_vertices.push_back(sphere.face_vertices[3 * f + k]);
-  }
-  return cap;
-}
-
 /// A steel sphere striking the clamped plate's centre at 0.3 m/s (no gravity, no damping) through
 /// `contact(system, plate, ball)`, explicit at tolerances 1e-9 / 1e-12 (or implicit at 1e-8 /
 /// 1e-11) for 3 ms: per output (every 10 us) the normal force, and the largest energy gain.
@@ -193,9 +178,11 @@ ContactFactory CapOnPlate(int level) {
   return [level](const MultibodySystem& system, int plate, int ball) {
     const auto& body = dynamic_cast<const FlexibleBody&>(system.body(plate));
     return std::make_unique<PcmContactForce>(
-        "strike", PcmSurface{"cap", MarkerRef::OnBody(ball, 0), LowerCap(level), kLayer, false},
-        ModalPcmSurface(MarkerRef::OnBody(plate, body.FindMarker(FlexibleBody::kOriginMarker)), body.data().surfaces.at(0),
-                        body.num_modes(), kLayer, false),
+        "strike",
+        PcmSurface{"cap", MarkerRef::OnBody(ball, 0), contact::testing::LowerCap(kRadius, level),
+                   kLayer, false},
+        ModalPcmSurface(MarkerRef::OnBody(plate, body.FindMarker(FlexibleBody::kOriginMarker)),
+                        body.data().surfaces.at(0), body.num_modes(), kLayer, false),
         0.0, contact::RegularisedCoulomb{0.0, 1e-3}, kMaxDepth);
   };
 }

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "contact/gears/gear_mesh.h"
 #include "contact/gears/gear_mesh_force.h"
@@ -280,6 +281,24 @@ ForceDifferences CentralDifferences(const MultibodySystem& system, const ForceEl
   return fd;
 }
 
+/// How far `mesh`'s Jacobian at y is from the central differences of its forces: the largest
+/// difference in dh/du, and in dh/dx over the wheels' turns about z (columns 5 and 11), each
+/// relative to its largest entry.
+std::pair<double, double> JacobianErrors(const MultibodySystem& system, const ForceElement& mesh,
+                                         const Eigen::VectorXd& y) {
+  const Eigen::Index n = system.num_velocities();
+  Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
+  mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
+  const ForceDifferences fd = CentralDifferences(system, mesh, y);
+  const double error_u = (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
+  double error_x = 0.0;
+  for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
+    error_x = std::max(error_x, (dh_dx.col(c) - fd.dh_dx.col(c)).cwiseAbs().maxCoeff() /
+                                    fd.dh_dx.col(c).cwiseAbs().maxCoeff());
+  }
+  return {error_u, error_x};
+}
+
 // The element's Jacobian against central differences of its forces, two free wheels turning
 // with both tooth pairs in contact 5 um deep: in u exact (the dashpot on the relative velocity at
 // each contact point); in x for the wheels' turns about their axes (the columns the mesh's
@@ -297,16 +316,7 @@ TEST(SpurGearContact, JacobianIsTheForcesDerivativeForTurnsAndVelocities) {
   }
   ASSERT_EQ(penetrating, 2);
   ExpectLoadsAlongTheLinesOfAction(system, mesh, y);
-  const Eigen::Index n = system.num_velocities();
-  Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
-  mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
-  const ForceDifferences fd = CentralDifferences(system, mesh, y);
-  const double error_u = (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
-  double error_x = 0.0;
-  for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
-    error_x = std::max(error_x, (dh_dx.col(c) - fd.dh_dx.col(c)).cwiseAbs().maxCoeff() /
-                                    fd.dh_dx.col(c).cwiseAbs().maxCoeff());
-  }
+  const auto [error_u, error_x] = JacobianErrors(system, mesh, y);
   std::printf("[measured] spur gear Jacobian: u %.2g, x (turns) %.2g of the largest entry\n",
               error_u, error_x);
   EXPECT_LT(error_u, 6e-10);  // measured 5.8e-11
@@ -333,16 +343,7 @@ TEST(SpurGearContact, JacobianWithATipCornerInContactLeavesOutOnlyTheNormalsTurn
     }
   }
   ASSERT_LT(corner_gap, -2e-6);
-  const Eigen::Index n = system.num_velocities();
-  Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
-  mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
-  const ForceDifferences fd = CentralDifferences(system, mesh, y);
-  const double error_u = (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
-  double error_x = 0.0;
-  for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
-    error_x = std::max(error_x, (dh_dx.col(c) - fd.dh_dx.col(c)).cwiseAbs().maxCoeff() /
-                                    fd.dh_dx.col(c).cwiseAbs().maxCoeff());
-  }
+  const auto [error_u, error_x] = JacobianErrors(system, mesh, y);
   std::printf(
       "[measured] spur gear Jacobian with a tip corner %.3g m deep: u %.2g, x (turns) %.2g of the "
       "largest entry\n",
