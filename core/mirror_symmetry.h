@@ -5,6 +5,7 @@
 // (reduction/mirror_modes.h) and the planar check of a reduced body's modes (mbs/planar.cc).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
