@@ -15,6 +15,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact/gears/gear_mesh.h"
@@ -56,15 +57,21 @@ std::string WheelJson(const contact::SpurGear& gear) {
       profile.form_roll, gear.tip_roll, Points(profile.fillet), Points(involute));
 }
 
+/// The static transmission error delta [m] of `law` under `torque` at phi1 (wheel 2's touching
+/// angle phi2_0) and the mesh's loads at wheel 2's angle phi2_0 + delta / r_b2.
+std::pair<double, contact::MeshLoads> LoadedMesh(const contact::GearPair& pair, const contact::MeshLaw& law,
+                                                 double phi1, double phi2_0, double torque) {
+  const double a = pair.centre_distance;
+  const double delta = contact::StaticTransmissionError(pair, law, a, phi1, torque);
+  return {delta, contact::EvaluateMesh(pair, law, a, phi1, phi2_0 + delta / pair.gear2.base_radius, 0, 0)};
+}
+
 /// The static transmission error [m] and the loaded pairs' [tooth1, tooth2, roll1, roll2, force [N],
 /// contact point x, y [m]] of `law` at
 /// phi1, with wheel 2's touching angle phi2_0.
 std::string ModelJson(const contact::GearPair& pair, const contact::MeshLaw& law, double phi1,
                       double phi2_0, double torque) {
-  const double a = pair.centre_distance;
-  const double delta = contact::StaticTransmissionError(pair, law, a, phi1, torque);
-  const contact::MeshLoads loads =
-      contact::EvaluateMesh(pair, law, a, phi1, phi2_0 + delta / pair.gear2.base_radius, 0, 0);
+  const auto [delta, loads] = LoadedMesh(pair, law, phi1, phi2_0, torque);
   std::vector<std::string> pairs;
   for (const contact::ToothPairLoad& p : loads.pairs) {
     pairs.push_back(fmt::format("[{}, {}, {:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}]",
@@ -93,10 +100,7 @@ std::string CouplingJson(const gear_tooth_fe::ToothCoupling& c, const contact::T
 /// share of the load] as JSON.
 std::string ShareJson(const contact::GearPair& pair, const contact::MeshLaw& law, double phi1,
                       double phi2_0, double torque) {
-  const double a = pair.centre_distance;
-  const double delta = contact::StaticTransmissionError(pair, law, a, phi1, torque);
-  const contact::MeshLoads loads =
-      contact::EvaluateMesh(pair, law, a, phi1, phi2_0 + delta / pair.gear2.base_radius, 0, 0);
+  const auto [delta, loads] = LoadedMesh(pair, law, phi1, phi2_0, torque);
   double total = 0.0;
   for (const contact::ToothPairLoad& p : loads.pairs) total += p.force;
   std::vector<std::string> shares;
