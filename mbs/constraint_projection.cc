@@ -32,7 +32,7 @@ ConstraintResidual MeasureConstraints(const MultibodySystem& system, double t, c
   Eigen::Index row;
   residual.position = c.g.cwiseAbs().maxCoeff(&row);
   residual.position_joint = system.JointOfConstraint(row);
-  residual.velocity = (c.G * y.tail(system.num_velocities()) + c.g_t).cwiseAbs().maxCoeff(&row);
+  residual.velocity = (c.G * system.Velocities(y) + c.g_t).cwiseAbs().maxCoeff(&row);
   residual.velocity_joint = system.JointOfConstraint(row);
   return residual;
 }
@@ -72,7 +72,7 @@ void ProjectVelocities(const MultibodySystem& system, double t, Eigen::Ref<Eigen
   const SystemConstraints c = system.Constraints(t, y);
   const ConstraintSolver solver(system, t, y, c.G);
   solver.RequireFullRank(t, system.constraint_settings().singular_pivot);
-  auto u = y.tail(system.num_velocities());
+  auto u = y.segment(system.num_positions(), system.num_velocities());
   u -= solver.mass_inverse_G_transpose() * solver.SolveSchur(solver.constraint_jacobian() * u + c.g_t);
 }
 

@@ -93,6 +93,16 @@ double ForceElement::PotentialEnergy(double /*t*/, const MultibodySystem& /*syst
   return 0.0;
 }
 
+void ForceElement::InitialStates(Eigen::Ref<Eigen::VectorXd> /*s0*/) const {}
+
+void ForceElement::StateDerivatives(double /*t*/, const MultibodySystem& /*system*/, const ConstVectorRef& /*y*/,
+                                    Eigen::Ref<Eigen::VectorXd> /*s_dot*/) const {
+  FLEXMBS_CHECK(false, fmt::format("force element '{}' has no states to differentiate", name()));
+}
+
+void ForceElement::AddStateJacobian(double /*t*/, const MultibodySystem& /*system*/, const ConstVectorRef& /*y*/,
+                                    ElementStateJacobian& /*jacobian*/) const {}
+
 PointLoad::PointLoad(std::string name, MarkerRef at, std::array<TimeFunctionPtr, 3> force,
                      std::array<TimeFunctionPtr, 3> torque, LoadFrame frame)
     : name_(std::move(name)), at_(std::move(at)), force_(std::move(force)), torque_(std::move(torque)), frame_(frame) {}

@@ -17,7 +17,17 @@ namespace flexmbs::mbs {
 
 class MultibodySystem;
 
+/// The Jacobian blocks of a force element's own states s (ForceElement::AddStateJacobian), each
+/// arriving zeroed: ds'/dx by velocity-space increments and ds'/du (num_states() x
+/// num_velocities()), ds'/ds (num_states() square), dh/ds (num_velocities() x num_states()).
+struct ElementStateJacobian {
+  Eigen::Ref<Eigen::MatrixXd> ds_dx, ds_du, ds_ds, dh_ds;
+};
+
 /// An applied load. Immutable; reads the system's state through MultibodySystem::MarkerState.
+/// An element may carry states of its own (docs/mbs.md, "Force elements with states"): first-order
+/// equations s' = f_s(t, x, u, s) integrated with the bodies, held in y after their velocities
+/// (MultibodySystem::ElementStates), e.g. a tooth's deflection behind its own dashpot.
 class ForceElement {
  public:
   virtual ~ForceElement() = default;
@@ -34,6 +44,18 @@ class ForceElement {
   /// Newton matrix (mbs/system_jacobian.h); the default adds nothing.
   virtual void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                                 Eigen::Ref<Eigen::MatrixXd> dh_dx, Eigen::Ref<Eigen::MatrixXd> dh_du) const;
+  /// The number of the element's own states (above); 0, the default, for a load of (x, u) alone.
+  virtual Eigen::Index num_states() const { return 0; }
+  /// The states at the start of a run (size num_states()); the default leaves the zeros s0 arrives with.
+  virtual void InitialStates(Eigen::Ref<Eigen::VectorXd> s0) const;
+  /// The states' rates s' (size num_states()) at time t [s] and state y. Called only when
+  /// num_states() > 0; the default is for elements without states (FLEXMBS_CHECK).
+  virtual void StateDerivatives(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                Eigen::Ref<Eigen::VectorXd> s_dot) const;
+  /// Adds the states' Jacobian blocks (ElementStateJacobian) at (t, y) for the implicit method's
+  /// Newton matrix (mbs/system_jacobian.h); the default adds nothing.
+  virtual void AddStateJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                                ElementStateJacobian& jacobian) const;
   /// Whether the element is a contact (its ContactLoads are drawn in the ParaView files).
   virtual bool is_contact() const { return false; }
   /// The loads at the element's contact points in contact at (t, y) (contact_id 0: the caller

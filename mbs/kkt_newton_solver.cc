@@ -83,6 +83,8 @@ struct KktNewtonSolver::Factor {
 
 KktNewtonSolver::KktNewtonSolver(const MultibodySystem& system)
     : system_(system), factor_(std::make_unique<Factor>()) {
+  FLEXMBS_CHECK(system.num_element_states() == 0,
+                "KktNewtonSolver: force elements with states of their own are the dense solve's");
   bodies_.resize(static_cast<std::size_t>(system.num_bodies()));
   for (int b = 0; b < system.num_bodies(); ++b) {
     BodyBlocks& blocks = bodies_[static_cast<std::size_t>(b)];

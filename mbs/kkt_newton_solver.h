@@ -49,7 +49,9 @@ struct KktNewtonTimes {
 };
 
 /// The sparse Newton solver of a multibody system (file comment); an OdeNewtonSolver for
-/// OdeNewton::kSparse. Holds a reference to the system, which must outlive it.
+/// OdeNewton::kSparse. Holds a reference to the system, which must outlive it. Systems whose
+/// force elements have states of their own are not taken (FLEXMBS_CHECK; Simulate solves them
+/// densely).
 class KktNewtonSolver final : public OdeNewtonSolver {
  public:
   explicit KktNewtonSolver(const MultibodySystem& system);

@@ -60,6 +60,8 @@ int MultibodySystem::AddJoint(Joint joint) {
 int MultibodySystem::AddForceElement(std::unique_ptr<ForceElement> element) {
   FLEXMBS_CHECK(element != nullptr, "MultibodySystem::AddForceElement: null element");
   RequireNewName(force_elements_, element->name(), "force element", [](const auto& e) { return e->name(); });
+  element_state_starts_.push_back(num_element_states_);
+  num_element_states_ += element->num_states();
   force_elements_.push_back(std::move(element));
   return num_force_elements() - 1;
 }
@@ -85,6 +87,13 @@ MarkerRef MultibodySystem::Marker(std::string_view body_name, std::string_view m
   const int marker = body(b).FindMarker(marker_name);
   if (marker < 0) throw InputError(fmt::format("body '{}' has no marker '{}'", body_name, marker_name));
   return MarkerRef::OnBody(b, marker);
+}
+
+int MultibodySystem::FirstElementWithStates() const {
+  for (int k = 0; k < num_force_elements(); ++k) {
+    if (force_element(k).num_states() > 0) return k;
+  }
+  return -1;
 }
 
 int MultibodySystem::JointOfConstraint(Eigen::Index row) const {
@@ -152,7 +161,19 @@ void MultibodySystem::set_kept_velocities(std::vector<std::vector<Eigen::Index>>
 Eigen::VectorXd MultibodySystem::NeutralState() const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(state_size());
   for (int b = 0; b < num_bodies(); ++b) y(position_offset(b) + 3) = 1.0;
+  for (int k = 0; k < num_force_elements(); ++k) {
+    force_element(k).InitialStates(y.segment(element_state_offset(k), force_element(k).num_states()));
+  }
   return y;
+}
+
+Eigen::Map<const Eigen::VectorXd> MultibodySystem::ElementStates(const ConstVectorRef& y,
+                                                                 const ForceElement& element) const {
+  for (int k = 0; k < num_force_elements(); ++k) {
+    if (&force_element(k) == &element) return {y.data() + element_state_offset(k), element.num_states()};
+  }
+  FLEXMBS_CHECK(false, fmt::format("MultibodySystem::ElementStates: '{}' is not in the system", element.name()));
+  return {nullptr, 0};
 }
 
 Eigen::Map<const Eigen::VectorXd> MultibodySystem::BodyPositions(const ConstVectorRef& y, int b) const {
@@ -257,7 +278,7 @@ void MultibodySystem::Accelerations(double t, const ConstVectorRef& y, Eigen::Re
     out += solver.mass_inverse_G_transpose() * multipliers;
   };
   const double omega = settings_.baumgarte_frequency;
-  const Eigen::VectorXd u = y.tail(num_velocities_);
+  const Eigen::VectorXd u = Velocities(y);
   // G u' = gamma - 2 omega (G u + g_t) - omega^2 g.
   const Eigen::VectorXd G_u = solver.constraint_jacobian() * u;
   const Eigen::VectorXd target = c.gamma - 2.0 * omega * (G_u + c.g_t) - omega * omega * c.g;
@@ -277,7 +298,11 @@ void MultibodySystem::Derivative(double t, const ConstVectorRef& y, Eigen::Ref<E
                        y_dot.segment(position_offset(b), body(b).num_positions()));
   }
   Eigen::VectorXd lambda(num_constraints_);
-  Accelerations(t, y, y_dot.tail(num_velocities_), lambda);
+  Accelerations(t, y, y_dot.segment(num_positions_, num_velocities_), lambda);
+  for (int k = 0; k < num_force_elements(); ++k) {
+    const Eigen::Index n = force_element(k).num_states();
+    if (n > 0) force_element(k).StateDerivatives(t, *this, y, y_dot.segment(element_state_offset(k), n));
+  }
 }
 
 JointLoad MultibodySystem::ConstraintLoad(int k, double t, const ConstVectorRef& y, const ConstVectorRef& lambda) const {

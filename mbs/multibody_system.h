@@ -1,6 +1,7 @@
 #pragma once
 // A multibody system (docs/mbs.md): bodies, joints, force elements and gravity, the layout of
-// its state y = [x_1 .. x_B, u_1 .. u_B], and its equations of motion
+// its state y = [x_1 .. x_B, u_1 .. u_B, s_1 .. s_E] (s_k force element k's own states, docs/mbs.md
+// "Force elements with states"), and its equations of motion
 //   M u' = h + G^T lambda,   G u' = gamma - 2 zeta omega_B (G u + g_t) - omega_B^2 g   (zeta = 1),
 // solved at every evaluation by the Schur complement G M^-1 G^T (constraint_solver.h).
 
@@ -87,10 +88,12 @@ class MultibodySystem {
   const ConstraintSettings& constraint_settings() const { return settings_; }
   void set_constraint_settings(const ConstraintSettings& settings) { settings_ = settings; }
 
-  /// Sizes: positions (sum of 7 + n), velocities (sum of 6 + n), the state y, constraints m.
+  /// Sizes: positions (sum of 7 + n), velocities (sum of 6 + n), the force elements' states, the
+  /// state y, constraints m.
   Eigen::Index num_positions() const { return num_positions_; }
   Eigen::Index num_velocities() const { return num_velocities_; }
-  Eigen::Index state_size() const { return num_positions_ + num_velocities_; }
+  Eigen::Index num_element_states() const { return num_element_states_; }
+  Eigen::Index state_size() const { return num_positions_ + num_velocities_ + num_element_states_; }
   Eigen::Index num_constraints() const { return num_constraints_; }
   /// Where body b's x_b starts in y, where its u_b starts in u (y = [x; u]), and where joint k's
   /// equations start in the stacked constraints. velocity_offset(b) is velocity_block(b).start.
@@ -99,6 +102,12 @@ class MultibodySystem {
   /// Body b's block of u (VelocityBlock).
   const VelocityBlock& velocity_block(int b) const { return velocity_blocks_.at(static_cast<std::size_t>(b)); }
   Eigen::Index constraint_offset(int k) const { return constraint_offsets_.at(static_cast<std::size_t>(k)); }
+  /// Where force element k's states start in y (after every body's positions and velocities).
+  Eigen::Index element_state_offset(int k) const {
+    return num_positions_ + num_velocities_ + element_state_starts_.at(static_cast<std::size_t>(k));
+  }
+  /// The first force element with states, or -1: the methods that do not integrate them name it.
+  int FirstElementWithStates() const;
   /// The joint whose equations contain stacked constraint row `row`.
   int JointOfConstraint(Eigen::Index row) const;
   /// "'<joint>' row <i> of <m>" (i 1-based within the joint) for stacked row `row`.
@@ -126,8 +135,15 @@ class MultibodySystem {
   /// caller, after its checks; an empty `columns` makes the system spatial again.
   void set_kept_velocities(std::vector<std::vector<Eigen::Index>> columns);
 
-  /// Every body at the origin of W, unrotated (e = (1, 0, 0, 0)), undeformed and at rest.
+  /// Every body at the origin of W, unrotated (e = (1, 0, 0, 0)), undeformed and at rest; the
+  /// force elements' states at their InitialStates.
   Eigen::VectorXd NeutralState() const;
+  /// The velocities u of all bodies in y.
+  Eigen::Map<const Eigen::VectorXd> Velocities(const ConstVectorRef& y) const {
+    return {y.data() + num_positions_, num_velocities_};
+  }
+  /// The states of `element` (one of this system's force elements; FLEXMBS_CHECK) in y.
+  Eigen::Map<const Eigen::VectorXd> ElementStates(const ConstVectorRef& y, const ForceElement& element) const;
   /// Views of body b's positions x_b and velocities u_b in y.
   Eigen::Map<const Eigen::VectorXd> BodyPositions(const ConstVectorRef& y, int b) const;
   Eigen::Map<const Eigen::VectorXd> BodyVelocities(const ConstVectorRef& y, int b) const;
@@ -163,7 +179,7 @@ class MultibodySystem {
   /// accelerations u_dot (size num_velocities()); returns false (and zeros) if no body has any.
   bool AccelerationDependentForces(const ConstVectorRef& y, const ConstVectorRef& u_dot,
                                    Eigen::Ref<Eigen::VectorXd> h) const;
-  /// y' = [x'; u'] (x' from body.h's PositionDerivative).
+  /// y' = [x'; u'; s'] (x' from body.h's PositionDerivative, s' the force elements' StateDerivatives).
   void Derivative(double t, const ConstVectorRef& y, Eigen::Ref<Eigen::VectorXd> y_dot) const;
   /// The load of joint k on its body j at marker J from the multipliers lambda of Accelerations.
   JointLoad ConstraintLoad(int k, double t, const ConstVectorRef& y, const ConstVectorRef& lambda) const;
@@ -186,11 +202,11 @@ class MultibodySystem {
   std::vector<Joint> joints_;
   std::vector<std::unique_ptr<ForceElement>> force_elements_;
   std::vector<std::unique_ptr<UnilateralContact>> unilateral_contacts_;
-  std::vector<Eigen::Index> position_offsets_, constraint_offsets_;
+  std::vector<Eigen::Index> position_offsets_, constraint_offsets_, element_state_starts_;
   std::vector<VelocityBlock> velocity_blocks_;
   std::vector<Eigen::Index> dropped_constraints_;
   std::vector<std::vector<Eigen::Index>> kept_velocities_;  // per body; empty: spatial
-  Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_constraints_ = 0;
+  Eigen::Index num_positions_ = 0, num_velocities_ = 0, num_element_states_ = 0, num_constraints_ = 0;
 };
 
 }  // namespace flexmbs::mbs

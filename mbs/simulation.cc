@@ -95,7 +95,9 @@ OdeProblem SmoothProblem(MultibodySystem& system, const SimulationOptions& optio
       throw;
     }
   };
-  if (options.integrator.method == OdeMethod::kImplicit) {
+  // The sparse Newton solve knows the bodies' and joints' structure, not the force elements' states
+  // (docs/mbs.md, "Force elements with states"): with states the dense LU solves.
+  if (options.integrator.method == OdeMethod::kImplicit && system.num_element_states() == 0) {
     problem.newton_solver = std::make_shared<SimulationNewtonSolver>(system, model_failed);
   }
   problem.project = [&](double t, Eigen::Ref<Eigen::VectorXd> y) {
@@ -183,6 +185,18 @@ SimulationStatistics Simulate(MultibodySystem& system, const SimulationOptions& 
                                  system.state_size()));
   }
   FLEXMBS_CHECK(!(options.moreau_jean && options.event_driven), "Simulate: both Moreau-Jean and event-driven options");
+  if (const int k = system.FirstElementWithStates(); k >= 0) {
+    if (options.moreau_jean || options.event_driven) {
+      throw InputError(fmt::format("simulation: force element '{}' has states of its own, which only methods "
+                                   "explicit and implicit integrate",
+                                   system.force_element(k).name()));
+    }
+    if (options.integrator.method == OdeMethod::kImplicit && options.integrator.newton == OdeNewton::kSparse) {
+      throw InputError(fmt::format("simulation: newton sparse does not take force element '{}' with states of "
+                                   "its own; newton dense or auto",
+                                   system.force_element(k).name()));
+    }
+  }
   if (options.moreau_jean) return SimulateMoreauJean(system, options, std::move(y0), output, contact_output);
   if (options.event_driven) {
     return SimulateEventDriven(system, options, std::move(y0), output, contact_output, event_output);

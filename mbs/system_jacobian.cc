@@ -81,27 +81,35 @@ Eigen::Matrix4d RateByEulerParameters(const Eigen::Vector3d& w_B) {
 }
 
 void SystemJacobian(const MultibodySystem& system, double t, const ConstVectorRef& y, Eigen::Ref<MatrixXd> dfdy) {
-  const Index nx = system.num_positions(), nu = system.num_velocities(), m = system.num_constraints();
+  const Index nx = system.num_positions(), nu = system.num_velocities(), ns = system.num_element_states(),
+              m = system.num_constraints();
   FLEXMBS_CHECK(y.size() == system.state_size() && dfdy.rows() == y.size() && dfdy.cols() == y.size(),
                 fmt::format("SystemJacobian: state of size {} and a {} x {} matrix for a system of {}", y.size(),
                             dfdy.rows(), dfdy.cols(), system.state_size()));
   dfdy.setZero();
   SetPositionRows(system, y, dfdy);
 
-  // dh = [dh/dx (velocity-space increments), dh/du], at the accelerations of (t, y).
+  // dh = [dh/dx (velocity-space increments), dh/du, dh/ds], at the accelerations of (t, y), and
+  // the force elements' states' ds = [ds'/dx, ds'/du, ds'/ds].
   VectorXd u_dot(nu), lambda(m);
   system.Accelerations(t, y, u_dot, lambda);
-  MatrixXd dh = MatrixXd::Zero(nu, 2 * nu);
+  MatrixXd dh = MatrixXd::Zero(nu, 2 * nu + ns), ds = MatrixXd::Zero(ns, 2 * nu + ns);
   for (int b = 0; b < system.num_bodies(); ++b) {
     const auto [pu, n] = system.velocity_block(b);
     system.body(b).AddForceJacobian(system.BodyPositions(y, b), system.BodyVelocities(y, b), u_dot.segment(pu, n),
                                     system.gravity(), dh.block(pu, pu, n, n), dh.block(pu, nu + pu, n, n));
   }
   for (int k = 0; k < system.num_force_elements(); ++k) {
-    system.force_element(k).AddForceJacobian(t, system, y, dh.leftCols(nu), dh.rightCols(nu));
+    const ForceElement& element = system.force_element(k);
+    element.AddForceJacobian(t, system, y, dh.leftCols(nu), dh.middleCols(nu, nu));
+    const Index n = element.num_states(), start = system.element_state_offset(k) - nx - nu;
+    if (n == 0) continue;
+    ElementStateJacobian blocks{ds.block(start, 0, n, nu), ds.block(start, nu, n, nu),
+                                ds.block(start, 2 * nu + start, n, n), dh.middleCols(2 * nu + start, n)};
+    element.AddStateJacobian(t, system, y, blocks);
   }
 
-  // du'/d. = M^-1 dh - Z (G M^-1 dh + [omega^2 G, 2 omega G]), Z = M^-1 G^T S^-1.
+  // du'/d. = M^-1 dh - Z (G M^-1 dh + [omega^2 G, 2 omega G, 0]), Z = M^-1 G^T S^-1.
   const SystemConstraints c = system.Constraints(t, y);
   const ConstraintSolver solver(system, t, y, c.G);
   MatrixXd du_dot = solver.SolveMassColumns(dh);
@@ -109,14 +117,19 @@ void SystemJacobian(const MultibodySystem& system, double t, const ConstVectorRe
     const double omega = system.constraint_settings().baumgarte_frequency;
     MatrixXd target = solver.constraint_jacobian() * du_dot;
     target.leftCols(nu) += omega * omega * c.G;
-    target.rightCols(nu) += 2.0 * omega * c.G;
-    MatrixXd multipliers(m, 2 * nu);
-    for (Index j = 0; j < 2 * nu; ++j) multipliers.col(j) = solver.SolveSchur(target.col(j));
+    target.middleCols(nu, nu) += 2.0 * omega * c.G;
+    MatrixXd multipliers(m, target.cols());
+    for (Index j = 0; j < target.cols(); ++j) multipliers.col(j) = solver.SolveSchur(target.col(j));
     du_dot -= solver.mass_inverse_G_transpose() * multipliers;
   }
   SetRigidVelocityColumnsByDifferences(system, t, y, u_dot, du_dot);
-  SetPositionColumns(system, y, du_dot.leftCols(nu), dfdy.bottomLeftCorner(nu, nx));
-  dfdy.bottomRightCorner(nu, nu) = du_dot.rightCols(nu);
+  SetPositionColumns(system, y, du_dot.leftCols(nu), dfdy.block(nx, 0, nu, nx));
+  dfdy.block(nx, nx, nu, nu) = du_dot.middleCols(nu, nu);
+  if (ns == 0) return;
+  dfdy.block(nx, nx + nu, nu, ns) = du_dot.rightCols(ns);
+  SetPositionColumns(system, y, ds.leftCols(nu), dfdy.block(nx + nu, 0, ns, nx));
+  dfdy.block(nx + nu, nx, ns, nu) = ds.middleCols(nu, nu);
+  dfdy.bottomRightCorner(ns, ns) = ds.rightCols(ns);
 }
 
 }  // namespace flexmbs::mbs

@@ -1,5 +1,5 @@
 #pragma once
-// The Jacobian df/dy of a multibody system's y' = f(t, y) = [x'; u'] (MultibodySystem::Derivative)
+// The Jacobian df/dy of a multibody system's y' = f(t, y) = [x'; u'; s'] (MultibodySystem::Derivative)
 // from the model, for the implicit integrator's Newton matrix I - gamma h df/dy (docs/mbs.md,
 // "Integrators", "The implicit method's Jacobian"):
 //
@@ -9,10 +9,12 @@
 //            rows), taken as  du'/du = A dh/du - 2 omega_B Z G,  du'/dx = A dh/dx - omega_B^2 Z G,
 //
 // dh/dx, dh/du the stiff parts the bodies and force elements give (Body::AddForceJacobian,
-// ForceElement::AddForceJacobian). The columns of every body's v and w_B are forward differences
-// of u' instead (6 evaluations of the accelerations per body, increments scaled by the
-// coordinates, not by atol): they add what the model leaves out there (gyroscopic and
-// centrifugal terms, gamma's velocity terms). Left out: the derivatives of A itself (dM/dx,
+// ForceElement::AddForceJacobian). The force elements' own states s (docs/mbs.md, "Force elements
+// with states") give their rows ds'/dx, ds'/du, ds'/ds and the columns du'/ds = A dh/ds from
+// ForceElement::AddStateJacobian, as the element states them. The columns of every body's v and
+// w_B are forward differences of u' instead (6 evaluations of the accelerations per body,
+// increments scaled by the coordinates, not by atol): they add what the model leaves out there
+// (gyroscopic and centrifugal terms, gamma's velocity terms). Left out: the derivatives of A itself (dM/dx,
 // dG/dx), of gamma and of the rigid rows' inertia and gravity terms in the position columns, and
 // the loaded force elements' lever rotations: first order in the deformation or of the motion's
 // own rates, small against the stiff entries (tests/mbs/system_jacobian_test.cc); modified
