@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string_view>
@@ -50,9 +51,29 @@ std::vector<double> ReadNumbers(const YamlNode& node, std::string_view key) {
   return numbers;
 }
 
-/// One wheel's tooth compliance table {roll, compliance, centre_depth}.
-contact::ToothCompliance ReadToothTable(const YamlNode& node) {
-  node.RejectUnknownKeys({"roll", "compliance", "centre_depth"});
+/// The numbers of the sequence `key` of `node`, `.nan` read as NaN (a rim column's "off the
+/// neighbour's flank").
+std::vector<double> ReadNumbersOrNan(const YamlNode& node, std::string_view key) {
+  std::vector<double> numbers;
+  for (const YamlNode& item : node.Required(key).AsList()) {
+    numbers.push_back(item.IsScalar() && item.AsString() == ".nan"
+                          ? std::numeric_limits<double>::quiet_NaN()
+                          : item.AsDouble());
+  }
+  return numbers;
+}
+
+/// One wheel's tooth compliance table {roll, compliance, centre_depth} and, optionally, its
+/// coupling to its neighbours through the rim, `rim: {roll, ahead, behind}` (into `rim`).
+contact::ToothCompliance ReadToothTable(const YamlNode& node,
+                                        std::optional<contact::RimCoupling>* rim) {
+  node.RejectUnknownKeys({"roll", "compliance", "centre_depth", "rim"});
+  if (node.Has("rim")) {
+    const YamlNode columns = node.Required("rim");
+    columns.RejectUnknownKeys({"roll", "ahead", "behind"});
+    *rim = contact::RimCoupling{ReadNumbers(columns, "roll"), ReadNumbersOrNan(columns, "ahead"),
+                                ReadNumbersOrNan(columns, "behind")};
+  }
   return {ReadNumbers(node, "roll"), ReadNumbers(node, "compliance"),
           ReadNumbers(node, "centre_depth")};
 }
@@ -83,8 +104,8 @@ ToothTableRequest ReadFeOptions(const YamlNode& fe) {
   return request;
 }
 
-/// The `teeth` entry: both wheels' tables or `fe`, their material and the flattening's reference
-/// load. For `fe` (the word, or a map with `fe: {mesh_size, element_order, loads}`) the tables
+/// The `teeth` entry: both wheels' tables (with their rims' coupling) or `fe`, their material,
+/// the flattening's reference load and whether it is taken at each pair's load. For `fe` (the word, or a map with `fe: {mesh_size, element_order, loads}`) the tables
 /// are left empty and `fe` holds the FE tooth's options.
 struct TeethEntry {
   contact::ElasticTeeth teeth;
@@ -98,18 +119,24 @@ TeethEntry ReadTeeth(const YamlNode& node) {
     entry.fe.emplace();
     return entry;
   }
+  contact::ElasticTeeth& teeth = entry.teeth;
   if (node.Has("fe")) {
-    node.RejectUnknownKeys({"fe", "youngs_modulus", "poisson_ratio", "reference_load"});
+    node.RejectUnknownKeys(
+        {"fe", "youngs_modulus", "poisson_ratio", "reference_load", "flattening"});
     entry.fe = ReadFeOptions(node.Required("fe"));
   } else {
-    node.RejectUnknownKeys({"gear1", "gear2", "youngs_modulus", "poisson_ratio", "reference_load"});
-    entry.teeth.tooth1 = ReadToothTable(node.Required("gear1"));
-    entry.teeth.tooth2 = ReadToothTable(node.Required("gear2"));
+    node.RejectUnknownKeys({"gear1", "gear2", "youngs_modulus", "poisson_ratio", "reference_load",
+                            "flattening"});
+    teeth.tooth1 = ReadToothTable(node.Required("gear1"), &teeth.rim1);
+    teeth.tooth2 = ReadToothTable(node.Required("gear2"), &teeth.rim2);
+  }
+  if (node.Has("flattening")) {
+    teeth.flattening_at_load =
+        node.Required("flattening").AsChoice({"linearised", "at_load"}) == 1;
   }
   const auto optional = [&](std::string_view key, double fallback) {
     return node.Has(key) ? node.Required(key).AsDouble() : fallback;
   };
-  contact::ElasticTeeth& teeth = entry.teeth;
   teeth.material.youngs_modulus = optional("youngs_modulus", teeth.material.youngs_modulus);
   teeth.material.poisson_ratio = optional("poisson_ratio", teeth.material.poisson_ratio);
   teeth.reference_load = optional("reference_load", teeth.reference_load);

@@ -20,8 +20,10 @@ namespace flexmbs::mbs {
 /// the mating flank off the line of action, contact::GearPairSpec), `damping` [N s/m] (0) and
 /// either `mesh_stiffness` c' [N/m^2] (1.4e10; `iso`: ISO 6336-1's c' of the pair) or `teeth`,
 /// massless elastic teeth (contact::MeshLaw): {gear1, gear2: {roll, compliance, centre_depth}
-/// (contact::ToothCompliance), youngs_modulus (2.1e11), poisson_ratio (0.3), reference_load
-/// (3e5 N/m)}, or `fe` in place of the tables (the word, or `fe: {mesh_size [m], element_order,
+/// (contact::ToothCompliance) with optional `rim: {roll, ahead, behind}` (contact::RimCoupling,
+/// `.nan` off the neighbour's flank; both wheels or neither), youngs_modulus (2.1e11),
+/// poisson_ratio (0.3), reference_load (3e5 N/m), flattening (`linearised` at reference_load,
+/// the default, or `at_load`: ElasticTeeth::flattening_at_load)}, or `fe` in place of the tables (the word, or `fe: {mesh_size [m], element_order,
 /// loads}`): each wheel's table from `tooth_table` (an FE tooth of the wheel, after the pair's
 /// checks). Every bad key or value, a pair that cannot mesh, and `fe` without a `tooth_table` is
 /// an InputError "<file>:<line>:<col>: <item>: force element '<name>': <problem>".

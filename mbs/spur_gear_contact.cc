@@ -34,15 +34,7 @@ SpurGearContact::SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef w
       wheel1_(std::move(wheel1)),
       wheel2_(std::move(wheel2)),
       pair_(std::move(pair)),
-      law_(std::move(law)) {
-  if (law_.static_only()) {
-    throw InputError(fmt::format(
-        "spur gear contact '{}': teeth coupled through the rims (ElasticTeeth::rim1, rim2) or "
-        "with the flattening at each pair's load are not taken by the force element yet "
-        "(contact::EvaluateMesh and StaticTransmissionError take them)",
-        name_));
-  }
-}
+      law_(std::move(law)) {}
 
 CompliantContact SpurGearContact::PairLaw(const contact::ToothPair& tp) const {
   return CompliantContact(CompliantContactLaw{law_.PairLaw(tp), {}}, wheel2_, wheel1_);
@@ -100,16 +92,20 @@ ContactPoint SpurGearContact::Point(const Frame& f, const contact::ToothPair& tp
   return point;
 }
 
+std::vector<SpurGearContact::PairContact> SpurGearContact::InContact(
+    const Frame& f, const std::vector<contact::ToothPair>& pairs) const {
+  std::vector<PairContact> contacts;
+  for (const contact::ToothPair& tp : pairs) {
+    if (tp.gap < 0.0) contacts.push_back({tp, Point(f, tp), PairLaw(tp)});
+  }
+  return contacts;
+}
+
 std::vector<SpurGearContact::PairContact> SpurGearContact::Contacts(double t,
                                                                     const MultibodySystem& system,
                                                                     const ConstVectorRef& y) const {
   const Frame f = PairFrame(t, system, y);
-  std::vector<PairContact> contacts;
-  for (const contact::ToothPair& tp :
-       contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
-    if (tp.gap < 0.0) contacts.push_back({Point(f, tp), PairLaw(tp)});
-  }
-  return contacts;
+  return InContact(f, contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2));
 }
 
 SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& system,
@@ -119,12 +115,16 @@ SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& 
   readout.centre_distance = f.centre_distance;
   readout.phi1 = f.phi1;
   readout.phi2 = f.phi2;
-  for (const contact::ToothPair& tp :
-       contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2)) {
+  const std::vector<contact::ToothPair> all =
+      contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2);
+  const std::vector<PairContact> contacts = InContact(f, all);
+  const std::vector<double> forces = NormalForces(contacts);
+  std::size_t next = 0;  // the next contact, in the order of the pairs
+  for (const contact::ToothPair& tp : all) {
     double force = 0.0;
     if (tp.gap < 0.0) {
-      const ContactPoint point = Point(f, tp);
-      force = PairLaw(tp).NormalForce(point);
+      const ContactPoint& point = contacts[next].point;
+      force = forces[next++];
       const Eigen::Vector3d f_W = force * point.n_W;  // on wheel 2; wheel 1 takes -f_W
       readout.torque1 += (point.p_Wc_W - f.wheel1.p_WM_W).cross(-f_W).dot(f.wheel1.R_WM.col(2));
       readout.torque2 += (point.p_Wc_W - f.wheel2.p_WM_W).cross(f_W).dot(f.wheel2.R_WM.col(2));
@@ -135,36 +135,86 @@ SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& 
   return readout;
 }
 
+contact::MeshPairForces SpurGearContact::JointForces(
+    const std::vector<PairContact>& contacts) const {
+  std::vector<contact::ToothPair> pairs;
+  std::vector<double> rates;
+  for (const PairContact& c : contacts) {
+    pairs.push_back(c.pair);
+    rates.push_back(-c.point.n_W.dot(RelativeVelocity(c.point)));
+  }
+  return law_.ForcesWithDerivatives(pairs, rates);
+}
+
+std::vector<double> SpurGearContact::NormalForces(const std::vector<PairContact>& contacts) const {
+  if (law_.joint()) return JointForces(contacts).force;
+  std::vector<double> forces;
+  for (const PairContact& c : contacts) forces.push_back(c.contact.NormalForce(c.point));
+  return forces;
+}
+
+void SpurGearContact::AddPairLoad(const MultibodySystem& system, const ContactPoint& point,
+                                  double force, Eigen::Ref<Eigen::VectorXd> h) const {
+  const Eigen::Vector3d f_W = force * point.n_W;
+  system.AddMarkerLoad(wheel2_, point.a, f_W, (point.p_Wc_W - point.a.p_WM_W).cross(f_W), h);
+  system.AddMarkerLoad(wheel1_, point.b, -f_W, (point.p_Wc_W - point.b.p_WM_W).cross(-f_W), h);
+}
+
 void SpurGearContact::AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
                                 Eigen::Ref<Eigen::VectorXd> h) const {
-  for (const PairContact& c : Contacts(t, system, y)) c.contact.AddForces(system, c.point, h);
+  const std::vector<PairContact> contacts = Contacts(t, system, y);
+  if (!law_.joint()) {
+    for (const PairContact& c : contacts) c.contact.AddForces(system, c.point, h);
+    return;
+  }
+  const std::vector<double> forces = JointForces(contacts).force;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (forces[i] > 0.0) AddPairLoad(system, contacts[i].point, forces[i], h);
+  }
 }
 
 double SpurGearContact::PotentialEnergy(double t, const MultibodySystem& system,
                                         const ConstVectorRef& y) const {
+  const std::vector<PairContact> contacts = Contacts(t, system, y);
+  if (law_.joint()) return JointForces(contacts).energy;
   double energy = 0.0;
-  for (const PairContact& c : Contacts(t, system, y)) energy += c.contact.PotentialEnergy(c.point);
+  for (const PairContact& c : contacts) energy += c.contact.PotentialEnergy(c.point);
   return energy;
 }
 
 void SpurGearContact::AddForceJacobian(double t, const MultibodySystem& system,
                                        const ConstVectorRef& y, Eigen::Ref<Eigen::MatrixXd> dh_dx,
                                        Eigen::Ref<Eigen::MatrixXd> dh_du) const {
-  for (const PairContact& c : Contacts(t, system, y))
-    c.contact.AddForceJacobian(system, c.point, dh_dx, dh_du);
+  const std::vector<PairContact> contacts = Contacts(t, system, y);
+  if (!law_.joint()) {
+    for (const PairContact& c : contacts) c.contact.AddForceJacobian(system, c.point, dh_dx, dh_du);
+    return;
+  }
+  const contact::MeshPairForces mesh = JointForces(contacts);
+  const auto n = static_cast<Eigen::Index>(contacts.size());
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(system.num_velocities(), n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    AddPairLoad(system, contacts[static_cast<std::size_t>(i)].point, 1.0, w.col(i));
+  dh_dx.noalias() -= w * mesh.d_delta * w.transpose();
+  dh_du.noalias() -= w * mesh.d_rate * w.transpose();
 }
 
 std::vector<ContactLoad> SpurGearContact::ContactLoads(double t, const MultibodySystem& system,
                                                        const ConstVectorRef& y) const {
+  const std::vector<PairContact> contacts = Contacts(t, system, y);
+  const std::vector<double> forces = NormalForces(contacts);
   std::vector<ContactLoad> loads;
-  for (const PairContact& c : Contacts(t, system, y)) c.contact.AppendLoad(c.point, &loads);
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const ContactPoint& p = contacts[i].point;
+    if (forces[i] > 0.0) loads.push_back({0, p.p_Wc_W, p.n_W, forces[i] * p.n_W});
+  }
   return loads;
 }
 
 double SpurGearContact::MeshForce(double t, const MultibodySystem& system,
                                   const ConstVectorRef& y) const {
   double force = 0.0;
-  for (const PairContact& c : Contacts(t, system, y)) force += c.contact.NormalForce(c.point);
+  for (const double f : NormalForces(Contacts(t, system, y))) force += f;
   return force;
 }
 

@@ -25,14 +25,16 @@ namespace flexmbs::mbs {
 /// markers' planes, with normal n_12 (wheel 2 takes F n_12): CompliantContact with the tooth
 /// pair's law (contact::MeshLaw: constant, or of massless elastic teeth at the pair's place on the
 /// path) on the relative velocity of the two wheels' material points there, which is the gap's
-/// rate. Axes that stay parallel are assumed; the Jacobian leaves out the line
-/// of action's turning with moving axes. Throws SimulationError if the axes come within
+/// rate. A joint law (contact::MeshLaw::joint: teeth coupled through the rims, or the flattening
+/// at each pair's load) takes all pairs in contact together (MeshLaw::ForcesWithDerivatives on
+/// their penetrations and rates) and loads each pair's point with its force. Axes that stay
+/// parallel are assumed; the Jacobian leaves out the line of action's turning with moving axes
+/// and the tables' change along the path. Throws SimulationError if the axes come within
 /// r_b1 + r_b2 of each other or are more than 8.1 deg from parallel (a marker's z reversed).
 class SpurGearContact final : public ForceElement {
  public:
-  /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw;
-  /// InputError (one line) for a law coupled through the rims or with the flattening at load
-  /// (contact::MeshLaw::static_only: not in the element).
+  /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw (any:
+  /// its InputErrors come from its constructor).
   SpurGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
                   contact::MeshLaw law);
   const std::string& name() const override { return name_; }
@@ -40,7 +42,11 @@ class SpurGearContact final : public ForceElement {
                  Eigen::Ref<Eigen::VectorXd> h) const override;
   double PotentialEnergy(double t, const MultibodySystem& system,
                          const ConstVectorRef& y) const override;
-  /// CompliantContact::AddForceJacobian of every tooth pair in contact.
+  /// CompliantContact::AddForceJacobian of every tooth pair in contact; for a joint law, with
+  /// w_i pair i's generalised force per unit normal force (both wheels at its contact point),
+  /// dh/dx -= sum_ij w_i K_ij w_j^T and dh/du -= sum_ij w_i D_ij w_j^T
+  /// (contact::MeshPairForces: the cross terms of the pairs in mesh; d delta_i = -w_i^T dx,
+  /// delta_i' = -w_i^T u).
   void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
                         Eigen::Ref<Eigen::MatrixXd> dh_dx,
                         Eigen::Ref<Eigen::MatrixXd> dh_du) const override;
@@ -85,14 +91,26 @@ class SpurGearContact final : public ForceElement {
   static ContactPoint Point(const Frame& f, const contact::ToothPair& tp);
   /// A tooth pair in contact: its point and the contact evaluating its law.
   struct PairContact {
+    contact::ToothPair pair;
     ContactPoint point;
     CompliantContact contact;
   };
+  /// The pairs of `pairs` in contact (penetration > 0) in frame `f`.
+  std::vector<PairContact> InContact(const Frame& f,
+                                     const std::vector<contact::ToothPair>& pairs) const;
   /// The tooth pairs in contact (penetration > 0).
   std::vector<PairContact> Contacts(double t, const MultibodySystem& system,
                                     const ConstVectorRef& y) const;
   /// The compliant contact of tooth pair `tp` (wheel 2 as body A).
   CompliantContact PairLaw(const contact::ToothPair& tp) const;
+  /// The joint law's forces and derivatives of `contacts` (MeshLaw::ForcesWithDerivatives at
+  /// their penetrations and rates -n . v_rel).
+  contact::MeshPairForces JointForces(const std::vector<PairContact>& contacts) const;
+  /// Each contact's normal force [N]: its CompliantContact's, or the joint law's.
+  std::vector<double> NormalForces(const std::vector<PairContact>& contacts) const;
+  /// Adds the load `force` [N] of a pair at `point` to h: wheel 2 F n_W, wheel 1 -F n_W at c.
+  void AddPairLoad(const MultibodySystem& system, const ContactPoint& point, double force,
+                   Eigen::Ref<Eigen::VectorXd> h) const;
 
   std::string name_;
   MarkerRef wheel1_, wheel2_;

@@ -1,8 +1,11 @@
 #include "contact/gears/gear_mesh_force.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "contact/laws/law_checks.h"
@@ -14,6 +17,44 @@ namespace {
 /// The z component of the planar cross product a x b.
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
+}
+
+/// InputError (one line, `item` the wheel's rim) unless `rim` is a table over two or more
+/// finite, increasing roll angles > 0 whose columns ahead and behind have as many values, each
+/// NaN (off the neighbour's flank) or in [0, q(t)) with q the loaded tooth's own compliance
+/// `tooth` there, two or more of them finite.
+void CheckRimCoupling(const RimCoupling& rim, const ToothCompliance& tooth, const char* item) {
+  const std::size_t n = rim.roll.size();
+  if (n < 2 || rim.ahead.size() != n || rim.behind.size() != n) {
+    throw InputError(fmt::format(
+        "{}: the rim coupling needs two or more samples and as many of each column (roll {}, "
+        "ahead {}, behind {})",
+        item, n, rim.ahead.size(), rim.behind.size()));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const double previous = k == 0 ? 0.0 : rim.roll[k - 1];
+    if (!(rim.roll[k] > previous) || !std::isfinite(rim.roll[k])) {
+      throw InputError(fmt::format("{}: roll[{}] {} rad must be finite, > 0 and above roll[{}]",
+                                   item, k, rim.roll[k], k == 0 ? 0 : k - 1));
+    }
+  }
+  for (const auto& [name, column] : {std::pair{"ahead", &rim.ahead}, {"behind", &rim.behind}}) {
+    int finite = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double v = (*column)[k], q = InterpolateCompliance(tooth, rim.roll[k]).compliance;
+      if (std::isnan(v)) continue;
+      if (!(v >= 0.0 && v < q)) {
+        throw InputError(fmt::format("{}: {}[{}] {} m^2/N must be NaN (off the neighbour's flank) "
+                                     "or in [0, {}), the loaded tooth's own compliance there",
+                                     item, name, k, v, q));
+      }
+      ++finite;
+    }
+    if (finite < 2) {
+      throw InputError(fmt::format("{}: {} has {} finite values; give two or more", item, name,
+                                   finite));
+    }
+  }
 }
 
 }  // namespace
@@ -33,6 +74,15 @@ MeshLaw::MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping)
       face_width_(std::min(pair.gear1.spec.face_width, pair.gear2.spec.face_width)),
       damping_(damping) {
   CheckElasticTeeth(*teeth_);
+  if (teeth_->rim1.has_value() != teeth_->rim2.has_value()) {
+    throw InputError(fmt::format("elastic teeth: gear {}'s rim coupling without gear {}'s; give "
+                                 "both or neither",
+                                 teeth_->rim1 ? 1 : 2, teeth_->rim1 ? 2 : 1));
+  }
+  if (coupled()) {
+    CheckRimCoupling(*teeth_->rim1, teeth_->tooth1, "gear 1 rim");
+    CheckRimCoupling(*teeth_->rim2, teeth_->tooth2, "gear 2 rim");
+  }
   if (coupled() && teeth_->flattening_at_load) {
     throw InputError(
         "elastic teeth: the rims' coupling and the flattening at each pair's load together are "
@@ -40,22 +90,29 @@ MeshLaw::MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping)
   }
 }
 
-double MeshLaw::ForceAtLoad(const ToothPair& tp, double delta) const {
+MeshLaw::AtLoad MeshLaw::ForceAtLoad(const ToothPair& tp, double delta) const {
   const auto [t1, t2] = Rolls(tp);
   const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
   const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
   const double rho1 = pair_.gear1.base_radius * t1, rho2 = pair_.gear2.base_radius * t2;
-  // The approach at load w grows with w; at w = delta / (q1 + q2) the teeth alone take delta.
-  const auto approach = [&](double w) {
-    return (q1.compliance + q2.compliance) * w +
-           WeberFlattening(w, rho1, rho2, q1.centre_depth, q2.centre_depth, teeth_->material);
+  const double q = q1.compliance + q2.compliance;
+  const auto flattening = [&](double w) {
+    return WeberFlattening(w, rho1, rho2, q1.centre_depth, q2.centre_depth, teeth_->material);
   };
-  double lo = 0.0, hi = delta / (q1.compliance + q2.compliance);
+  // The approach at load w grows with w; at w = delta / (q1 + q2) the teeth alone take delta.
+  double lo = 0.0, hi = delta / q;
   while (hi - lo > 1e-15 * hi) {
     const double mid = 0.5 * (lo + hi);
-    (approach(mid) < delta ? lo : hi) = mid;
+    (q * mid + flattening(mid) < delta ? lo : hi) = mid;
   }
-  return 0.5 * (lo + hi) * face_width_;
+  const double w = 0.5 * (lo + hi);
+  // delta_H = 2 s w (ln(2 h1 / a) + ln(2 h2 / a) - nu / (1 - nu)) with a ~ sqrt(w):
+  // d delta_H / dw = delta_H / w - 2 s.
+  const ToothMaterial& m = teeth_->material;
+  const double s = (1.0 - m.poisson_ratio * m.poisson_ratio) / (std::numbers::pi * m.youngs_modulus);
+  const double force = w * face_width_;
+  return {force, face_width_ / (q + flattening(w) / w - 2.0 * s),
+          0.5 * (force * delta - face_width_ * s * w * w)};
 }
 
 std::pair<double, double> MeshLaw::Rolls(const ToothPair& tp) const {
@@ -71,21 +128,44 @@ NormalLaw MeshLaw::PairLaw(const ToothPair& tp) const {
 
 std::vector<double> MeshLaw::Forces(const std::vector<ToothPair>& pairs,
                                     const std::vector<double>& rates) const {
+  return ForcesWithDerivatives(pairs, rates).force;
+}
+
+MeshPairForces MeshLaw::ForcesWithDerivatives(const std::vector<ToothPair>& pairs,
+                                              const std::vector<double>& rates) const {
   FLEXMBS_CHECK(rates.size() == pairs.size(), "MeshLaw::Forces needs a rate per pair");
-  std::vector<double> forces;
-  if (teeth_ && teeth_->flattening_at_load) {
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const double delta = -pairs[i].gap;
-      const double elastic = delta > 0.0 ? ForceAtLoad(pairs[i], delta) : 0.0;
-      forces.push_back(std::max(0.0, elastic + damping_ * rates[i]));
+  const auto n = static_cast<Eigen::Index>(pairs.size());
+  MeshPairForces out{std::vector<double>(pairs.size(), 0.0), Eigen::MatrixXd::Zero(n, n),
+                     Eigen::MatrixXd::Zero(n, n), 0.0};
+  if (coupled() && pairs.size() == 2 && pairs[0].side == pairs[1].side) {
+    CoupledForces(pairs, rates, &out);
+    return out;
+  }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double delta = -pairs[k].gap;
+    if (teeth_ && teeth_->flattening_at_load) {
+      const AtLoad elastic = delta > 0.0 ? ForceAtLoad(pairs[k], delta) : AtLoad{};
+      out.force[k] = std::max(0.0, elastic.force + damping_ * rates[k]);
+      if (out.force[k] > 0.0) {
+        out.d_delta(i, i) = elastic.d_delta;
+        out.d_rate(i, i) = damping_;
+      }
+      out.energy += elastic.energy;
+    } else {
+      const NormalLaw law = PairLaw(pairs[k]);
+      const NormalForce f = Evaluate(law, delta, rates[k]);
+      out.force[k] = f.force;
+      out.d_delta(i, i) = f.d_delta;
+      out.d_rate(i, i) = f.d_rate;
+      out.energy += ElasticEnergy(law, delta);
     }
-    return forces;
   }
-  if (!coupled() || pairs.size() != 2 || pairs[0].side != pairs[1].side) {
-    for (std::size_t i = 0; i < pairs.size(); ++i)
-      forces.push_back(Evaluate(PairLaw(pairs[i]), -pairs[i].gap, rates[i]).force);
-    return forces;
-  }
+  return out;
+}
+
+void MeshLaw::CoupledForces(const std::vector<ToothPair>& pairs, const std::vector<double>& rates,
+                            MeshPairForces* out) const {
   const std::size_t a = pairs[0].roll1 > pairs[1].roll1 ? 0 : 1, b = 1 - a;
   const ToothPair &A = pairs[a], &B = pairs[b];
   const RimCoupling &rim1 = *teeth_->rim1, &rim2 = *teeth_->rim2;
@@ -97,17 +177,25 @@ std::vector<double> MeshLaw::Forces(const std::vector<ToothPair>& pairs,
   C(b, a) = (RimCouplingAt(rim1.roll, rim1.behind, A.roll1) +
              RimCouplingAt(rim2.roll, rim2.ahead, A.roll2)) / face_width_;
   const Eigen::Vector2d delta(-pairs[0].gap, -pairs[1].gap);
-  Eigen::Vector2d elastic = C.inverse() * delta;
+  Eigen::Matrix2d K = C.inverse();
+  Eigen::Vector2d elastic = K * delta;
   for (Eigen::Index i = 0; i < 2; ++i) {
     if (elastic(i) < 0.0) {  // that pair would pull: the other alone
       elastic(i) = 0.0;
       elastic(1 - i) = delta(1 - i) / C(1 - i, 1 - i);
+      K.setZero();
+      K(1 - i, 1 - i) = 1.0 / C(1 - i, 1 - i);
     }
   }
-  for (std::size_t i = 0; i < 2; ++i) {
-    forces.push_back(std::max(0.0, elastic(static_cast<Eigen::Index>(i)) + damping_ * rates[i]));
+  for (Eigen::Index i = 0; i < 2; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    out->force[k] = std::max(0.0, elastic(i) + damping_ * rates[k]);
+    if (out->force[k] > 0.0) {
+      out->d_delta.row(i) = K.row(i);
+      out->d_rate(i, i) = damping_;
+    }
   }
-  return forces;
+  out->energy = 0.5 * elastic.dot(delta);
 }
 
 ToothPairDeflection MeshLaw::Deflection(const ToothPair& tp, double force) const {

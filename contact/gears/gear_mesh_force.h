@@ -4,6 +4,7 @@
 // single-pair mesh stiffness of ISO 6336-1 or of elastic teeth in series at the pair's place on the
 // path of contact, and the torques on both wheels. Axes at rest.
 
+#include <Eigen/Core>
 #include <optional>
 #include <vector>
 
@@ -34,6 +35,18 @@ struct ToothPairDeflection {
   double tooth1 = 0.0, tooth2 = 0.0, flattening = 0.0;
 };
 
+/// The forces of MeshLaw::Forces with their exact derivatives by the pairs' penetrations and
+/// rates (each pair's roll angles, and so its tables' values, held), and the springs' energy.
+struct MeshPairForces {
+  std::vector<double> force;  ///< F_i [N], in the order of the pairs
+  Eigen::MatrixXd d_delta;    ///< K_ij = dF_i / d delta_j [N/m]
+  Eigen::MatrixXd d_rate;     ///< D_ij = dF_i / d delta'_j [N s/m]
+  /// [J]: sum of the elastic forces F_e,i times delta_i / 2 (the potential 1/2 delta' C^-1 delta
+  /// for a symmetric C); at each pair's load, the integral (F_e delta - b s w^2) / 2 of F_e over
+  /// delta, s = (1 - nu^2) / (pi E).
+  double energy = 0.0;
+};
+
 /// The tooth pairs' laws of a mesh: one law for every pair (teeth of constant stiffness, the rigid
 /// flanks' model), or, for massless elastic teeth, a LinearLaw(c(t1, t2) b, c) per pair from its
 /// roll angles (TeethPairStiffness: both teeth and the flattening as springs in series, b the
@@ -44,8 +57,10 @@ class MeshLaw {
   /// Every tooth pair takes `law` (implicit: a NormalLaw is the constant-stiffness mesh).
   MeshLaw(NormalLaw law);  // NOLINT(google-explicit-constructor)
   /// Elastic teeth of `pair` with a damping c >= 0 [N s/m] per tooth pair in contact.
-  /// InputError from CheckElasticTeeth, or LinearLaw's for a negative damping, or for the rims'
-  /// coupling together with the flattening at load (not built).
+  /// InputError from CheckElasticTeeth, or LinearLaw's for a negative damping, for one wheel's
+  /// rim coupling without the other's, for a rim column that is not a table over increasing roll
+  /// angles with two or more finite values in [0, q(t)) (the neighbour moves less than the loaded
+  /// tooth), or for the rims' coupling together with the flattening at load (not built).
   MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping);
   /// The law of tooth pair `tp`.
   NormalLaw PairLaw(const ToothPair& tp) const;
@@ -60,11 +75,19 @@ class MeshLaw {
   /// to 1e-15 of w's bracket [0, delta / (q1 + q2)]).
   std::vector<double> Forces(const std::vector<ToothPair>& pairs,
                              const std::vector<double>& rates) const;
+  /// Forces (the same numbers) with their derivatives: PairLaw's d_delta, d_rate on the diagonal;
+  /// coupled, K = C^-1 on the pairs kept (the dropped pair's row zero, the other's 1 / C_jj); at
+  /// each pair's load, dF_e / d delta = b / (q1 + q2 + delta_H(w) / w - 2 s) (implicit
+  /// differentiation of the series; d delta_H / dw = delta_H / w - 2 s,
+  /// s = (1 - nu^2) / (pi E)); D = c on the diagonal; a row zero where F clips at 0.
+  MeshPairForces ForcesWithDerivatives(const std::vector<ToothPair>& pairs,
+                                       const std::vector<double>& rates) const;
   /// Whether the pairs in contact are coupled through the rims (Forces).
   bool coupled() const { return teeth_ && teeth_->rim1 && teeth_->rim2; }
   /// Whether Forces differs from the pairs' PairLaw (coupled, or the flattening at each pair's
-  /// load): then only EvaluateMesh and StaticTransmissionError take it, not the force element.
-  bool static_only() const { return coupled() || (teeth_ && teeth_->flattening_at_load); }
+  /// load): the force element then takes the mesh's forces and their cross terms together
+  /// (ForcesWithDerivatives) instead of one compliant contact per pair.
+  bool joint() const { return coupled() || (teeth_ && teeth_->flattening_at_load); }
   /// The deflections under a load F [N] on `tp` (elastic teeth; zeros otherwise).
   ToothPairDeflection Deflection(const ToothPair& tp, double force) const;
   bool elastic() const { return teeth_.has_value(); }
@@ -74,8 +97,15 @@ class MeshLaw {
  private:
   /// t_i held at or above the first roll angle of the tooth's table (the form circle).
   std::pair<double, double> Rolls(const ToothPair& tp) const;
-  /// The elastic force [N] of pair `tp` at penetration delta > 0 with its flattening at its load.
-  double ForceAtLoad(const ToothPair& tp, double delta) const;
+  /// The elastic force [N] of pair `tp` at penetration delta > 0 with its flattening at its load,
+  /// its derivative by delta [N/m] and its energy [J] (MeshPairForces).
+  struct AtLoad {
+    double force = 0.0, d_delta = 0.0, energy = 0.0;
+  };
+  AtLoad ForceAtLoad(const ToothPair& tp, double delta) const;
+  /// The coupled forces of two pairs on one side (Forces) into `out`.
+  void CoupledForces(const std::vector<ToothPair>& pairs, const std::vector<double>& rates,
+                     MeshPairForces* out) const;
 
   NormalLaw law_;
   std::optional<ElasticTeeth> teeth_;

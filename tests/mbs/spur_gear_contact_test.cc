@@ -4,55 +4,34 @@
 #include "mbs/spur_gear_contact.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <string>
-#include <utility>
 
 #include "contact/gears/gear_mesh.h"
 #include "contact/gears/gear_mesh_force.h"
 #include "contact/gears/tooth_stiffness.h"
 #include "mbs/multibody_system.h"
-#include "mbs/rigid_body.h"
 #include "mbs/scene.h"
 #include "mbs/simulation.h"
 #include "mbs/simulation_error.h"
 #include "tests/input_error.h"
+#include "tests/mbs/spur_gear_test_pair.h"
 #include "tests/support/driven_gear_pair.h"
 
 namespace flexmbs::mbs {
 namespace {
 
-/// A scene file in a temporary directory, removed with the object.
-class GearScene {
- public:
-  GearScene()
-      : dir_(std::filesystem::temp_directory_path() /
-             ("flexmbs_gears_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir_);
-  }
-  ~GearScene() { std::filesystem::remove_all(dir_); }
-  GearScene(const GearScene&) = delete;
-  GearScene& operator=(const GearScene&) = delete;
-
-  std::filesystem::path Write(const std::string& text) const {
-    const std::filesystem::path file = dir_ / "scene.yaml";
-    std::ofstream(file) << text;
-    return file;
-  }
-
- private:
-  std::filesystem::path dir_;
-};
+using gear_test::AddFreeWheelsInMesh;
+using gear_test::DoubleContactState;
+using gear_test::GearScene;
+using gear_test::JacobianErrors;
+using gear_test::kCentre;
 
 constexpr double kSpeed = 2.0;      // pinion [rad/s]
 constexpr double kTorque = 10.0;    // load on the wheel [N m], against its turning
-constexpr double kCentre = 0.0505;  // a [m]: 1.0e-4 m of normal backlash
 
 /// The shared driven pair (tests/support/driven_gear_pair.h) with the mesh keys `gear_keys`.
 std::string SceneText(double wheel_angle, const std::string& gear_keys) {
@@ -190,49 +169,6 @@ TEST(SpurGearContact, TipCornersTakeTheLoadOverGraduallyAndTheMeshRingsLess) {
   EXPECT_GT(corners.loaded_twice, line.loaded_twice + 0.02);
 }
 
-/// Two free rigid wheels (pinion, wheel) meshing through a spur_gear_contact element: the pair
-/// of SceneText's gears at kCentre, c' = 1.4e10 N/m per m of face width, damping 3e3 N s/m.
-contact::GearPair AddFreeWheelsInMesh(MultibodySystem& system) {
-  for (const char* name : {"pinion", "wheel"}) {
-    system.AddBody(std::make_unique<RigidBody>(
-        name, 0.3, Eigen::Vector3d::Zero(), 1e-4 * Eigen::Matrix3d::Identity(),
-        std::vector<RigidBodyMarker>{
-            {"axis", Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()}}));
-  }
-  contact::GearPairSpec spec;
-  spec.gear1 =
-      contact::SpurGearSpec{2e-3, 19, 20.0 * std::numbers::pi / 180.0, 0.3, 1.0, 1.25, 0.02};
-  spec.gear2 =
-      contact::SpurGearSpec{2e-3, 31, 20.0 * std::numbers::pi / 180.0, -0.1, 1.0, 1.25, 0.02};
-  spec.centre_distance = kCentre;
-  const contact::GearPair pair = contact::MakeGearPair(spec);
-  system.AddForceElement(std::make_unique<SpurGearContact>(
-      "mesh", system.Marker("pinion", "axis"), system.Marker("wheel", "axis"), pair,
-      contact::ToothPairLaw({1.4e10, 3e3}, pair)));
-  return pair;
-}
-
-/// The wheels at pinion angle phi1 (0.37: in double contact), `depth` [m] deep on the positive
-/// flanks, turning at 3 and -1 rad/s, the wheel's centre sliding along y at 0.01 m/s (the
-/// damping's rate sees it).
-Eigen::VectorXd DoubleContactState(const MultibodySystem& system, const contact::GearPair& pair,
-                                   double phi1 = 0.37, double depth = 5e-6) {
-  const double phi2 =
-      contact::TouchingAngle2(pair, kCentre, phi1, 0.0, contact::FlankSide::kPositive) +
-      depth / pair.gear2.base_radius;
-  Eigen::VectorXd y = system.NeutralState();
-  const auto set = [&](int body, double x, double angle, double omega) {
-    Eigen::VectorXd q(7), u = Eigen::VectorXd::Zero(6);
-    q << x, 0.0, 0.0, std::cos(angle / 2), 0.0, 0.0, std::sin(angle / 2);
-    u(5) = omega;
-    u(1) = 0.01 * body;  // a sliding centre: the damping's rate sees it
-    system.SetBodyState(body, q, u, y);
-  };
-  set(0, 0.0, phi1, 3.0);
-  set(1, kCentre, phi2, -1.0);
-  return y;
-}
-
 /// Each pair's load on the wheel lies along its line of action, as ParaView draws them, and
 /// the two sum to the mesh force.
 void ExpectLoadsAlongTheLinesOfAction(const MultibodySystem& system, const ForceElement& mesh,
@@ -247,56 +183,6 @@ void ExpectLoadsAlongTheLinesOfAction(const MultibodySystem& system, const Force
   }
   EXPECT_NEAR(total, dynamic_cast<const SpurGearContact&>(mesh).MeshForce(0.0, system, y),
               1e-12 * total);
-}
-
-/// Central differences of the element's forces h in the positions (steps of 1e-8 along the
-/// velocity directions) and in the velocities (steps of 1e-6).
-struct ForceDifferences {
-  Eigen::MatrixXd dh_dx, dh_du;
-};
-
-/// The central differences of `mesh`'s forces at state y.
-ForceDifferences CentralDifferences(const MultibodySystem& system, const ForceElement& mesh,
-                                    const Eigen::VectorXd& y) {
-  const Eigen::Index n = system.num_velocities();
-  const auto forces = [&](const Eigen::VectorXd& state) {
-    Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
-    mesh.AddForces(0.0, system, state, h);
-    return h;
-  };
-  ForceDifferences fd{Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, n)};
-  for (Eigen::Index c = 0; c < n; ++c) {
-    Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
-    step(c) = 1e-8;
-    Eigen::VectorXd plus = y, minus = y;
-    system.DisplacePositions(step, plus);
-    system.DisplacePositions(-step, minus);
-    fd.dh_dx.col(c) = (forces(plus) - forces(minus)) / 2e-8;
-    plus = y;
-    minus = y;
-    plus.tail(n)(c) += 1e-6;
-    minus.tail(n)(c) -= 1e-6;
-    fd.dh_du.col(c) = (forces(plus) - forces(minus)) / 2e-6;
-  }
-  return fd;
-}
-
-/// How far `mesh`'s Jacobian at y is from the central differences of its forces: the largest
-/// difference in dh/du, and in dh/dx over the wheels' turns about z (columns 5 and 11), each
-/// relative to its largest entry.
-std::pair<double, double> JacobianErrors(const MultibodySystem& system, const ForceElement& mesh,
-                                         const Eigen::VectorXd& y) {
-  const Eigen::Index n = system.num_velocities();
-  Eigen::MatrixXd dh_dx = Eigen::MatrixXd::Zero(n, n), dh_du = dh_dx;
-  mesh.AddForceJacobian(0.0, system, y, dh_dx, dh_du);
-  const ForceDifferences fd = CentralDifferences(system, mesh, y);
-  const double error_u = (dh_du - fd.dh_du).cwiseAbs().maxCoeff() / fd.dh_du.cwiseAbs().maxCoeff();
-  double error_x = 0.0;
-  for (const Eigen::Index c : {Eigen::Index{5}, Eigen::Index{11}}) {  // the turns about z
-    error_x = std::max(error_x, (dh_dx.col(c) - fd.dh_dx.col(c)).cwiseAbs().maxCoeff() /
-                                    fd.dh_dx.col(c).cwiseAbs().maxCoeff());
-  }
-  return {error_u, error_x};
 }
 
 // The element's Jacobian against central differences of its forces, two free wheels turning
@@ -478,25 +364,6 @@ TEST(SpurGearContact, TipReliefEntryReachesTheWheel) {
   EXPECT_EQ(mesh.pair().gear2.spec.tip_relief, 2e-5);
   EXPECT_EQ(mesh.pair().gear2.spec.tip_relief_length, 1e-3);
   EXPECT_EQ(mesh.pair().gear2.spec.tip_relief_exponent, 2);
-}
-
-// Elastic teeth coupled through the rims (contact::ElasticTeeth::rim1, rim2) are solved together
-// by contact::EvaluateMesh; the force element, which evaluates each pair on its own, refuses them
-// in one line rather than drop the coupling.
-TEST(SpurGearContact, RefusesTeethCoupledThroughTheRims) {
-  MultibodySystem system(Eigen::Vector3d::Zero());
-  const contact::GearPair pair = AddFreeWheelsInMesh(system);
-  contact::ElasticTeeth teeth;
-  teeth.tooth1 = teeth.tooth2 = {{0.1, 0.6}, {1e-11, 3e-11}, {2e-3, 1e-3}};
-  teeth.rim1 = teeth.rim2 = contact::RimCoupling{{0.1, 0.6}, {2e-12, 1e-12}, {1e-12, 2e-12}};
-  const std::string message = flexmbs::testing::InputErrorMessage([&] {
-    SpurGearContact("coupled", system.Marker("pinion", "axis"), system.Marker("wheel", "axis"),
-                    pair, contact::MeshLaw(pair, teeth, 0.0));
-  });
-  EXPECT_NE(message.find("spur gear contact 'coupled': teeth coupled through the rims"),
-            std::string::npos)
-      << message;
-  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
 // tip_corners: on by default, off when the entry says false; anything but a boolean is refused

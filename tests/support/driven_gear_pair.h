@@ -35,6 +35,29 @@ inline constexpr const char* kDrivenPairFeTeeth =
     "              centre_depth: [0.0018369, 0.0018136, 0.0017571, 0.0016514, 0.0014787,\n"
     "                             0.0012192, 0.00084956]}\n";
 
+/// The `teeth` entry of the pair's two wheels coupled through their rims (docs/scene.md): each
+/// wheel's tooth on its three-tooth segment (gear_tooth_fe::ToothCouplingFromFe with default
+/// options and 7 load points, printed once): its own compliance table and its neighbours'
+/// deflections ahead and behind (`.nan` off the neighbour's flank).
+inline constexpr const char* kDrivenPairCoupledTeeth =
+    "    teeth:\n"
+    "      gear1: {roll: [0.13472, 0.22575, 0.31678, 0.40781, 0.49884, 0.58987, 0.6809],\n"
+    "              compliance: [1.0694e-11, 1.1569e-11, 1.3322e-11, 1.6453e-11, 2.1953e-11,\n"
+    "                           3.187e-11, 5.231e-11],\n"
+    "              centre_depth: [0.0019473, 0.0019379, 0.0018931, 0.0017828, 0.0015722,\n"
+    "                             0.0012185, 0.00066685],\n"
+    "              rim: {roll: [0.13472, 0.22575, 0.31678, 0.40781, 0.49884, 0.58987, 0.6809],\n"
+    "                    ahead: [3.6474e-12, 3.5095e-12, 3.2747e-12, .nan, .nan, .nan, .nan],\n"
+    "                    behind: [.nan, .nan, .nan, .nan, 3.2959e-12, 3.1072e-12, 2.8015e-12]}}\n"
+    "      gear2: {roll: [0.14316, 0.20555, 0.26794, 0.33033, 0.39272, 0.45511, 0.5175],\n"
+    "              compliance: [1.0786e-11, 1.2193e-11, 1.4607e-11, 1.8611e-11, 2.5244e-11,\n"
+    "                           3.6438e-11, 5.6932e-11],\n"
+    "              centre_depth: [0.0018369, 0.0018136, 0.0017571, 0.0016514, 0.0014787,\n"
+    "                             0.0012192, 0.00084956],\n"
+    "              rim: {roll: [0.14316, 0.20555, 0.26794, 0.33033, 0.39272, 0.45511, 0.5175],\n"
+    "                    ahead: [2.6318e-12, 2.4512e-12, 2.1881e-12, .nan, .nan, .nan, .nan],\n"
+    "                    behind: [.nan, .nan, .nan, .nan, 2.3563e-12, 2.1168e-12, 1.7603e-12]}}\n";
+
 /// Pinion (19 teeth) at the origin, wheel (31 teeth) at (0.0505, 0, 0), both steel discs of
 /// 20 mm on revolute joints about z; the pinion driven at 2 rad/s, the wheel loaded by 10 N m
 /// about +z (the mesh turns it about -z) and starting at `wheel_angle` [rad] with the kinematic
