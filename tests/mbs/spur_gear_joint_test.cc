@@ -5,6 +5,7 @@
 // of the same law; the implicit method needs fewer Newton iterations with the cross terms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -173,6 +174,161 @@ TEST(SpurGearJoint, BadRimsAndFlatteningAreOneLineErrors) {
       << message;
   message = refused(replaced(kCoupled, "ahead: [2.6318e-12", "infront: [2.6318e-12"));
   EXPECT_NE(message.find("teeth.gear2.rim.infront: unknown key 'infront'"), std::string::npos) << message;
+}
+
+
+/// The driven pair (tests/support/driven_gear_pair.h: pinion at 2 rad/s, 10 N m on the wheel,
+/// damping 8e3 N s/m) on the line of action alone (tip_corners: false) with `teeth_keys`, over
+/// one mesh period from 0.02 s (the start's transient gone): its transmission error
+/// r_b2 (phi2 - phi2_0(phi1)) against contact::StaticTransmissionError of the element's law under
+/// wheel 1's T r_b1 / r_b2 (every 5th output, where dynamic and static have as many pairs loaded
+/// and 1.5 ms after a switch: the wheel rings there), and the static ones of the same law and of
+/// each pair's own law (PairsAlone) apart in double contact.
+struct DynamicAgainstStatic {
+  double worst = 0.0;      ///< largest |TE / STE - 1|
+  double law_apart = 0.0;  ///< smallest |STE_alone / STE - 1| in double contact
+  int samples = 0, doubles = 0;
+};
+DynamicAgainstStatic RunSlowlyAgainstStatic(const std::string& teeth_keys) {
+  GearScene files;
+  const std::string keys =
+      std::string(flexmbs::testing::kDrivenPairGearKeys) + "    tip_corners: false\n" + teeth_keys;
+  const Scene probe = LoadScene(files.Write(flexmbs::testing::DrivenGearPairScene(0.0, keys)));
+  const contact::GearPair pair =
+      dynamic_cast<const SpurGearContact&>(probe.system->force_element(1)).pair();
+  const double mesh_period = 2.0 * std::numbers::pi / 19.0 / 2.0;
+  const double t0 = 0.02, t1 = t0 + mesh_period;
+  const double start = contact::TouchingAngle2(pair, kCentre, 0.0, 0.0, contact::FlankSide::kPositive);
+  const Scene scene =
+      LoadScene(files.Write(flexmbs::testing::DrivenGearPairScene(start, keys, t1 + 1e-3)));
+  const MultibodySystem& system = *scene.system;
+  const auto& mesh = dynamic_cast<const SpurGearContact&>(system.force_element(1));
+  const contact::MeshLaw alone = PairsAlone(pair, mesh.law());
+  const double r_b1 = pair.gear1.base_radius, r_b2 = pair.gear2.base_radius;
+  const double torque1 = 10.0 * r_b1 / r_b2;
+  DynamicAgainstStatic result;
+  result.law_apart = 1.0;
+  double last_switch = 0.0;
+  int last_loaded = 0, output = 0;
+  Simulate(*scene.system, scene.options, scene.initial_state,
+           [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
+             const SpurGearContact::Readout r = mesh.Read(t, system, y);
+             int loaded = 0;
+             for (const contact::ToothPairLoad& load : r.pairs) loaded += load.force > 0.0;
+             if (loaded != last_loaded) last_switch = t;
+             last_loaded = loaded;
+             if (t < t0 || t > t1 || output++ % 5 != 0 || t - last_switch < 1.5e-3) return;
+             const double phi2_0 = contact::TouchingAngle2(pair, kCentre, r.phi1, 0.0,
+                                                           contact::FlankSide::kPositive);
+             const double te = r_b2 * std::remainder(r.phi2 - phi2_0, 2.0 * std::numbers::pi / 31);
+             const double ste =
+                 contact::StaticTransmissionError(pair, mesh.law(), kCentre, r.phi1, torque1);
+             const int static_loaded = static_cast<int>(
+                 contact::EvaluateMesh(pair, mesh.law(), kCentre, r.phi1, phi2_0 + ste / r_b2, 0.0,
+                                       0.0)
+                     .pairs.size());
+             if (static_loaded != loaded) return;
+             ++result.samples;
+             result.worst = std::max(result.worst, std::abs(te / ste - 1.0));
+             if (loaded == 2) {
+               ++result.doubles;
+               const double apart =
+                   contact::StaticTransmissionError(pair, alone, kCentre, r.phi1, torque1) / ste;
+               result.law_apart = std::min(result.law_apart, std::abs(apart - 1.0));
+             }
+           });
+  return result;
+}
+
+// Driven slowly under a constant load, the pair settles on the static transmission error of its
+// law: the rims' coupling (FE tables of the three-tooth segments) and the flattening at each
+// pair's load, each against its own StaticTransmissionError, well within what separates that law
+// from each pair's own law in double contact.
+TEST(SpurGearJoint, SlowlyDrivenPairMeetsTheStaticTransmissionErrorOfItsLaw) {
+  for (const std::string& keys : {kCoupled, kAtLoad}) {
+    const DynamicAgainstStatic r = RunSlowlyAgainstStatic(keys);
+    std::printf("[measured] %s: dynamic against static transmission error over a mesh period: "
+                "%.3g (%d samples, %d in double contact); the law against each pair's own in "
+                "double contact: >= %.3g\n",
+                keys == kCoupled ? "rims coupled" : "flattening at load", r.worst, r.samples,
+                r.doubles, r.law_apart);
+    EXPECT_GT(r.samples, 150);
+    EXPECT_GT(r.doubles, 40);
+    // Measured 6.1e-5 (coupled), 5.8e-5 (at load): the damping on the error's rate and the
+    // wheel's inertia; the laws apart by >= 0.068, 0.129 (1100 and 2200 times that).
+    EXPECT_LT(r.worst, 6e-4);
+    EXPECT_GT(r.law_apart, 10.0 * r.worst);
+  }
+}
+
+
+/// A spur gear element's forces with another's Jacobian: the joint law's forces with the Jacobian
+/// of each pair's own law, no cross terms (what one CompliantContact per pair gives).
+class ForcesWithJacobianOf final : public ForceElement {
+ public:
+  ForcesWithJacobianOf(std::unique_ptr<SpurGearContact> forces,
+                       std::unique_ptr<SpurGearContact> jacobian)
+      : forces_(std::move(forces)), jacobian_(std::move(jacobian)) {}
+  const std::string& name() const override { return forces_->name(); }
+  void AddForces(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                 Eigen::Ref<Eigen::VectorXd> h) const override {
+    forces_->AddForces(t, system, y, h);
+  }
+  void AddForceJacobian(double t, const MultibodySystem& system, const ConstVectorRef& y,
+                        Eigen::Ref<Eigen::MatrixXd> dh_dx,
+                        Eigen::Ref<Eigen::MatrixXd> dh_du) const override {
+    jacobian_->AddForceJacobian(t, system, y, dh_dx, dh_du);
+  }
+
+ private:
+  std::unique_ptr<SpurGearContact> forces_, jacobian_;
+};
+
+/// The implicit method's statistics over the driven pair's first 0.1 s (coupled FE teeth, the
+/// line of action alone), the element's own Jacobian or (`cross_terms` false) each pair's own.
+OdeStatistics ImplicitRun(bool cross_terms) {
+  GearScene files;
+  const std::string keys =
+      std::string(flexmbs::testing::kDrivenPairGearKeys) + "    tip_corners: false\n" + kCoupled;
+  const Scene probe = LoadScene(files.Write(flexmbs::testing::DrivenGearPairScene(0.0, keys)));
+  const auto& probe_mesh = dynamic_cast<const SpurGearContact&>(probe.system->force_element(1));
+  const contact::GearPair pair = probe_mesh.pair();
+  std::string text = flexmbs::testing::DrivenGearPairScene(
+      contact::TouchingAngle2(pair, kCentre, 0.0, 0.0, contact::FlankSide::kPositive), "", 0.1);
+  const std::string method = "method: explicit";
+  text.replace(text.find(method), method.size(), "method: implicit");
+  Scene scene = LoadScene(files.Write(text));
+  MultibodySystem& system = *scene.system;
+  const auto element = [&](const contact::MeshLaw& law) {
+    return std::make_unique<SpurGearContact>("mesh", system.Marker("pinion", "axis"),
+                                             system.Marker("wheel", "axis"), pair, law);
+  };
+  if (cross_terms) {
+    system.AddForceElement(element(probe_mesh.law()));
+  } else {
+    system.AddForceElement(std::make_unique<ForcesWithJacobianOf>(
+        element(probe_mesh.law()), element(PairsAlone(pair, probe_mesh.law()))));
+  }
+  return Simulate(system, scene.options, scene.initial_state,
+                  [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {})
+      .integrator;
+}
+
+// The implicit method (ESDIRK, the model Jacobian in its Newton matrix) on the coupled pair: with
+// the cross terms of the pairs in mesh it needs fewer Newton iterations and steps than with each
+// pair's own stiffness alone.
+TEST(SpurGearJoint, CrossTermsSaveTheImplicitMethodNewtonIterations) {
+  const OdeStatistics with = ImplicitRun(true), without = ImplicitRun(false);
+  std::printf("[measured] implicit over 0.1 s: with the cross terms %ld steps, %ld Newton "
+              "iterations, %ld setups, %ld error test failures; without %ld, %ld, %ld, %ld\n",
+              with.steps, with.newton_iterations, with.newton_setups, with.error_test_failures,
+              without.steps, without.newton_iterations, without.newton_setups,
+              without.error_test_failures);
+  // Measured 1278 steps, 17592 iterations, 257 setups with; 3458, 54462, 4498 without (the
+  // Newton matrix off by the cross terms, ~0.1 of the diagonal: iterations fail to converge and
+  // the steps shrink).
+  EXPECT_LT(with.newton_iterations, 0.5 * static_cast<double>(without.newton_iterations));
+  EXPECT_LT(with.steps, without.steps);
 }
 
 }  // namespace
