@@ -14,7 +14,9 @@
 // touch wheel 2's flank beyond the path of contact, which the closed form leaves out. The same
 // pair on massless elastic teeth (the FE tables of tests/support/driven_gear_pair.h), and with
 // the tip corners off the line of action (the element's default; the rows above are the line's,
-// tip_corners: false, as the peer), are timed beside the rigid flanks' constant c'.
+// tip_corners: false, as the peer), are timed beside the rigid flanks' constant c'; so are the
+// elastic teeth coupled through the rims (the three-tooth FE tables) and with the flattening at
+// each pair's load (the element's joint law).
 //
 //   bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] [--polish 1]
 #include <fmt/format.h>
@@ -380,6 +382,9 @@ int Main(const Settings& settings) {
   const Run best = BestRun(settings, start, line_keys);
   const Run corners = BestRun(settings, start, kDrivenPairGearKeys);
   const Run elastic = BestRun(settings, start, line_keys + testing::kDrivenPairFeTeeth);
+  const Run coupled = BestRun(settings, start, line_keys + testing::kDrivenPairCoupledTeeth);
+  const Run at_load = BestRun(settings, start,
+                              line_keys + testing::kDrivenPairFeTeeth + "      flattening: at_load\n");
   mbs::Scene brute = Load(DrivenGearPairScene(start, "", settings.end_time));
   brute.system->AddForceElement(std::make_unique<BruteForceMesh>(
       brute.system->Marker("pinion", "axis"), brute.system->Marker("wheel", "axis"), pair, law,
@@ -399,10 +404,15 @@ int Main(const Settings& settings) {
   row("closed form (SpurGearContact)", best);
   row("closed form with tip corners", corners);
   row("closed form, elastic FE teeth", elastic);
+  row("  coupled through the rims", coupled);
+  row("  flattening at load", at_load);
   row(fmt::format("brute force, {} samples per flank", settings.samples).c_str(), slow);
-  fmt::print("steps/s ratio closed form / brute force: {:.1f}; rigid / elastic teeth: {:.2f}\n",
+  fmt::print("steps/s ratio closed form / brute force: {:.1f}; rigid / elastic teeth: {:.2f}; "
+             "elastic / coupled: {:.2f}; elastic / at load: {:.2f}\n",
              (best.steps / best.cpu) / (slow.steps / slow.cpu),
-             (best.steps / best.cpu) / (elastic.steps / elastic.cpu));
+             (best.steps / best.cpu) / (elastic.steps / elastic.cpu),
+             (elastic.steps / elastic.cpu) / (coupled.steps / coupled.cpu),
+             (elastic.steps / elastic.cpu) / (at_load.steps / at_load.cpu));
   fmt::print(
       "brute force over one mesh cycle 2 um deep ({} angles, {} pairs in contact): largest gap "
       "error {:.3g} m, contact point offset {:.3g} m; pairs in contact counted differently at {} "
