@@ -64,4 +64,11 @@ ContactPoint GearContactPoint(const GearPairFrame& f, const contact::ToothPair& 
   return point;
 }
 
+void AddGearPairLoad(const MultibodySystem& system, const MarkerRef& wheel1, const MarkerRef& wheel2,
+                     const ContactPoint& point, double force, Eigen::Ref<Eigen::VectorXd> h) {
+  const Eigen::Vector3d f_W = force * point.n_W;
+  system.AddMarkerLoad(wheel2, point.a, f_W, (point.p_Wc_W - point.a.p_WM_W).cross(f_W), h);
+  system.AddMarkerLoad(wheel1, point.b, -f_W, (point.p_Wc_W - point.b.p_WM_W).cross(-f_W), h);
+}
+
 }  // namespace flexmbs::mbs

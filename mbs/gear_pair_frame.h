@@ -41,4 +41,10 @@ GearPairFrame MeasureGearPairFrame(double t, const MultibodySystem& system, cons
 /// body a, takes F n_12; wheel 1 is body b).
 ContactPoint GearContactPoint(const GearPairFrame& f, const contact::ToothPair& tp, double penetration);
 
+/// Adds a tooth pair's load `force` [N] at `point` to h (size num_velocities()): wheel 2 (marker
+/// wheel2, point.a) F n_W at the contact point, wheel 1 -F n_W. With force 1 it adds w, the pair's
+/// generalised force per unit normal force (delta' = -w^T u).
+void AddGearPairLoad(const MultibodySystem& system, const MarkerRef& wheel1, const MarkerRef& wheel2,
+                     const ContactPoint& point, double force, Eigen::Ref<Eigen::VectorXd> h);
+
 }  // namespace flexmbs::mbs

@@ -1,27 +1,11 @@
 #include "mbs/movable_teeth_gear_contact.h"
 
-#include <Eigen/Geometry>
 #include <array>
 #include <utility>
 
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
-namespace {
-
-/// w: the generalised force of a unit normal load at `point` (A, wheel 2, along n; B, wheel 1,
-/// the opposite way), so that delta' = -w^T u.
-Eigen::VectorXd UnitNormalLoad(const MultibodySystem& system, const MarkerRef& wheel1, const MarkerRef& wheel2,
-                               const ContactPoint& point) {
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(system.num_velocities());
-  const Eigen::Vector3d& n = point.n_W;
-  system.AddMarkerLoad(wheel2, point.a, n, (point.p_Wc_W - point.a.p_WM_W).cross(n), w);
-  system.AddMarkerLoad(wheel1, point.b, -n, (point.p_Wc_W - point.b.p_WM_W).cross(-n), w);
-  return w;
-}
-
-}  // namespace
-
 MovableTeethGearContact::MovableTeethGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2,
                                                  contact::GearPair pair, contact::MovableTeeth teeth)
     : name_(std::move(name)),
@@ -117,7 +101,8 @@ void MovableTeethGearContact::AddStateJacobian(double t, const MultibodySystem& 
   jacobian.ds_ds.diagonal() -= ToothStiffnesses(mesh) / c;
   for (const MovedPair& p : mesh.pairs) {
     if (p.force <= 0.0) continue;
-    const Eigen::VectorXd w = UnitNormalLoad(system, wheel1_, wheel2_, p.point);
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(system.num_velocities());
+    AddGearPairLoad(system, wheel1_, wheel2_, p.point, 1.0, w);
     const std::array<std::pair<Eigen::Index, double>, 2> teeth{std::pair{p.state1, p.levers.lever1},
                                                                std::pair{p.state2, p.levers.lever2}};
     for (const auto& [i, lever_i] : teeth) {

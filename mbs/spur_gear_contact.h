@@ -12,15 +12,13 @@
 #include "contact/gears/spur_gear.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/force_element.h"
+#include "mbs/gear_pair_frame.h"
 #include "mbs/marker_ref.h"
 
 namespace flexmbs::mbs {
 
-/// Wheel 1 on marker W1, wheel 2 on marker W2 (either may be the ground): each marker's z axis is
-/// its wheel's axis and its x axis tooth 0's centre line. The transverse plane is W1's xy plane;
-/// the pair frame's x axis runs from W1 to W2's origin projected on it (the current centre
-/// distance a), and each wheel's angle phi_i (contact::FlankPoint) is that of its marker's x axis
-/// from there about W1's z. Every tooth pair of contact::MeshingToothPairs with a penetration
+/// Wheel 1 on marker W1, wheel 2 on marker W2 (either may be the ground) in the pair frame of
+/// mbs/gear_pair_frame.h. Every tooth pair of contact::MeshingToothPairs with a penetration
 /// -g > 0 is a contact point in the middle of its two flank points, half way between the two
 /// markers' planes, with normal n_12 (wheel 2 takes F n_12): CompliantContact with the tooth
 /// pair's law (contact::MeshLaw: constant, or of massless elastic teeth at the pair's place on the
@@ -29,8 +27,7 @@ namespace flexmbs::mbs {
 /// at each pair's load) takes all pairs in contact together (MeshLaw::ForcesWithDerivatives on
 /// their penetrations and rates) and loads each pair's point with its force. Axes that stay
 /// parallel are assumed; the Jacobian leaves out the line of action's turning with moving axes
-/// and the tables' change along the path. Throws SimulationError if the axes come within
-/// r_b1 + r_b2 of each other or are more than 8.1 deg from parallel (a marker's z reversed).
+/// and the tables' change along the path. Throws SimulationError as MeasureGearPairFrame.
 class SpurGearContact final : public ForceElement {
  public:
   /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw (any:
@@ -83,12 +80,6 @@ class SpurGearContact final : public ForceElement {
   const contact::MeshLaw& law() const { return law_; }
 
  private:
-  /// The pair frame at state y: the markers, a, the axes x, y of the pair frame in W and the
-  /// angles. SimulationError if the axes came within the sum of the base radii.
-  struct Frame;
-  Frame PairFrame(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
-  /// The contact point of tooth pair `tp` (penetration -g) in frame `f`.
-  static ContactPoint Point(const Frame& f, const contact::ToothPair& tp);
   /// A tooth pair in contact: its point and the contact evaluating its law.
   struct PairContact {
     contact::ToothPair pair;
@@ -96,7 +87,7 @@ class SpurGearContact final : public ForceElement {
     CompliantContact contact;
   };
   /// The pairs of `pairs` in contact (penetration > 0) in frame `f`.
-  std::vector<PairContact> InContact(const Frame& f,
+  std::vector<PairContact> InContact(const GearPairFrame& f,
                                      const std::vector<contact::ToothPair>& pairs) const;
   /// The tooth pairs in contact (penetration > 0).
   std::vector<PairContact> Contacts(double t, const MultibodySystem& system,
@@ -108,10 +99,6 @@ class SpurGearContact final : public ForceElement {
   contact::MeshPairForces JointForces(const std::vector<PairContact>& contacts) const;
   /// Each contact's normal force [N]: its CompliantContact's, or the joint law's.
   std::vector<double> NormalForces(const std::vector<PairContact>& contacts) const;
-  /// Adds the load `force` [N] of a pair at `point` to h: wheel 2 F n_W, wheel 1 -F n_W at c.
-  void AddPairLoad(const MultibodySystem& system, const ContactPoint& point, double force,
-                   Eigen::Ref<Eigen::VectorXd> h) const;
-
   std::string name_;
   MarkerRef wheel1_, wheel2_;
   contact::GearPair pair_;
