@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -83,36 +84,52 @@ MeshLaw::MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping)
     CheckRimCoupling(*teeth_->rim1, teeth_->tooth1, "gear 1 rim");
     CheckRimCoupling(*teeth_->rim2, teeth_->tooth2, "gear 2 rim");
   }
-  if (coupled() && teeth_->flattening_at_load) {
-    throw InputError(
-        "elastic teeth: the rims' coupling and the flattening at each pair's load together are "
-        "not built; give one");
-  }
 }
 
-MeshLaw::AtLoad MeshLaw::ForceAtLoad(const ToothPair& tp, double delta) const {
+struct MeshLaw::Series {
+  double q = 0.0;  ///< q1 + q2 [m^2/N]
+  double rho1 = 0.0, rho2 = 0.0, h1 = 0.0, h2 = 0.0;
+  ToothMaterial material;
+  /// delta_H(w) [m] (WeberFlattening).
+  double Flattening(double w) const { return WeberFlattening(w, rho1, rho2, h1, h2, material); }
+  /// d(q w + delta_H(w)) / dw [m^2/N]: delta_H = 2 s w (ln(2 h1 / a) + ln(2 h2 / a) - nu /
+  /// (1 - nu)) with a ~ sqrt(w), so d delta_H / dw = delta_H / w - 2 s.
+  double Slope(double w) const {
+    const double nu = material.poisson_ratio;
+    const double s = (1.0 - nu * nu) / (std::numbers::pi * material.youngs_modulus);
+    return q + Flattening(w) / w - 2.0 * s;
+  }
+  /// The energy b (w delta - integral of the approach over w) at load w and approach delta [J]
+  /// for face width b: (b w delta - b s w^2) / 2.
+  double Energy(double w, double delta, double b) const {
+    const double nu = material.poisson_ratio;
+    const double s = (1.0 - nu * nu) / (std::numbers::pi * material.youngs_modulus);
+    return 0.5 * b * (w * delta - s * w * w);
+  }
+};
+
+MeshLaw::Series MeshLaw::PairSeries(const ToothPair& tp) const {
   const auto [t1, t2] = Rolls(tp);
   const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
   const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
-  const double rho1 = pair_.gear1.base_radius * t1, rho2 = pair_.gear2.base_radius * t2;
-  const double q = q1.compliance + q2.compliance;
-  const auto flattening = [&](double w) {
-    return WeberFlattening(w, rho1, rho2, q1.centre_depth, q2.centre_depth, teeth_->material);
-  };
+  return {q1.compliance + q2.compliance,
+          pair_.gear1.base_radius * t1,
+          pair_.gear2.base_radius * t2,
+          q1.centre_depth,
+          q2.centre_depth,
+          teeth_->material};
+}
+
+MeshLaw::AtLoad MeshLaw::ForceAtLoad(const ToothPair& tp, double delta) const {
+  const Series series = PairSeries(tp);
   // The approach at load w grows with w; at w = delta / (q1 + q2) the teeth alone take delta.
-  double lo = 0.0, hi = delta / q;
+  double lo = 0.0, hi = delta / series.q;
   while (hi - lo > 1e-15 * hi) {
     const double mid = 0.5 * (lo + hi);
-    (q * mid + flattening(mid) < delta ? lo : hi) = mid;
+    (series.q * mid + series.Flattening(mid) < delta ? lo : hi) = mid;
   }
   const double w = 0.5 * (lo + hi);
-  // delta_H = 2 s w (ln(2 h1 / a) + ln(2 h2 / a) - nu / (1 - nu)) with a ~ sqrt(w):
-  // d delta_H / dw = delta_H / w - 2 s.
-  const ToothMaterial& m = teeth_->material;
-  const double s = (1.0 - m.poisson_ratio * m.poisson_ratio) / (std::numbers::pi * m.youngs_modulus);
-  const double force = w * face_width_;
-  return {force, face_width_ / (q + flattening(w) / w - 2.0 * s),
-          0.5 * (force * delta - face_width_ * s * w * w)};
+  return {w * face_width_, face_width_ / series.Slope(w), series.Energy(w, delta, face_width_)};
 }
 
 std::pair<double, double> MeshLaw::Rolls(const ToothPair& tp) const {
@@ -179,13 +196,20 @@ void MeshLaw::CoupledForces(const std::vector<ToothPair>& pairs, const std::vect
   const Eigen::Vector2d delta(-pairs[0].gap, -pairs[1].gap);
   Eigen::Matrix2d K = C.inverse();
   Eigen::Vector2d elastic = K * delta;
-  for (Eigen::Index i = 0; i < 2; ++i) {
-    if (elastic(i) < 0.0) {  // that pair would pull: the other alone
-      elastic(i) = 0.0;
-      elastic(1 - i) = delta(1 - i) / C(1 - i, 1 - i);
-      K.setZero();
-      K(1 - i, 1 - i) = 1.0 / C(1 - i, 1 - i);
-    }
+  Eigen::Index dropped = -1;  // a pair that would pull: the other alone
+  for (Eigen::Index i = 0; i < 2 && dropped < 0; ++i) {
+    if (elastic(i) < 0.0) dropped = i;
+  }
+  const bool at_load = teeth_->flattening_at_load;
+  if (dropped < 0 && at_load) dropped = CoupledAtLoad(pairs, C, delta, &elastic, &K);
+  if (dropped >= 0) {
+    const Eigen::Index j = 1 - dropped;
+    const AtLoad alone = at_load ? ForceAtLoad(pairs[static_cast<std::size_t>(j)], delta(j))
+                                 : AtLoad{delta(j) / C(j, j), 1.0 / C(j, j), 0.0};
+    elastic(dropped) = 0.0;
+    elastic(j) = alone.force;
+    K.setZero();
+    K(j, j) = alone.d_delta;
   }
   for (Eigen::Index i = 0; i < 2; ++i) {
     const auto k = static_cast<std::size_t>(i);
@@ -196,6 +220,41 @@ void MeshLaw::CoupledForces(const std::vector<ToothPair>& pairs, const std::vect
     }
   }
   out->energy = 0.5 * elastic.dot(delta);
+  if (at_load) {  // minus b s w^2 / 2 per pair (Series::Energy)
+    for (Eigen::Index i = 0; i < 2; ++i) {
+      const Series series = PairSeries(pairs[static_cast<std::size_t>(i)]);
+      out->energy += series.Energy(elastic(i) / face_width_, 0.0, face_width_);
+    }
+  }
+}
+
+Eigen::Index MeshLaw::CoupledAtLoad(const std::vector<ToothPair>& pairs,
+                                    const Eigen::Matrix2d& C, const Eigen::Vector2d& delta,
+                                    Eigen::Vector2d* elastic, Eigen::Matrix2d* K) const {
+  const std::array<Series, 2> series{PairSeries(pairs[0]), PairSeries(pairs[1])};
+  const double b = face_width_;
+  Eigen::Vector2d w = *elastic / b;  // the linearised loads per face width
+  Eigen::Index lowest = 0;
+  if (!(w.minCoeff(&lowest) > 0.0)) return lowest;
+  Eigen::Matrix2d J;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    Eigen::Vector2d residual;
+    for (Eigen::Index i = 0; i < 2; ++i) {
+      const Eigen::Index j = 1 - i;
+      const Series& s = series[static_cast<std::size_t>(i)];
+      residual(i) = s.q * w(i) + s.Flattening(w(i)) + b * C(i, j) * w(j) - delta(i);
+      J(i, i) = s.Slope(w(i));
+      J(i, j) = b * C(i, j);
+    }
+    const Eigen::Vector2d step = J.inverse() * residual;
+    w -= step;
+    if (!(w.minCoeff(&lowest) > 0.0)) return lowest;
+    if (step.cwiseAbs().maxCoeff() <= 1e-15 * w.cwiseAbs().maxCoeff()) break;
+  }
+  for (Eigen::Index i = 0; i < 2; ++i) J(i, i) = series[static_cast<std::size_t>(i)].Slope(w(i));
+  *elastic = b * w;
+  *K = b * J.inverse();
+  return -1;
 }
 
 ToothPairDeflection MeshLaw::Deflection(const ToothPair& tp, double force) const {

@@ -60,7 +60,7 @@ class MeshLaw {
   /// InputError from CheckElasticTeeth, or LinearLaw's for a negative damping, for one wheel's
   /// rim coupling without the other's, for a rim column that is not a table over increasing roll
   /// angles with two or more finite values in [0, q(t)) (the neighbour moves less than the loaded
-  /// tooth), or for the rims' coupling together with the flattening at load (not built).
+  /// tooth).
   MeshLaw(const GearPair& pair, ElasticTeeth teeth, double damping);
   /// The law of tooth pair `tp`.
   NormalLaw PairLaw(const ToothPair& tp) const;
@@ -72,14 +72,18 @@ class MeshLaw {
   /// dropped (the other takes delta / C_jj); F = max(0, F_e + c delta'). With
   /// ElasticTeeth::flattening_at_load, each pair's F_e = b w with w the load per face width that
   /// solves (q1 + q2) w + delta_H(w) = delta (WeberFlattening at w: delta_H ~ w ln(1/w); bisection
-  /// to 1e-15 of w's bracket [0, delta / (q1 + q2)]).
+  /// to 1e-15 of w's bracket [0, delta / (q1 + q2)]); coupled as well, the two pairs' loads solve
+  /// (q1 + q2)_i w_i + delta_H,i(w_i) + b C_ij w_j = delta_i together (Newton's method from the
+  /// linearised solution, to 1e-15 of w; a pair whose w would fall to 0 or below dropped, the
+  /// other at its load alone).
   std::vector<double> Forces(const std::vector<ToothPair>& pairs,
                              const std::vector<double>& rates) const;
   /// Forces (the same numbers) with their derivatives: PairLaw's d_delta, d_rate on the diagonal;
   /// coupled, K = C^-1 on the pairs kept (the dropped pair's row zero, the other's 1 / C_jj); at
   /// each pair's load, dF_e / d delta = b / (q1 + q2 + delta_H(w) / w - 2 s) (implicit
   /// differentiation of the series; d delta_H / dw = delta_H / w - 2 s,
-  /// s = (1 - nu^2) / (pi E)); D = c on the diagonal; a row zero where F clips at 0.
+  /// s = (1 - nu^2) / (pi E)), coupled too K = b J^-1 with J the Newton matrix at the solution;
+  /// D = c on the diagonal; a row zero where F clips at 0.
   MeshPairForces ForcesWithDerivatives(const std::vector<ToothPair>& pairs,
                                        const std::vector<double>& rates) const;
   /// Whether the pairs in contact are coupled through the rims (Forces).
@@ -97,6 +101,10 @@ class MeshLaw {
  private:
   /// t_i held at or above the first roll angle of the tooth's table (the form circle).
   std::pair<double, double> Rolls(const ToothPair& tp) const;
+  /// Pair `tp`'s teeth and flattening in series per face width: the approach at a load w [N/m]
+  /// and its slope (gear_mesh_force.cc).
+  struct Series;
+  Series PairSeries(const ToothPair& tp) const;
   /// The elastic force [N] of pair `tp` at penetration delta > 0 with its flattening at its load,
   /// its derivative by delta [N/m] and its energy [J] (MeshPairForces).
   struct AtLoad {
@@ -106,6 +114,12 @@ class MeshLaw {
   /// The coupled forces of two pairs on one side (Forces) into `out`.
   void CoupledForces(const std::vector<ToothPair>& pairs, const std::vector<double>& rates,
                      MeshPairForces* out) const;
+  /// The coupled pairs' elastic forces with the flattening at each pair's load, from the
+  /// linearised `elastic` forces of compliance C at penetrations delta (both kept), with their
+  /// K: -1, or the pair whose load fell to 0 or below (the caller drops it; both left as given).
+  Eigen::Index CoupledAtLoad(const std::vector<ToothPair>& pairs, const Eigen::Matrix2d& C,
+                             const Eigen::Vector2d& delta, Eigen::Vector2d* elastic,
+                             Eigen::Matrix2d* K) const;
 
   NormalLaw law_;
   std::optional<ElasticTeeth> teeth_;

@@ -4,6 +4,7 @@
 // the uncoupled laws unchanged to the bit, and the rim tables' one-line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -178,6 +179,87 @@ TEST(MeshLawDerivatives, UncoupledForcesAreEachPairsLawToTheBit) {
     EXPECT_EQ(coupled.Forces({in[i]}, {rates[i]})[0],
               Evaluate(coupled.PairLaw(in[i]), -in[i].gap, rates[i]).force);
   }
+}
+
+// Coupled and at each pair's load together: the loads solve (q1 + q2)_i w_i + delta_H,i(w_i) +
+// b C_ij w_j = delta_i, checked here from the tables' public interpolations and WeberFlattening;
+// K = b J^-1 against central differences, both pairs kept and one dropped (then the other at its
+// load alone, ForceAtLoad's single pair); with a symmetric coupling (constant rim columns, C_AB
+// = C_BA) the forces derive from the energy: d E / d delta_j = F_j.
+TEST(MeshLawDerivatives, CoupledAtLoadSolvesBothSeriesTogether) {
+  const GearPair pair = Pair();
+  ElasticTeeth teeth = Teeth(true);
+  teeth.flattening_at_load = true;
+  const MeshLaw law(pair, teeth, 2e3);
+  std::vector<ToothPair> in = DoubleContact(pair);
+  ASSERT_EQ(in.size(), 2u);
+  const double b = 0.04;
+  double worst_residual = 0.0;
+  for (const double depth : {2e-6, 1e-5, 3e-5}) {
+    in[0].gap = -depth;
+    in[1].gap = -0.8 * depth;
+    const std::vector<double> f = law.Forces(in, {0.0, 0.0});
+    const std::size_t A = in[0].roll1 > in[1].roll1 ? 0 : 1;  // nearer wheel 1's tip
+    const auto cross = [&](std::size_t i) {  // b C_ij: i's teeth under j's load
+      const RimCoupling &r1 = *teeth.rim1, &r2 = *teeth.rim2;
+      const ToothPair& other = in[1 - i];
+      return i == A ? RimCouplingAt(r1.roll, r1.ahead, other.roll1) +
+                          RimCouplingAt(r2.roll, r2.behind, other.roll2)
+                    : RimCouplingAt(r1.roll, r1.behind, other.roll1) +
+                          RimCouplingAt(r2.roll, r2.ahead, other.roll2);
+    };
+    for (std::size_t i = 0; i < 2; ++i) {
+      const ToothComplianceAt q1 = InterpolateCompliance(teeth.tooth1, in[i].roll1);
+      const ToothComplianceAt q2 = InterpolateCompliance(teeth.tooth2, in[i].roll2);
+      const double w = f[i] / b;
+      const double approach =
+          (q1.compliance + q2.compliance) * w +
+          WeberFlattening(w, pair.gear1.base_radius * in[i].roll1,
+                          pair.gear2.base_radius * in[i].roll2, q1.centre_depth, q2.centre_depth,
+                          teeth.material) +
+          cross(i) * f[1 - i] / b;
+      worst_residual = std::max(worst_residual, std::abs(approach / -in[i].gap - 1.0));
+    }
+  }
+  in[0].gap = -1e-5;
+  in[1].gap = -0.8e-5;
+  const std::vector<double> rates = {1e-3, -1e-3};
+  const DerivativeErrors kept = Compare(law, in, rates);
+  ElasticTeeth symmetric_teeth = teeth;
+  symmetric_teeth.rim1 = symmetric_teeth.rim2 = RimCoupling{{0.05, 0.7}, {2e-12, 2e-12},
+                                                            {2e-12, 2e-12}};
+  const MeshLaw symmetric(pair, symmetric_teeth, 0.0);
+  const std::vector<double> still = {0.0, 0.0};
+  const std::vector<double> f = symmetric.Forces(in, still);
+  double energy_error = 0.0;
+  for (std::size_t j = 0; j < 2; ++j) {
+    std::vector<ToothPair> plus = in, minus = in;
+    plus[j].gap -= 1e-10;
+    minus[j].gap += 1e-10;
+    const double de = (symmetric.ForcesWithDerivatives(plus, still).energy -
+                       symmetric.ForcesWithDerivatives(minus, still).energy) / 2e-10;
+    energy_error = std::max(energy_error, std::abs(de / f[j] - 1.0));
+  }
+  in[1].gap = 0.02 * in[0].gap;
+  const MeshPairForces one = law.ForcesWithDerivatives(in, rates);
+  ASSERT_EQ(one.force[1], 0.0);  // dropped
+  ElasticTeeth alone_teeth = teeth;
+  alone_teeth.rim1.reset();
+  alone_teeth.rim2.reset();
+  const MeshLaw alone(pair, alone_teeth, 2e3);
+  EXPECT_EQ(one.force[0], alone.Forces({in[0]}, {rates[0]})[0]);
+  const DerivativeErrors dropped = Compare(law, in, rates);
+  std::printf("[measured] coupled at load: the series' residual %.2g; K, D against central "
+              "differences %.2g, %.2g; one dropped %.2g, %.2g; the symmetric one's energy gradient "
+              "against its forces %.2g\n",
+              worst_residual, kept.d_delta, kept.d_rate, dropped.d_delta, dropped.d_rate,
+              energy_error);
+  EXPECT_LT(worst_residual, 2e-15);    // measured 2.2e-16 (Newton's method to 1e-15 of w)
+  EXPECT_LT(kept.d_delta, 1.5e-10);    // measured 1.5e-11
+  EXPECT_LT(kept.d_rate, 2e-9);        // measured 2.0e-10
+  EXPECT_LT(dropped.d_delta, 2.5e-10); // measured 2.6e-11
+  EXPECT_LT(dropped.d_rate, 2e-9);     // measured 2.0e-10
+  EXPECT_LT(energy_error, 6e-11);      // measured 6.0e-12
 }
 
 // A rim coupling is given for both wheels or neither, as a table of increasing rolls whose

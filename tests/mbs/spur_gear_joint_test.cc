@@ -48,6 +48,15 @@ const std::string kCoupled = flexmbs::testing::kDrivenPairCoupledTeeth;
 const std::string kAtLoad =
     std::string(flexmbs::testing::kDrivenPairFeTeeth) + "      flattening: at_load\n";
 
+/// Both: the coupled teeth with the flattening at each pair's load.
+const std::string kCoupledAtLoad = kCoupled + "      flattening: at_load\n";
+
+/// What a joint law joins, as the tests print it.
+const char* Label(const contact::MeshLaw& law) {
+  if (law.coupled()) return law.teeth()->flattening_at_load ? "rims coupled, at load" : "rims coupled";
+  return "flattening at load";
+}
+
 /// `law` without its rims' coupling and with the flattening linearised: each pair its own law.
 contact::MeshLaw PairsAlone(const contact::GearPair& pair, const contact::MeshLaw& law) {
   contact::ElasticTeeth teeth = *law.teeth();
@@ -71,7 +80,7 @@ int PairsInContact(const MultibodySystem& system, const SpurGearContact& mesh,
 // is each pair's); in the turns the cross terms are what the pairs' own Jacobian misses; left
 // out in both: the tables' change along the path (dq/dt delta).
 TEST(SpurGearJoint, JacobianCarriesTheCrossTermsOfThePairsInMesh) {
-  for (const std::string& keys : {kCoupled, kAtLoad}) {
+  for (const std::string& keys : {kCoupled, kAtLoad, kCoupledAtLoad}) {
     const contact::MeshLaw law = SceneLaw(keys);
     MultibodySystem system(Eigen::Vector3d::Zero());
     const contact::GearPair pair =
@@ -85,11 +94,12 @@ TEST(SpurGearJoint, JacobianCarriesTheCrossTermsOfThePairsInMesh) {
     const auto [alone_u, alone_x] = JacobianErrors(system, mesh, alone, y);
     std::printf("[measured] %s: the element's Jacobian against differences: u %.2g, turns %.2g; "
                 "each pair's own law's: u %.2g, turns %.2g\n",
-                law.coupled() ? "rims coupled" : "flattening at load", joint_u, joint_x, alone_u,
+                Label(law), joint_u, joint_x, alone_u,
                 alone_x);
-    // Measured u 2.3e-11 (coupled), 2.0e-11 (at load); turns 3.1e-4, 3.4e-4 (the tables' change
-    // along the path, left out); each pair's own law's turns 7.3e-2 (no cross terms, 230 times
-    // the element's), 1.7e-2 (the stiffness at w_ref instead of the load's, 50 times).
+    // Measured u 2.3e-11 (coupled), 2.0e-11 (at load), 1.1e-11 (both); turns 3.1e-4, 3.4e-4,
+    // 2.9e-4 (the tables' change along the path, left out); each pair's own law's turns 7.3e-2
+    // (no cross terms, 230 times the element's), 1.7e-2 (the stiffness at w_ref instead of the
+    // load's, 50 times), 9.4e-2.
     EXPECT_LT(joint_u, 2.5e-10);
     EXPECT_LT(joint_x, 3.5e-3);
     EXPECT_GT(alone_x, 10.0 * joint_x);
@@ -241,21 +251,21 @@ DynamicAgainstStatic RunSlowlyAgainstStatic(const std::string& teeth_keys) {
 }
 
 // Driven slowly under a constant load, the pair settles on the static transmission error of its
-// law: the rims' coupling (FE tables of the three-tooth segments) and the flattening at each
-// pair's load, each against its own StaticTransmissionError, well within what separates that law
+// law: the rims' coupling (FE tables of the three-tooth segments), the flattening at each pair's
+// load and both, each against its own StaticTransmissionError, well within what separates that law
 // from each pair's own law in double contact.
 TEST(SpurGearJoint, SlowlyDrivenPairMeetsTheStaticTransmissionErrorOfItsLaw) {
-  for (const std::string& keys : {kCoupled, kAtLoad}) {
+  for (const std::string& keys : {kCoupled, kAtLoad, kCoupledAtLoad}) {
     const DynamicAgainstStatic r = RunSlowlyAgainstStatic(keys);
     std::printf("[measured] %s: dynamic against static transmission error over a mesh period: "
                 "%.3g (%d samples, %d in double contact); the law against each pair's own in "
                 "double contact: >= %.3g\n",
-                keys == kCoupled ? "rims coupled" : "flattening at load", r.worst, r.samples,
+                Label(SceneLaw(keys)), r.worst, r.samples,
                 r.doubles, r.law_apart);
     EXPECT_GT(r.samples, 150);
     EXPECT_GT(r.doubles, 40);
-    // Measured 6.1e-5 (coupled), 5.8e-5 (at load): the damping on the error's rate and the
-    // wheel's inertia; the laws apart by >= 0.068, 0.129 (1100 and 2200 times that).
+    // Measured 6.1e-5 (coupled), 5.8e-5 (at load), 5.8e-5 (both): the damping on the error's
+    // rate and the wheel's inertia; the laws apart by >= 0.068, 0.129, 0.178 (over 1000 times).
     EXPECT_LT(r.worst, 6e-4);
     EXPECT_GT(r.law_apart, 10.0 * r.worst);
   }
