@@ -4,16 +4,16 @@
 #include <cmath>
 
 #include "contact/gears/gear_mesh.h"
-#include "mbs/spur_gear_contact.h"
+#include "mbs/gear_mesh_element.h"
 
 namespace flexmbs::app {
 namespace {
 
 /// The spur gear elements of `system`, in order.
-std::vector<const mbs::SpurGearContact*> Gears(const mbs::MultibodySystem& system) {
-  std::vector<const mbs::SpurGearContact*> gears;
+std::vector<const mbs::GearMeshElement*> Gears(const mbs::MultibodySystem& system) {
+  std::vector<const mbs::GearMeshElement*> gears;
   for (int k = 0; k < system.num_force_elements(); ++k) {
-    if (const auto* gear = dynamic_cast<const mbs::SpurGearContact*>(&system.force_element(k))) {
+    if (const auto* gear = dynamic_cast<const mbs::GearMeshElement*>(&system.force_element(k))) {
       gears.push_back(gear);
     }
   }
@@ -30,7 +30,7 @@ int SlotsPerSide(const contact::GearPair& pair) {
 
 std::vector<mbs::ResultsLayout::ElementSeries> GearSeries(const mbs::MultibodySystem& system) {
   std::vector<mbs::ResultsLayout::ElementSeries> series;
-  for (const mbs::SpurGearContact* gear : Gears(system)) {
+  for (const mbs::GearMeshElement* gear : Gears(system)) {
     series.push_back({"gears",
                       gear->name(),
                       "spur_gear_contact",
@@ -49,9 +49,9 @@ std::vector<mbs::ResultsLayout::ElementSeries> GearSeries(const mbs::MultibodySy
 std::vector<std::vector<Eigen::VectorXd>> GearRows(const mbs::MultibodySystem& system, double t,
                                                    const Eigen::VectorXd& y) {
   std::vector<std::vector<Eigen::VectorXd>> rows;
-  for (const mbs::SpurGearContact* gear : Gears(system)) {
+  for (const mbs::GearMeshElement* gear : Gears(system)) {
     const contact::GearPair& pair = gear->pair();
-    const mbs::SpurGearContact::Readout mesh = gear->Read(t, system, y);
+    const mbs::GearMeshElement::Readout mesh = gear->Read(t, system, y);
     const int slots = SlotsPerSide(pair);
     Eigen::VectorXd pair_force = Eigen::VectorXd::Zero(2 * slots);
     Eigen::VectorXd deflection1 = pair_force, deflection2 = pair_force;

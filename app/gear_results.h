@@ -12,7 +12,8 @@
 
 namespace flexmbs::app {
 
-/// One ElementSeries "gears/<name>" per SpurGearContact of `system`, in its force element order.
+/// One ElementSeries "gears/<name>" per gear element of `system` (mbs::GearMeshElement:
+/// SpurGearContact, MovableTeethGearContact), in its force element order.
 std::vector<mbs::ResultsLayout::ElementSeries> GearSeries(const mbs::MultibodySystem& system);
 
 /// The rows of GearSeries' channels at time t [s] and state y, in the same order.

@@ -13,7 +13,7 @@ MovableTeethGearContact::MovableTeethGearContact(std::string name, MarkerRef whe
       wheel2_(std::move(wheel2)),
       pair_(std::move(pair)),
       teeth_(std::move(teeth)) {
-  ForElement(name_, [&] { contact::CheckMovableTeeth(teeth_); });
+  contact::CheckMovableTeeth(teeth_);
 }
 
 Eigen::Index MovableTeethGearContact::num_states() const {
@@ -111,6 +111,23 @@ void MovableTeethGearContact::AddStateJacobian(double t, const MultibodySystem& 
       for (const auto& [j, lever_j] : teeth) jacobian.ds_ds(i, j) -= lever_i * p.stiffness * lever_j / c;
     }
   }
+}
+
+MovableTeethGearContact::Readout MovableTeethGearContact::Read(double t, const MultibodySystem& system,
+                                                               const ConstVectorRef& y) const {
+  const Mesh mesh = Evaluate(t, system, y);
+  const auto d = system.ElementStates(y, *this);
+  Readout readout;
+  readout.centre_distance = mesh.frame.centre_distance;
+  readout.phi1 = mesh.frame.phi1;
+  readout.phi2 = mesh.frame.phi2;
+  for (const MovedPair& p : mesh.pairs) {
+    readout.pairs.push_back({p.pair, p.force});
+    readout.deflections.push_back({p.levers.lever1 * d(p.state1), p.levers.lever2 * d(p.state2),
+                                   p.force / p.stiffness});
+    if (p.force > 0.0) AddPairTorques(mesh.frame, p.point, p.force, &readout);
+  }
+  return readout;
 }
 
 std::vector<ContactLoad> MovableTeethGearContact::ContactLoads(double t, const MultibodySystem& system,

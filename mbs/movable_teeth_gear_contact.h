@@ -15,6 +15,7 @@
 #include "contact/gears/spur_gear.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/force_element.h"
+#include "mbs/gear_mesh_element.h"
 #include "mbs/gear_pair_frame.h"
 #include "mbs/marker_ref.h"
 
@@ -29,10 +30,9 @@ namespace flexmbs::mbs {
 /// Q_i = sum lever_i F, and d_i' = (Q_i - k_t d_i) / c_t with k_t = contact::ToothStiffness at
 /// the roll of the pair it is in, at the pitch point (contact::PitchRoll) out of mesh. Axes that
 /// stay parallel are assumed, as in SpurGearContact.
-class MovableTeethGearContact final : public ForceElement {
+class MovableTeethGearContact final : public GearMeshElement {
  public:
-  /// `pair` from contact::MakeGearPair; InputError (one line, naming the element) from
-  /// contact::CheckMovableTeeth.
+  /// `pair` from contact::MakeGearPair; InputError (one line) from contact::CheckMovableTeeth.
   MovableTeethGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2, contact::GearPair pair,
                           contact::MovableTeeth teeth);
   const std::string& name() const override { return name_; }
@@ -72,7 +72,10 @@ class MovableTeethGearContact final : public ForceElement {
   Mesh Evaluate(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
   /// Each tooth's stiffness k_t [N/m] in `mesh` (size num_states()).
   Eigen::VectorXd ToothStiffnesses(const Mesh& mesh) const;
-  const contact::GearPair& pair() const { return pair_; }
+  /// The mesh at state y (GearMeshElement::Readout): the moved pairs, their forces, and the
+  /// teeth's deflections as the gap's shares lever_i d_i, the flattening F / k_H.
+  Readout Read(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  const contact::GearPair& pair() const override { return pair_; }
   const contact::MovableTeeth& teeth() const { return teeth_; }
 
  private:

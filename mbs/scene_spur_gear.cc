@@ -12,6 +12,7 @@
 #include "contact/gears/spur_gear.h"
 #include "contact/gears/tooth_stiffness.h"
 #include "core/error.h"
+#include "mbs/movable_teeth_gear_contact.h"
 #include "mbs/spur_gear_contact.h"
 
 namespace flexmbs::mbs {
@@ -110,6 +111,9 @@ ToothTableRequest ReadFeOptions(const YamlNode& fe) {
 struct TeethEntry {
   contact::ElasticTeeth teeth;
   std::optional<ToothTableRequest> fe;
+  /// `movable: {damping}`: each tooth's dashpot c_t [N s/m] (contact::MovableTeeth); none: the
+  /// massless teeth of the quasi-static series (contact::MeshLaw).
+  std::optional<double> movable_damping;
 };
 
 TeethEntry ReadTeeth(const YamlNode& node) {
@@ -122,11 +126,11 @@ TeethEntry ReadTeeth(const YamlNode& node) {
   contact::ElasticTeeth& teeth = entry.teeth;
   if (node.Has("fe")) {
     node.RejectUnknownKeys(
-        {"fe", "youngs_modulus", "poisson_ratio", "reference_load", "flattening"});
+        {"fe", "youngs_modulus", "poisson_ratio", "reference_load", "flattening", "movable"});
     entry.fe = ReadFeOptions(node.Required("fe"));
   } else {
     node.RejectUnknownKeys({"gear1", "gear2", "youngs_modulus", "poisson_ratio", "reference_load",
-                            "flattening"});
+                            "flattening", "movable"});
     teeth.tooth1 = ReadToothTable(node.Required("gear1"), &teeth.rim1);
     teeth.tooth2 = ReadToothTable(node.Required("gear2"), &teeth.rim2);
   }
@@ -140,6 +144,11 @@ TeethEntry ReadTeeth(const YamlNode& node) {
   teeth.material.youngs_modulus = optional("youngs_modulus", teeth.material.youngs_modulus);
   teeth.material.poisson_ratio = optional("poisson_ratio", teeth.material.poisson_ratio);
   teeth.reference_load = optional("reference_load", teeth.reference_load);
+  if (node.Has("movable")) {
+    const YamlNode movable = node.Required("movable");
+    movable.RejectUnknownKeys({"damping"});
+    entry.movable_damping = movable.Required("damping").AsDouble();
+  }
   return entry;
 }
 
@@ -236,7 +245,19 @@ std::unique_ptr<ForceElement> ReadSpurGearContact(
   if (stiffness.teeth && stiffness.teeth->fe) {
     ComputeFeTeeth(*stiffness.teeth_node, name, spec, tooth_table, &*stiffness.teeth);
   }
+  const bool movable = stiffness.teeth && stiffness.teeth->movable_damping;
+  if (movable && node.Has("damping")) {
+    node.Required("damping").Fail(fmt::format(
+        "force element '{}': movable teeth take their damping per tooth (teeth: movable: "
+        "damping), not per tooth pair",
+        name));
+  }
   try {
+    if (movable) {
+      return std::make_unique<MovableTeethGearContact>(
+          name, wheel1, wheel2, pair,
+          contact::MovableTeeth{stiffness.teeth->teeth, *stiffness.teeth->movable_damping});
+    }
     return std::make_unique<SpurGearContact>(name, wheel1, wheel2, pair,
                                              MakeMeshLaw(stiffness, spec, pair, damping));
   } catch (const InputError& e) {

@@ -1,6 +1,5 @@
 #include "mbs/spur_gear_contact.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -60,9 +59,7 @@ SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& 
     if (tp.gap < 0.0) {
       const ContactPoint& point = contacts[next].point;
       force = forces[next++];
-      const Eigen::Vector3d f_W = force * point.n_W;  // on wheel 2; wheel 1 takes -f_W
-      readout.torque1 += (point.p_Wc_W - f.wheel1.p_WM_W).cross(-f_W).dot(f.wheel1.R_WM.col(2));
-      readout.torque2 += (point.p_Wc_W - f.wheel2.p_WM_W).cross(f_W).dot(f.wheel2.R_WM.col(2));
+      AddPairTorques(f, point, force, &readout);
     }
     readout.pairs.push_back({tp, force});
     readout.deflections.push_back(law_.Deflection(tp, force));

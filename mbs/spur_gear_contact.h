@@ -12,6 +12,7 @@
 #include "contact/gears/spur_gear.h"
 #include "mbs/compliant_contact.h"
 #include "mbs/force_element.h"
+#include "mbs/gear_mesh_element.h"
 #include "mbs/gear_pair_frame.h"
 #include "mbs/marker_ref.h"
 
@@ -28,7 +29,7 @@ namespace flexmbs::mbs {
 /// their penetrations and rates) and loads each pair's point with its force. Axes that stay
 /// parallel are assumed; the Jacobian leaves out the line of action's turning with moving axes
 /// and the tables' change along the path. Throws SimulationError as MeasureGearPairFrame.
-class SpurGearContact final : public ForceElement {
+class SpurGearContact final : public GearMeshElement {
  public:
   /// `pair` from contact::MakeGearPair, `law` a contact::ToothPairLaw or an elastic MeshLaw (any:
   /// its InputErrors come from its constructor).
@@ -59,23 +60,10 @@ class SpurGearContact final : public ForceElement {
   /// The tooth pairs that can mesh at state y (gaps of both signs), with the current a and angles.
   std::vector<contact::ToothPair> ToothPairs(double t, const MultibodySystem& system,
                                              const ConstVectorRef& y) const;
-  /// The mesh at state y as an engineer reads it (the results file's gears/ group,
-  /// app/gear_results.h): every tooth pair that can mesh with its force, the wheels' angles and
-  /// the torques the element puts on them.
-  struct Readout {
-    double centre_distance = 0.0;   ///< a [m], the markers' current one
-    double phi1 = 0.0, phi2 = 0.0;  ///< the wheels' angles [rad] (contact::FlankPoint)
-    /// Every pair of contact::MeshingToothPairs; force [N] the law's, 0 for a pair apart.
-    std::vector<contact::ToothPairLoad> pairs;
-    /// Per pair (same order) its teeth's deflections under that force (zeros for rigid teeth).
-    std::vector<contact::ToothPairDeflection> deflections;
-    /// The torques [N m] on wheel 1 and wheel 2 about their axes (the markers' z through the
-    /// markers' origins) from the pairs' loads at their contact points.
-    double torque1 = 0.0, torque2 = 0.0;
-  };
-  Readout Read(double t, const MultibodySystem& system, const ConstVectorRef& y) const;
-  /// The pair's geometry (its nominal centre distance; the element uses the markers' one).
-  const contact::GearPair& pair() const { return pair_; }
+  /// The mesh at state y (GearMeshElement::Readout; the elastic teeth's deflections
+  /// contact::MeshLaw::Deflection's).
+  Readout Read(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
+  const contact::GearPair& pair() const override { return pair_; }
   /// The tooth pairs' laws.
   const contact::MeshLaw& law() const { return law_; }
 

@@ -340,5 +340,49 @@ TEST(MovableTeeth, TurningPairFollowsTheStaticTransmissionError) {
   EXPECT_LT(worst, 2.8e-8);
 }
 
+/// The driven pair's scene with its FE teeth movable (docs/scene.md's entry), `extra` appended to
+/// the `movable` map's line and `pair_damping` (none where empty) as the entry's per-pair damping.
+std::string MovableScene(const std::string& movable, const std::string& pair_damping = "") {
+  std::string keys =
+      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02}\n"
+      "    centre_distance: 0.0505\n";
+  if (!pair_damping.empty()) keys += "    damping: " + pair_damping + "\n";
+  keys += std::string(flexmbs::testing::kDrivenPairFeTeeth) + "      movable: " + movable + "\n";
+  return flexmbs::testing::DrivenGearPairScene(0.0, keys, 0.01);
+}
+
+// The scene's `teeth: movable: {damping}` builds the element with a state per tooth, and the
+// run's deflections are the states.
+TEST(MovableTeeth, SceneEntryBuildsTheElementWithAStatePerTooth) {
+  SceneFile files;
+  const Scene scene = files.Load(MovableScene("{damping: 2e4}"));
+  const auto* mesh = dynamic_cast<const MovableTeethGearContact*>(&scene.system->force_element(1));
+  ASSERT_NE(mesh, nullptr);
+  EXPECT_EQ(scene.system->num_element_states(), 19 + 31);
+  EXPECT_EQ(scene.initial_state.size(), scene.system->state_size());
+  EXPECT_EQ(mesh->teeth().damping, 2e4);
+}
+
+// Bad movable entries are one-line errors at their item.
+TEST(MovableTeeth, BadSceneEntriesAreOneLineErrors) {
+  SceneFile files;
+  const auto message = [&](const std::string& text) {
+    return flexmbs::testing::InputErrorMessage([&] { files.Load(text); });
+  };
+  const std::string zero = message(MovableScene("{damping: 0}"));
+  EXPECT_NE(zero.find("force element 'mesh': movable teeth: tooth damping 0 N s/m must be finite and > 0"),
+            std::string::npos)
+      << zero;
+  const std::string both = message(MovableScene("{damping: 2e4}", "8e3"));
+  EXPECT_NE(both.find("damping: force element 'mesh': movable teeth take their damping per tooth"), std::string::npos)
+      << both;
+  const std::string unknown = message(MovableScene("{damping: 2e4, mass: 1}"));
+  EXPECT_NE(unknown.find("mass"), std::string::npos) << unknown;
+  const std::string missing = message(MovableScene("{}"));
+  EXPECT_NE(missing.find("damping"), std::string::npos) << missing;
+  std::printf("%s\n%s\n%s\n%s\n", zero.c_str(), both.c_str(), unknown.c_str(), missing.c_str());
+}
+
 }  // namespace
 }  // namespace flexmbs::mbs
