@@ -53,16 +53,20 @@ SpurGearContact::Readout SpurGearContact::Read(double t, const MultibodySystem& 
       contact::MeshingToothPairs(pair_, f.centre_distance, f.phi1, f.phi2);
   const std::vector<PairContact> contacts = InContact(f, all);
   const std::vector<double> forces = NormalForces(contacts);
+  std::vector<contact::ToothPair> touching;
+  for (const PairContact& c : contacts) touching.push_back(c.pair);
+  const std::vector<contact::ToothPairDeflection> bent = law_.Deflections(touching, forces);
   std::size_t next = 0;  // the next contact, in the order of the pairs
   for (const contact::ToothPair& tp : all) {
     double force = 0.0;
+    contact::ToothPairDeflection deflection;
     if (tp.gap < 0.0) {
-      const ContactPoint& point = contacts[next].point;
-      force = forces[next++];
-      AddPairTorques(f, point, force, &readout);
+      AddPairTorques(f, contacts[next].point, forces[next], &readout);
+      force = forces[next];
+      deflection = bent[next++];
     }
     readout.pairs.push_back({tp, force});
-    readout.deflections.push_back(law_.Deflection(tp, force));
+    readout.deflections.push_back(deflection);
   }
   return readout;
 }

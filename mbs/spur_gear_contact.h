@@ -61,7 +61,8 @@ class SpurGearContact final : public GearMeshElement {
   std::vector<contact::ToothPair> ToothPairs(double t, const MultibodySystem& system,
                                              const ConstVectorRef& y) const;
   /// The mesh at state y (GearMeshElement::Readout; the elastic teeth's deflections
-  /// contact::MeshLaw::Deflection's).
+  /// contact::MeshLaw::Deflections' of the pairs in contact: a coupled tooth's with the rim's share
+  /// of the other pair's load).
   Readout Read(double t, const MultibodySystem& system, const ConstVectorRef& y) const override;
   const contact::GearPair& pair() const override { return pair_; }
   /// The tooth pairs' laws.

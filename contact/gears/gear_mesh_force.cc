@@ -258,16 +258,39 @@ Eigen::Index MeshLaw::CoupledAtLoad(const std::vector<ToothPair>& pairs,
 }
 
 ToothPairDeflection MeshLaw::Deflection(const ToothPair& tp, double force) const {
-  if (!teeth_) return {};
-  const auto [t1, t2] = Rolls(tp);
-  const double w = force / face_width_;  // per face width
+  return Deflections({tp}, {force}).front();
+}
+
+std::vector<ToothPairDeflection> MeshLaw::Deflections(const std::vector<ToothPair>& pairs,
+                                                      const std::vector<double>& forces) const {
+  FLEXMBS_CHECK(forces.size() == pairs.size(), "MeshLaw::Deflections needs a force per pair");
+  std::vector<ToothPairDeflection> out(pairs.size());
+  if (!teeth_) return out;
   const double w_ref = teeth_->reference_load;
-  const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
-  const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
-  return {q1.compliance * w, q2.compliance * w,
-          WeberFlattening(w_ref, pair_.gear1.base_radius * t1, pair_.gear2.base_radius * t2,
-                          q1.centre_depth, q2.centre_depth, teeth_->material) *
-              w / w_ref};
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto [t1, t2] = Rolls(pairs[i]);
+    const double w = forces[i] / face_width_;  // per face width
+    const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
+    const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
+    const auto flattening = [&](double load) {
+      return WeberFlattening(load, pair_.gear1.base_radius * t1, pair_.gear2.base_radius * t2,
+                             q1.centre_depth, q2.centre_depth, teeth_->material);
+    };
+    const double flat = !teeth_->flattening_at_load ? flattening(w_ref) * w / w_ref
+                        : w > 0.0                   ? flattening(w)
+                                                    : 0.0;
+    out[i] = {q1.compliance * w, q2.compliance * w, flat};
+  }
+  if (coupled() && pairs.size() == 2 && pairs[0].side == pairs[1].side) {
+    const std::size_t a = pairs[0].roll1 > pairs[1].roll1 ? 0 : 1, b = 1 - a;
+    const RimCoupling &rim1 = *teeth_->rim1, &rim2 = *teeth_->rim2;
+    const double w_a = forces[a] / face_width_, w_b = forces[b] / face_width_;
+    out[a].tooth1 += RimCouplingAt(rim1.roll, rim1.ahead, pairs[b].roll1) * w_b;
+    out[a].tooth2 += RimCouplingAt(rim2.roll, rim2.behind, pairs[b].roll2) * w_b;
+    out[b].tooth1 += RimCouplingAt(rim1.roll, rim1.behind, pairs[a].roll1) * w_a;
+    out[b].tooth2 += RimCouplingAt(rim2.roll, rim2.ahead, pairs[a].roll2) * w_a;
+  }
+  return out;
 }
 
 MeshLoads EvaluateMesh(const GearPair& pair, const MeshLaw& law, double centre_distance,

@@ -92,8 +92,17 @@ class MeshLaw {
   /// load): the force element then takes the mesh's forces and their cross terms together
   /// (ForcesWithDerivatives) instead of one compliant contact per pair.
   bool joint() const { return coupled() || (teeth_ && teeth_->flattening_at_load); }
-  /// The deflections under a load F [N] on `tp` (elastic teeth; zeros otherwise).
+  /// The deflections under a load F [N] on `tp` alone (Deflections of the one pair).
   ToothPairDeflection Deflection(const ToothPair& tp, double force) const;
+  /// The deflections of `pairs` under their loads `forces` [N] (elastic teeth; zeros otherwise):
+  /// each tooth q(t) w (w = F / b) and, coupled through the rims with two pairs on one side, the
+  /// neighbour's share of the other pair's load (pair A's teeth rim1 ahead(t1_B) w_B and rim2
+  /// behind(t2_B) w_B, B's rim1 behind(t1_A) w_A and rim2 ahead(t2_A) w_A); the flattening
+  /// delta_H(w) at the pair's load (ElasticTeeth::flattening_at_load) or linearised at w_ref,
+  /// delta_H(w_ref) w / w_ref. Under Forces' undamped loads they add up to each pair's
+  /// penetration.
+  std::vector<ToothPairDeflection> Deflections(const std::vector<ToothPair>& pairs,
+                                               const std::vector<double>& forces) const;
   bool elastic() const { return teeth_.has_value(); }
   /// The elastic teeth (their tables and material); nullptr for teeth of constant stiffness.
   const ElasticTeeth* teeth() const { return teeth_ ? &*teeth_ : nullptr; }

@@ -262,6 +262,43 @@ TEST(MeshLawDerivatives, CoupledAtLoadSolvesBothSeriesTogether) {
   EXPECT_LT(energy_error, 6e-11);      // measured 6.0e-12
 }
 
+// Undamped, each pair's teeth and flattening under the law's forces add up to its penetration:
+// the rims' share of the other pair's load in the teeth of coupled pairs, the flattening at the
+// pair's load where the law takes it there; and a pair alone (Deflection) likewise.
+TEST(MeshLawDerivatives, DeflectionsAddUpToEachPairsPenetration) {
+  const GearPair pair = Pair();
+  std::vector<ToothPair> in = DoubleContact(pair);
+  ASSERT_EQ(in.size(), 2u);
+  in[0].gap = -1e-5;
+  in[1].gap = -0.8e-5;
+  double worst = 0.0, worst_alone = 0.0, rim_share = 0.0;
+  for (const bool rims : {false, true}) {
+    for (const bool at_load : {false, true}) {
+      ElasticTeeth teeth = Teeth(rims);
+      teeth.flattening_at_load = at_load;
+      const MeshLaw law(pair, teeth, 0.0);
+      const std::vector<double> forces = law.Forces(in, {0.0, 0.0});
+      const std::vector<ToothPairDeflection> d = law.Deflections(in, forces);
+      for (std::size_t i = 0; i < 2; ++i) {
+        worst = std::max(worst,
+                         std::abs((d[i].tooth1 + d[i].tooth2 + d[i].flattening) / -in[i].gap - 1.0));
+        const ToothPairDeflection own = law.Deflection(in[i], forces[i]);
+        if (rims) rim_share = std::max(rim_share, (d[i].tooth1 - own.tooth1) / d[i].tooth1);
+        const double alone = law.Forces({in[i]}, {0.0})[0];
+        const ToothPairDeflection one = law.Deflection(in[i], alone);
+        worst_alone = std::max(
+            worst_alone, std::abs((one.tooth1 + one.tooth2 + one.flattening) / -in[i].gap - 1.0));
+      }
+    }
+  }
+  std::printf("[measured] deflections against the penetrations: pairs together %.2g, alone %.2g; "
+              "the rim's share of a tooth's deflection up to %.3f\n",
+              worst, worst_alone, rim_share);
+  EXPECT_LT(worst, 3e-15);        // measured 3.3e-16 (Newton's and the bisection's 1e-15 of w)
+  EXPECT_LT(worst_alone, 3e-15);  // measured 3.3e-16
+  EXPECT_GT(rim_share, 0.05);     // measured 0.156 of the tooth's deflection from the other pair
+}
+
 // A rim coupling is given for both wheels or neither, as a table of increasing rolls whose
 // neighbours move less than the loaded tooth (NaN off the neighbour's flank): one line each.
 TEST(MeshLawDerivatives, BadRimTablesAreOneLineErrors) {
