@@ -6,6 +6,7 @@
 #include "mbs/multibody_system.h"
 
 namespace flexmbs::mbs {
+
 MovableTeethGearContact::MovableTeethGearContact(std::string name, MarkerRef wheel1, MarkerRef wheel2,
                                                  contact::GearPair pair, contact::MovableTeeth teeth)
     : name_(std::move(name)),
