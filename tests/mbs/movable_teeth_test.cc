@@ -7,14 +7,11 @@
 #include "mbs/movable_teeth_gear_contact.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -30,6 +27,7 @@
 #include "mbs/spur_gear_contact.h"
 #include "mbs/system_jacobian.h"
 #include "tests/input_error.h"
+#include "tests/mbs/spur_gear_test_pair.h"
 #include "tests/support/driven_gear_pair.h"
 
 namespace flexmbs::mbs {
@@ -39,27 +37,10 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kCentre = 0.0505;  // a [m]
-constexpr double kLoad = 10.0;      // the wheel's load torque [N m]
+using gear_test::GearScene;
+using gear_test::kCentre;
 
-/// A scene file in a temporary folder of its own, removed with it.
-class SceneFile {
- public:
-  SceneFile() : dir_(std::filesystem::temp_directory_path() / ("flexmbs_teeth_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir_);
-  }
-  ~SceneFile() { std::filesystem::remove_all(dir_); }
-  SceneFile(const SceneFile&) = delete;
-  SceneFile& operator=(const SceneFile&) = delete;
-  Scene Load(const std::string& text) const {
-    const std::filesystem::path file = dir_ / "scene.yaml";
-    std::ofstream(file) << text;
-    return LoadScene(file);
-  }
-
- private:
-  std::filesystem::path dir_;
-};
+constexpr double kLoad = 10.0;  // the wheel's load torque [N m]
 
 /// The driven pair's geometry and FE teeth, as the scene reader builds them (a probe scene with
 /// the static elastic teeth).
@@ -67,9 +48,9 @@ struct PairAndTeeth {
   contact::GearPair pair;
   contact::ElasticTeeth teeth;
 };
-PairAndTeeth DrivenPairTeeth(const SceneFile& files) {
-  const Scene probe = files.Load(flexmbs::testing::DrivenGearPairScene(
-      0.0, std::string(flexmbs::testing::kDrivenPairGearKeys) + flexmbs::testing::kDrivenPairFeTeeth));
+PairAndTeeth DrivenPairTeeth(const GearScene& files) {
+  const Scene probe = LoadScene(files.Write(flexmbs::testing::DrivenGearPairScene(
+      0.0, std::string(flexmbs::testing::kDrivenPairGearKeys) + flexmbs::testing::kDrivenPairFeTeeth)));
   const auto& mesh = dynamic_cast<const SpurGearContact&>(probe.system->force_element(1));
   return {mesh.pair(), *mesh.law().teeth()};
 }
@@ -83,7 +64,7 @@ double TouchingAngle(const contact::GearPair& pair, double phi1) {
 // central differences of MeshingToothPairs' gaps (1e-7 rad) over a mesh period, flanks and tip
 // corners. Measured: flanks 1.7e-9, corners 1.3e-8 (the differences' own error; 204 corner pairs).
 TEST(MovableTeeth, LeversAreTheGapsDerivativesByEachWheelsTurn) {
-  SceneFile files;
+  GearScene files;
   const contact::GearPair pair = DrivenPairTeeth(files).pair;
   const double step = 1e-7, period = 2.0 * std::numbers::pi / 19.0;
   double worst_flanks = 0.0, worst_corners = 0.0;
@@ -143,7 +124,7 @@ void Hold(HeldPair& held, const PairAndTeeth& gears, double phi1, double overlap
 // contact::TeethPairStiffness. Measured (implicit, rtol 1e-12): d 1.1e-10 of its final value (9.1e-9
 // at rtol 1e-10: the integrator's error), the force at rest 2.6e-13 of the series spring's.
 TEST(MovableTeeth, HeldPairRelaxesToTheSeriesSpringAlongTheClosedForm) {
-  SceneFile files;
+  GearScene files;
   const PairAndTeeth gears = DrivenPairTeeth(files);
   // The middle of the single-contact zone: the pinion angle in a mesh period with one tooth pair
   // penetrating under the overlap, farthest from the angles with two.
@@ -210,9 +191,10 @@ struct TurningPair {
   const MovableTeethGearContact* mesh = nullptr;
   VectorXd y0;
 };
-TurningPair DrivenPairOnMovableTeeth(const SceneFile& files, double damping, double end_time) {
+TurningPair DrivenPairOnMovableTeeth(const GearScene& files, double damping, double end_time) {
   const PairAndTeeth gears = DrivenPairTeeth(files);
-  TurningPair turning{files.Load(flexmbs::testing::DrivenGearPairScene(TouchingAngle(gears.pair, 0.0), "", end_time)),
+  TurningPair turning{LoadScene(files.Write(
+                          flexmbs::testing::DrivenGearPairScene(TouchingAngle(gears.pair, 0.0), "", end_time))),
                       nullptr, VectorXd()};
   MultibodySystem& system = *turning.scene.system;
   auto element = std::make_unique<MovableTeethGearContact>("mesh", system.Marker("pinion", "axis"),
@@ -230,7 +212,7 @@ TurningPair DrivenPairOnMovableTeeth(const SceneFile& files, double damping, dou
 // wheels' turns up to the levers', k_H's and k_t's change with the angles (left out). Measured:
 // ds'/ds 3.8e-13, dh/ds 9.1e-13 relative to their largest entries, ds'/dx 2.3e-4.
 TEST(MovableTeeth, StateJacobianBlocksMatchDifferences) {
-  SceneFile files;
+  GearScene files;
   TurningPair turning = DrivenPairOnMovableTeeth(files, 2e3, 0.1);
   const MultibodySystem& system = *turning.scene.system;
   const Index nx = system.num_positions(), nu = system.num_velocities(), ns = system.num_element_states();
@@ -308,7 +290,7 @@ TEST(MovableTeeth, StateJacobianBlocksMatchDifferences) {
 // The dashpots' lag grows with c_t: 2.9e-9 / 2.8e-9 / 1.1e-8 / 3.2e-8 m at c_t = 5e3 / 2e4 / 8e4 /
 // 3.2e5 N s/m; the floor is the wheels' own ringing at the load's switches.
 TEST(MovableTeeth, TurningPairFollowsTheStaticTransmissionError) {
-  SceneFile files;
+  GearScene files;
   const double mesh_period = 2.0 * std::numbers::pi / 19.0 / 2.0, t0 = 0.05, t1 = t0 + mesh_period;
   TurningPair turning = DrivenPairOnMovableTeeth(files, 2e4, t1);
   MultibodySystem& system = *turning.scene.system;
@@ -355,8 +337,8 @@ std::string MovableScene(const std::string& movable, const std::string& pair_dam
 // The scene's `teeth: movable: {damping}` builds the element with a state per tooth, and the
 // run's deflections are the states.
 TEST(MovableTeeth, SceneEntryBuildsTheElementWithAStatePerTooth) {
-  SceneFile files;
-  const Scene scene = files.Load(MovableScene("{damping: 2e4}"));
+  GearScene files;
+  const Scene scene = LoadScene(files.Write(MovableScene("{damping: 2e4}")));
   const auto* mesh = dynamic_cast<const MovableTeethGearContact*>(&scene.system->force_element(1));
   ASSERT_NE(mesh, nullptr);
   EXPECT_EQ(scene.system->num_element_states(), 19 + 31);
@@ -366,9 +348,9 @@ TEST(MovableTeeth, SceneEntryBuildsTheElementWithAStatePerTooth) {
 
 // Bad movable entries are one-line errors at their item.
 TEST(MovableTeeth, BadSceneEntriesAreOneLineErrors) {
-  SceneFile files;
+  GearScene files;
   const auto message = [&](const std::string& text) {
-    return flexmbs::testing::InputErrorMessage([&] { files.Load(text); });
+    return flexmbs::testing::InputErrorMessage([&] { LoadScene(files.Write(text)); });
   };
   const std::string zero = message(MovableScene("{damping: 0}"));
   EXPECT_NE(zero.find("force element 'mesh': movable teeth: tooth damping 0 N s/m must be finite and > 0"),
