@@ -237,7 +237,8 @@ Eigen::Index MeshLaw::CoupledAtLoad(const std::vector<ToothPair>& pairs,
   Eigen::Index lowest = 0;
   if (!(w.minCoeff(&lowest) > 0.0)) return lowest;
   Eigen::Matrix2d J;
-  for (int iteration = 0; iteration < 100; ++iteration) {
+  bool converged = false;
+  for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
     Eigen::Vector2d residual;
     for (Eigen::Index i = 0; i < 2; ++i) {
       const Eigen::Index j = 1 - i;
@@ -249,8 +250,11 @@ Eigen::Index MeshLaw::CoupledAtLoad(const std::vector<ToothPair>& pairs,
     const Eigen::Vector2d step = J.inverse() * residual;
     w -= step;
     if (!(w.minCoeff(&lowest) > 0.0)) return lowest;
-    if (step.cwiseAbs().maxCoeff() <= 1e-15 * w.cwiseAbs().maxCoeff()) break;
+    converged = step.cwiseAbs().maxCoeff() <= 1e-15 * w.cwiseAbs().maxCoeff();
   }
+  // Each pair's series is convex in its load and the coupling linear: Newton from the linearised
+  // loads converges in a few steps, so running out of them is a bug, not an input.
+  FLEXMBS_CHECK(converged, "MeshLaw: the coupled pairs' loads at the flattening at load did not converge");
   for (Eigen::Index i = 0; i < 2; ++i) J(i, i) = series[static_cast<std::size_t>(i)].Slope(w(i));
   *elastic = b * w;
   *K = b * J.inverse();
