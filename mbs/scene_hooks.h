@@ -18,11 +18,21 @@ struct ToothTableRequest {
   std::optional<double> mesh_size;  ///< the elements' edge [m] > 0
   std::optional<int> element_order;  ///< 1 or 2
   std::optional<int> loads;          ///< load points from the form circle to the tip, 2 to 100
+  /// true: the tooth between its two neighbours on a three-tooth segment, giving its coupling to
+  /// them through the rim as well (gear_tooth_fe::ToothCouplingFromFe); false: the tooth alone.
+  bool rim = false;
 };
 
-/// Computes a wheel's tooth compliance table (contact::ToothCompliance) from its FE tooth; may
-/// throw InputError (one line, unlocated: the reader adds the scene's place).
-using ToothTableProvider = std::function<contact::ToothCompliance(const ToothTableRequest&)>;
+/// A wheel's tooth tables from its FE tooth: its own compliance and, when the request asks for the
+/// rim, its neighbours' deflections (then the compliance is the three-tooth segment's own).
+struct ToothTables {
+  contact::ToothCompliance compliance;
+  std::optional<contact::RimCoupling> rim;  ///< set exactly when ToothTableRequest::rim
+};
+
+/// Computes a wheel's tooth tables from its FE tooth; may throw InputError (one line, unlocated:
+/// the reader adds the scene's place).
+using ToothTableProvider = std::function<ToothTables(const ToothTableRequest&)>;
 
 /// The computations LoadScene may call; an empty one refuses the scene entries that need it.
 struct SceneHooks {

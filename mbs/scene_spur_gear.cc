@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "contact/gears/gear_mesh_force.h"
@@ -82,7 +83,7 @@ contact::ToothCompliance ReadToothTable(const YamlNode& node,
 /// The `fe` map's options of both wheels' FE teeth (a ToothTableRequest without gear and material).
 ToothTableRequest ReadFeOptions(const YamlNode& fe) {
   ToothTableRequest request;
-  fe.RejectUnknownKeys({"mesh_size", "element_order", "loads"});
+  fe.RejectUnknownKeys({"mesh_size", "element_order", "loads", "rim"});
   if (fe.Has("mesh_size")) {
     const YamlNode size = fe.Required("mesh_size");
     request.mesh_size = size.AsDouble();
@@ -102,11 +103,12 @@ ToothTableRequest ReadFeOptions(const YamlNode& fe) {
       loads.Fail(fmt::format("{} load points: give 2 to 100", *request.loads));
     }
   }
+  if (fe.Has("rim")) request.rim = fe.Required("rim").AsBool();
   return request;
 }
 
 /// The `teeth` entry: both wheels' tables (with their rims' coupling) or `fe`, their material,
-/// the flattening's reference load and whether it is taken at each pair's load. For `fe` (the word, or a map with `fe: {mesh_size, element_order, loads}`) the tables
+/// the flattening's reference load and whether it is taken at each pair's load. For `fe` (the word, or a map with `fe: {mesh_size, element_order, loads, rim}`) the tables
 /// are left empty and `fe` holds the FE tooth's options.
 struct TeethEntry {
   contact::ElasticTeeth teeth;
@@ -153,7 +155,8 @@ TeethEntry ReadTeeth(const YamlNode& node) {
 }
 
 /// Fills the tables of `entry` (`fe`) from `tooth_table`, one FE tooth per wheel of `spec` (the
-/// pair already checked); errors located at the `teeth` entry `node`, naming element `name`.
+/// pair already checked), with the rims' coupling when `fe` asks for it; errors located at the
+/// `teeth` entry `node`, naming element `name`.
 void ComputeFeTeeth(const YamlNode& node, const std::string& name,
                     const contact::GearPairSpec& spec, const ToothTableProvider& tooth_table,
                     TeethEntry* entry) {
@@ -164,13 +167,26 @@ void ComputeFeTeeth(const YamlNode& node, const std::string& name,
                           name));
   }
   ToothTableRequest request = *entry->fe;
+  if (request.rim && entry->movable_damping) {  // refused before the FE runs, not after
+    node.Required("fe").Required("rim").Fail(fmt::format(
+        "force element '{}': movable teeth take no rims' coupling (it is the static law's)", name));
+  }
   request.material = entry->teeth.material;
+  contact::ElasticTeeth& teeth = entry->teeth;
+  const auto compute = [&](const contact::SpurGearSpec& wheel, const char* label,
+                           contact::ToothCompliance* tooth,
+                           std::optional<contact::RimCoupling>* rim) {
+    request.gear = contact::MakeSpurGear(wheel, label);
+    ToothTables tables = tooth_table(request);
+    FLEXMBS_CHECK(tables.rim.has_value() == request.rim,
+                  "the FE stage gives a wheel's rim coupling exactly when asked for it");
+    *tooth = std::move(tables.compliance);
+    *rim = std::move(tables.rim);
+  };
   try {
-    contact::CheckToothMaterial(entry->teeth.material, entry->teeth.reference_load);
-    request.gear = contact::MakeSpurGear(spec.gear1, "gear 1");
-    entry->teeth.tooth1 = tooth_table(request);
-    request.gear = contact::MakeSpurGear(spec.gear2, "gear 2");
-    entry->teeth.tooth2 = tooth_table(request);
+    contact::CheckToothMaterial(teeth.material, teeth.reference_load);
+    compute(spec.gear1, "gear 1", &teeth.tooth1, &teeth.rim1);
+    compute(spec.gear2, "gear 2", &teeth.tooth2, &teeth.rim2);
   } catch (const InputError& e) {
     node.Fail(fmt::format("force element '{}': {}", name, e.what()));
   }

@@ -1,14 +1,16 @@
 // A scene's `teeth: fe` (docs/scene.md, spur_gear_contact): mbs::LoadScene with the hooks of
 // `flexmbs simulate` (app/fe_tooth_table.h) computes each wheel's tooth table by gear_tooth_fe,
-// equal to the table gear_tooth_fe gives directly for the same wheel, material and options; the
-// scene's FE options and material reach the FE tooth; bad entries are one-line errors at their
-// item, before any FE run.
+// equal to the table gear_tooth_fe gives directly for the same wheel, material and options (with
+// `rim: true` the three-tooth segment's table and rim coupling); the scene's FE options and
+// material reach the FE tooth; bad entries are one-line errors at their item, before any FE run.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,6 +95,79 @@ TEST(GearTeethScene, FeTeethAreTheTablesGearToothFeGivesForEachWheel) {
   EXPECT_EQ(teeth.tooth1.roll.size(), 5u);
 }
 
+/// Whether columns `a` and `b` hold the same numbers, NaN where the other has NaN.
+bool SameColumn(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (!(a[k] == b[k] || (std::isnan(a[k]) && std::isnan(b[k])))) return false;
+  }
+  return true;
+}
+
+void ExpectSameRim(const std::optional<contact::RimCoupling>& scene,
+                   const contact::RimCoupling& fe) {
+  ASSERT_TRUE(scene.has_value());
+  EXPECT_EQ(scene->roll, fe.roll);
+  EXPECT_TRUE(SameColumn(scene->ahead, fe.ahead));
+  EXPECT_TRUE(SameColumn(scene->behind, fe.behind));
+}
+
+// `fe: {..., rim: true}`: each wheel's tooth on its three-tooth segment, the scene's tables and
+// rims' coupling gear_tooth_fe::ToothCouplingFromFe's for the wheel and options, to the last bit;
+// the element's law then couples the pairs (its teeth carry both rims).
+TEST(GearTeethScene, FeRimTeethAreTheSegmentsTablesAndCouplingGearToothFeGives) {
+  TeethScene files;
+  const mbs::Scene scene = mbs::LoadScene(
+      files.Write("    teeth: {fe: {mesh_size: 8e-4, loads: 7, rim: true}, poisson_ratio: 0.29}\n"),
+      SimulateSceneHooks());
+  const contact::ElasticTeeth& teeth = SceneTeeth(scene);
+  gear_tooth_fe::ToothModelOptions options;
+  options.geometry.mesh_size = 0.4;
+  options.loads = 7;
+  const contact::ToothMaterial material{contact::ToothMaterial{}.youngs_modulus, 0.29};
+  const gear_tooth_fe::ToothCoupling fe1 = gear_tooth_fe::ToothCouplingFromFe(
+      contact::MakeSpurGear(Wheel(19, 0.3), "gear 1"), material, options);
+  const gear_tooth_fe::ToothCoupling fe2 = gear_tooth_fe::ToothCouplingFromFe(
+      contact::MakeSpurGear(Wheel(31, -0.1), "gear 2"), material, options);
+  ExpectSameTable(teeth.tooth1, fe1.compliance);
+  ExpectSameTable(teeth.tooth2, fe2.compliance);
+  ExpectSameRim(teeth.rim1, fe1.rim);
+  ExpectSameRim(teeth.rim2, fe2.rim);
+  // Not the one-tooth tables: the three-tooth segment's tooth is softer (the wider rim).
+  EXPECT_GT(teeth.tooth1.compliance[3],
+            gear_tooth_fe::ToothComplianceFromFe(contact::MakeSpurGear(Wheel(19, 0.3), "gear 1"),
+                                                 material, options)
+                .compliance.compliance[3]);
+}
+
+// `rim: true` asks the FE stage for both wheels' rims (the other options as given) and hands the
+// tables it returns to the element; `rim: false` is the one-tooth tables, as without the key.
+TEST(GearTeethScene, FeRimAsksForTheRimsAndHandsThemToTheElement) {
+  TeethScene files;
+  std::vector<mbs::ToothTableRequest> requests;
+  const contact::ToothCompliance table{{0.2, 0.5}, {1e-11, 3e-11}, {2e-3, 1e-3}};
+  const contact::RimCoupling rim{{0.2, 0.3, 0.5}, {3e-12, 2e-12, std::nan("")}, {1e-12, 2e-12, 3e-12}};
+  mbs::SceneHooks hooks{[&](const mbs::ToothTableRequest& request) {
+    requests.push_back(request);
+    return mbs::ToothTables{table, request.rim ? std::optional(rim) : std::nullopt};
+  }};
+  const mbs::Scene coupled =
+      mbs::LoadScene(files.Write("    teeth: {fe: {loads: 4, rim: true}}\n"), hooks);
+  ASSERT_EQ(requests.size(), 2u);
+  for (const mbs::ToothTableRequest& r : requests) {
+    EXPECT_TRUE(r.rim);
+    EXPECT_EQ(r.loads, 4);
+  }
+  ExpectSameRim(SceneTeeth(coupled).rim1, rim);
+  ExpectSameRim(SceneTeeth(coupled).rim2, rim);
+  ExpectSameTable(SceneTeeth(coupled).tooth1, table);
+  const mbs::Scene alone =
+      mbs::LoadScene(files.Write("    teeth: {fe: {rim: false}}\n"), hooks);
+  ASSERT_EQ(requests.size(), 4u);
+  EXPECT_FALSE(requests[2].rim || requests[3].rim);
+  EXPECT_FALSE(SceneTeeth(alone).rim1 || SceneTeeth(alone).rim2);
+}
+
 // `teeth: fe` (the word) asks for both wheels, unthinned, with steel and the FE tooth's own
 // defaults; the tables it returns are the element's.
 TEST(GearTeethScene, TheWordFeAsksForBothWheelsWithTheDefaults) {
@@ -101,7 +176,7 @@ TEST(GearTeethScene, TheWordFeAsksForBothWheelsWithTheDefaults) {
   const contact::ToothCompliance table{{0.2, 0.5}, {1e-11, 3e-11}, {2e-3, 1e-3}};
   mbs::SceneHooks hooks{[&](const mbs::ToothTableRequest& request) {
     requests.push_back(request);
-    return table;
+    return mbs::ToothTables{table, std::nullopt};
   }};
   const mbs::Scene scene = mbs::LoadScene(files.Write("    teeth: fe\n"), hooks);
   ASSERT_EQ(requests.size(), 2u);
@@ -112,12 +187,13 @@ TEST(GearTeethScene, TheWordFeAsksForBothWheelsWithTheDefaults) {
   EXPECT_EQ(requests[0].gear.base_half_angle,
             contact::MakeSpurGear(Wheel(19, 0.3), "gear 1").base_half_angle);
   for (const mbs::ToothTableRequest& r : requests) {
-    EXPECT_FALSE(r.mesh_size || r.element_order || r.loads);
+    EXPECT_FALSE(r.mesh_size || r.element_order || r.loads || r.rim);
     EXPECT_EQ(r.material.youngs_modulus, contact::ToothMaterial{}.youngs_modulus);
     EXPECT_EQ(r.material.poisson_ratio, contact::ToothMaterial{}.poisson_ratio);
   }
   ExpectSameTable(SceneTeeth(scene).tooth1, table);
   ExpectSameTable(SceneTeeth(scene).tooth2, table);
+  EXPECT_FALSE(SceneTeeth(scene).rim1 || SceneTeeth(scene).rim2);  // one-tooth tables
 }
 
 TEST(GearTeethScene, BadFeEntriesAreOneLineErrorsAtTheirItemBeforeAnyFeRun) {
@@ -125,7 +201,7 @@ TEST(GearTeethScene, BadFeEntriesAreOneLineErrorsAtTheirItemBeforeAnyFeRun) {
   int runs = 0;
   mbs::SceneHooks counting{[&](const mbs::ToothTableRequest&) {
     ++runs;
-    return contact::ToothCompliance{{0.2, 0.5}, {1e-11, 3e-11}, {2e-3, 1e-3}};
+    return mbs::ToothTables{{{0.2, 0.5}, {1e-11, 3e-11}, {2e-3, 1e-3}}, std::nullopt};
   }};
   const auto refused = [&](const std::string& teeth, const mbs::SceneHooks& hooks) {
     return flexmbs::testing::InputErrorMessage([&] { mbs::LoadScene(files.Write(teeth), hooks); });
@@ -145,6 +221,12 @@ TEST(GearTeethScene, BadFeEntriesAreOneLineErrorsAtTheirItemBeforeAnyFeRun) {
   expect(refused("    teeth: {fe: {loads: 1}}\n", counting),
          "forces[1].teeth.fe.loads: 1 load points: give 2 to 100");
   expect(refused("    teeth: {fe: {size: 1e-3}}\n", counting), "forces[1].teeth.fe.size");
+  expect(refused("    teeth: {fe: {rim: 3}}\n", counting),
+         "forces[1].teeth.fe.rim: '3' is not true or false");
+  expect(refused("    teeth: {fe: {rim: {roll: [0.2, 0.5]}}}\n", counting),
+         "forces[1].teeth.fe.rim: expected true or false");
+  expect(refused("    teeth: {fe: {rim: true}, movable: {damping: 2e4}}\n", counting),
+         "forces[1].teeth.fe.rim: force element 'mesh': movable teeth take no rims' coupling");
   expect(refused("    teeth: {fe: {}, gear1: {roll: [0.2, 0.5]}}\n", counting),
          "forces[1].teeth.gear1");
   expect(refused("    teeth: {fe: {}, poisson_ratio: 0.5}\n", counting),
@@ -153,7 +235,7 @@ TEST(GearTeethScene, BadFeEntriesAreOneLineErrorsAtTheirItemBeforeAnyFeRun) {
          "forces[1].teeth: force element 'mesh': Young's modulus [Pa] -200000000000 must be");
   EXPECT_EQ(runs, 0);
   // The FE tooth's own refusal, located at the entry.
-  const mbs::SceneHooks refusing{[](const mbs::ToothTableRequest&) -> contact::ToothCompliance {
+  const mbs::SceneHooks refusing{[](const mbs::ToothTableRequest&) -> mbs::ToothTables {
     throw InputError("FE tooth: mesh size 3 m is too large");
   }};
   expect(refused("    teeth: fe\n", refusing),
