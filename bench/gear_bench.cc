@@ -18,7 +18,18 @@
 // elastic teeth coupled through the rims (the three-tooth FE tables) and with the flattening at
 // each pair's load (the element's joint law).
 //
-//   bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] [--polish 1]
+// Movable teeth (mbs/movable_teeth_gear_contact.h: each tooth's deflection a state behind its own
+// dashpot c_t) over one mesh period from 0.05 s (tip corners on, the element's default), against
+// the quasi-static FE teeth of the same tables (SpurGearContact, damping 8e3 N s/m per pair) in
+// the same run: steps, Newton iterations, CPU per simulated second and its ratio to the
+// quasi-static teeth's explicit run, at tooth time constants c_t / k_t of 1e-6, 1e-5, 1e-4 s (k_t
+// the pinion tooth's stiffness at the pitch point), implicit and explicit; and what the states
+// change: the wheel's lag along the line of action against the static transmission error of the
+// same teeth (contact::StaticTransmissionError on MeshLaw's quasi-static series, as
+// tests/mbs/movable_teeth_test.cc measures it), largest and rms over the period. The reference is
+// computed after each timed run, outside its CPU time.
+//
+//   bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] [--polish 1] [--movable 1]
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -41,7 +52,9 @@
 #include "contact/gears/gear_flank.h"
 #include "contact/gears/gear_mesh.h"
 #include "contact/gears/gear_mesh_force.h"
+#include "contact/gears/movable_teeth.h"
 #include "mbs/compliant_contact.h"
+#include "mbs/gear_mesh_element.h"
 #include "mbs/multibody_system.h"
 #include "mbs/scene.h"
 #include "mbs/simulation.h"
@@ -59,6 +72,7 @@ struct Settings {
   int repeat = 5;          // runs of the closed-form mesh (the fastest kept)
   bool corners = false;    // the peer also takes wheel 1's tip corner on wheel 2's flank
   bool polish = true;      // the peer polishes its deepest points by Newton's method
+  bool movable = true;     // the movable teeth' runs over a mesh period
 };
 
 /// The flank search's result for one tooth pair: the signed distance of wheel 1's flank point
@@ -267,9 +281,10 @@ mbs::Scene Load(const std::string& text) {
   return scene;
 }
 
-/// One timed run: steps, right-hand sides, CPU seconds, the time mean of the mesh force [N].
+/// One timed run: steps, right-hand sides, Newton iterations (implicit), CPU seconds, the time
+/// mean of the mesh force [N].
 struct Run {
-  long steps = 0, rhs = 0;
+  long steps = 0, rhs = 0, newton = 0;
   double cpu = 0.0, mean_force = 0.0;
 };
 
@@ -292,6 +307,7 @@ Run Time(mbs::Scene& scene, Force force) {
   run.cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
   run.steps = stats.integrator.steps;
   run.rhs = stats.integrator.rhs_evaluations;
+  run.newton = stats.integrator.newton_iterations;
   run.mean_force = impulse / (scene.options.end_time - scene.options.start_time);
   return run;
 }
@@ -362,6 +378,106 @@ Run BestRun(const Settings& settings, double start, const std::string& gear_keys
   return best;
 }
 
+/// The movable teeth' window [s]: one mesh period of the pinion at 2 rad/s from 0.05 s (the
+/// start-up settled).
+constexpr double kSettled = 0.05;
+constexpr double kMeshPeriod = 2.0 * std::numbers::pi / (19.0 * 2.0);
+
+/// A timed run to the window's end and the wheel's lag along the line of action against the
+/// static transmission error over the window's outputs: largest and rms difference, the largest
+/// static error [m].
+struct LagRun {
+  Run run;
+  double worst = 0.0, rms = 0.0, largest = 0.0;
+  long samples = 0;
+};
+
+/// Runs the driven pair with the mesh's `gear_keys` (the wheel starting at `start` [rad]) by
+/// `method` to the window's end, then compares the lag r_b2 (phi2 - phi2_0(phi1)) at each output
+/// in the window with contact::StaticTransmissionError of `law` (outside the timed run).
+LagRun LagAgainstStatic(double start, const std::string& gear_keys, mbs::OdeMethod method,
+                        const contact::MeshLaw& law) {
+  mbs::Scene scene = Load(testing::DrivenGearPairScene(start, gear_keys, kSettled + kMeshPeriod));
+  scene.options.integrator.method = method;
+  const auto& element = dynamic_cast<const mbs::GearMeshElement&>(scene.system->force_element(1));
+  struct Angles {
+    double centre_distance, phi1, phi2;
+  };
+  std::vector<Angles> window;
+  LagRun out;
+  out.run = Time(scene, [&](double t, const Eigen::VectorXd& y) {
+    const mbs::GearMeshElement::Readout mesh = element.Read(t, *scene.system, y);
+    if (t >= kSettled) window.push_back({mesh.centre_distance, mesh.phi1, mesh.phi2});
+    double force = 0.0;
+    for (const contact::ToothPairLoad& p : mesh.pairs) force += p.force;
+    return force;
+  });
+  const contact::GearPair& pair = element.pair();
+  const double torque1 = kTorque * pair.gear1.base_radius / pair.gear2.base_radius;
+  double squares = 0.0;
+  for (const Angles& w : window) {
+    const double lag =
+        pair.gear2.base_radius *
+        std::remainder(w.phi2 - contact::TouchingAngle2(pair, w.centre_distance, w.phi1, w.phi2,
+                                                        contact::FlankSide::kPositive),
+                       2.0 * std::numbers::pi);
+    const double ste = contact::StaticTransmissionError(pair, law, w.centre_distance, w.phi1, torque1);
+    out.worst = std::max(out.worst, std::abs(lag - ste));
+    squares += (lag - ste) * (lag - ste);
+    out.largest = std::max(out.largest, ste);
+  }
+  out.samples = static_cast<long>(window.size());
+  out.rms = std::sqrt(squares / static_cast<double>(window.size()));
+  return out;
+}
+
+/// The movable teeth' table: the quasi-static FE teeth (explicit, the peer of the ratios, and
+/// implicit) and the movable teeth at three time constants, implicit and explicit.
+void MovableTeethRows(double start) {
+  using testing::kDrivenPairFeTeeth, testing::kDrivenPairGearKeys;
+  const std::string quasi_keys = std::string(kDrivenPairGearKeys) + kDrivenPairFeTeeth;
+  const mbs::Scene probe = Load(testing::DrivenGearPairScene(start, quasi_keys, 0.01));
+  const auto& quasi = dynamic_cast<const mbs::SpurGearContact&>(probe.system->force_element(1));
+  const contact::GearPair& pair = quasi.pair();
+  const contact::MeshLaw law(pair, *quasi.law().teeth(), 0.0);
+  const double k_t = contact::ToothStiffness(contact::MovableTeeth{*quasi.law().teeth(), 1.0}, pair,
+                                             1, contact::PitchRoll(pair, 0.0505));
+  // The pair's keys without its per-pair damping (refused beside movable teeth).
+  const std::string pair_damping = "    damping: 8e3\n";
+  std::string movable_keys = kDrivenPairGearKeys;
+  movable_keys.erase(movable_keys.find(pair_damping), pair_damping.size());
+  movable_keys += kDrivenPairFeTeeth;
+
+  fmt::print("\nmovable teeth: {} s simulated, the lag against the static transmission error over "
+             "one mesh period from {} s (k_t = {:.4g} N/m at the pitch point)\n",
+             kSettled + kMeshPeriod, kSettled, k_t);
+  fmt::print("{:<26} {:>8} {:>7} {:>8} {:>8} {:>11} {:>11} {:>9} {:>11} {:>11}\n", "teeth",
+             "method", "steps", "newton", "cpu s", "steps/s", "cpu/sim s", "cpu ratio",
+             "lag-STE max", "lag-STE rms");
+  const LagRun peer = LagAgainstStatic(start, quasi_keys, mbs::OdeMethod::kExplicit, law);
+  const double simulated = kSettled + kMeshPeriod;
+  const auto row = [&](const std::string& name, mbs::OdeMethod method, const LagRun& r) {
+    fmt::print("{:<26} {:>8} {:>7} {:>8} {:>8.3f} {:>11.4g} {:>11.4g} {:>9.2f} {:>11.3g} {:>11.3g}\n",
+               name, mbs::OdeMethodName(method), r.run.steps, r.run.newton, r.run.cpu,
+               r.run.steps / r.run.cpu, r.run.cpu / simulated, r.run.cpu / peer.run.cpu, r.worst,
+               r.rms);
+  };
+  row("quasi-static FE teeth", mbs::OdeMethod::kExplicit, peer);
+  row("quasi-static FE teeth", mbs::OdeMethod::kImplicit,
+      LagAgainstStatic(start, quasi_keys, mbs::OdeMethod::kImplicit, law));
+  for (const double time_constant : {1e-6, 1e-5, 1e-4}) {
+    const double damping = time_constant * k_t;
+    const std::string keys = movable_keys + fmt::format("      movable: {{damping: {:.6g}}}\n", damping);
+    for (const mbs::OdeMethod method : {mbs::OdeMethod::kImplicit, mbs::OdeMethod::kExplicit}) {
+      row(fmt::format("movable, c_t/k_t {:.0e} s", time_constant), method,
+          LagAgainstStatic(start, keys, method, law));
+    }
+  }
+  fmt::print("largest static transmission error {:.4g} m over {} outputs; cpu ratio: cpu time over "
+             "the quasi-static FE teeth' explicit run's\n",
+             peer.largest, peer.samples);
+}
+
 int Main(const Settings& settings) {
   using flexmbs::testing::DrivenGearPairScene, flexmbs::testing::kDrivenPairGearKeys;
   // The involutes on the line of action, as the peer searches them; the tip corners timed apart.
@@ -419,6 +535,7 @@ int Main(const Settings& settings) {
       "angles\n",
       SearchAgreement::kAngles, agreement.compared, agreement.gap_error, agreement.point_offset,
       agreement.count_differs);
+  if (settings.movable) MovableTeethRows(start);
   return 0;
 }
 
@@ -439,10 +556,12 @@ int main(int argc, char** argv) {
       settings.corners = std::atoi(argv[i + 1]) != 0;
     } else if (key == "--repeat") {
       settings.repeat = std::atoi(argv[i + 1]);
+    } else if (key == "--movable") {
+      settings.movable = std::atoi(argv[i + 1]) != 0;
     } else {
       fmt::print(stderr,
                  "usage: bench_gears [--end 0.05] [--samples 32] [--repeat 5] [--corners 0] "
-                 "[--polish 0]\n");
+                 "[--polish 0] [--movable 1]\n");
       return 2;
     }
   }
