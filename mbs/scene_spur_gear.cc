@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -154,6 +156,22 @@ TeethEntry ReadTeeth(const YamlNode& node) {
   return entry;
 }
 
+/// InputError unless the neighbours ahead and behind of the FE tooth of `label` ("gear 1") are
+/// each hit at two load points or more (the rims' coupling interpolates between them): too few
+/// load points leave the neighbour's flank with fewer.
+void CheckFeRimReachesNeighbours(const contact::RimCoupling& rim, const char* label) {
+  for (const auto& [side, values] : {std::pair{"ahead", &rim.ahead}, {"behind", &rim.behind}}) {
+    const auto on_flank =
+        std::count_if(values->begin(), values->end(), [](double q) { return std::isfinite(q); });
+    if (on_flank < 2) {
+      throw InputError(fmt::format(
+          "{}'s FE segment: {} of its {} load points reach the flank of the neighbour {}; the "
+          "rims' coupling needs two or more: give more loads",
+          label, on_flank, values->size(), side));
+    }
+  }
+}
+
 /// Fills the tables of `entry` (`fe`) from `tooth_table`, one FE tooth per wheel of `spec` (the
 /// pair already checked), with the rims' coupling when `fe` asks for it; errors located at the
 /// `teeth` entry `node`, naming element `name`.
@@ -180,6 +198,7 @@ void ComputeFeTeeth(const YamlNode& node, const std::string& name,
     ToothTables tables = tooth_table(request);
     FLEXMBS_CHECK(tables.rim.has_value() == request.rim,
                   "the FE stage gives a wheel's rim coupling exactly when asked for it");
+    if (tables.rim) CheckFeRimReachesNeighbours(*tables.rim, label);
     *tooth = std::move(tables.compliance);
     *rim = std::move(tables.rim);
   };

@@ -240,6 +240,12 @@ TEST(GearTeethScene, BadFeEntriesAreOneLineErrorsAtTheirItemBeforeAnyFeRun) {
   }};
   expect(refused("    teeth: fe\n", refusing),
          "forces[1].teeth: force element 'mesh': FE tooth: mesh size 3 m is too large");
+  // Too few load points for the rims' coupling: the FE segment of gear 1 (z 19) with 3 load
+  // points hits the neighbour ahead at one of them (the coupling interpolates between two).
+  expect(refused("    teeth: {fe: {mesh_size: 8e-4, loads: 3, rim: true}}\n", SimulateSceneHooks()),
+         "forces[1].teeth: force element 'mesh': gear 1's FE segment: 1 of its 3 load points "
+         "reach the flank of the neighbour ahead; the rims' coupling needs two or more: give "
+         "more loads");
 }
 
 }  // namespace
