@@ -24,8 +24,8 @@ namespace flexmbs::mbs {
 /// `.nan` off the neighbour's flank; both wheels or neither), youngs_modulus (2.1e11),
 /// poisson_ratio (0.3), reference_load (3e5 N/m), flattening (`linearised` at reference_load,
 /// the default, or `at_load`: ElasticTeeth::flattening_at_load)}, or `fe` in place of the tables (the word, or `fe: {mesh_size [m], element_order,
-/// loads}`): each wheel's table from `tooth_table` (an FE tooth of the wheel, after the pair's
-/// checks). Every bad key or value, a pair that cannot mesh, and `fe` without a `tooth_table` is
+/// loads, rim}`): each wheel's table from `tooth_table` (an FE tooth of the wheel, after the pair's
+/// checks; with `rim: true` its three-tooth segment's table and rim coupling). Every bad key or value, a pair that cannot mesh, and `fe` without a `tooth_table` is
 /// an InputError "<file>:<line>:<col>: <item>: force element '<name>': <problem>".
 std::unique_ptr<ForceElement> ReadSpurGearContact(
     const YamlNode& node, const std::string& name,
