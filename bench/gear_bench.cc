@@ -421,7 +421,8 @@ LagRun LagAgainstStatic(double start, const std::string& gear_keys, mbs::OdeMeth
         std::remainder(w.phi2 - contact::TouchingAngle2(pair, w.centre_distance, w.phi1, w.phi2,
                                                         contact::FlankSide::kPositive),
                        2.0 * std::numbers::pi);
-    const double ste = contact::StaticTransmissionError(pair, law, w.centre_distance, w.phi1, torque1);
+    const double ste =
+        contact::StaticTransmissionError(pair, law, w.centre_distance, w.phi1, torque1);
     out.worst = std::max(out.worst, std::abs(lag - ste));
     squares += (lag - ste) * (lag - ste);
     out.largest = std::max(out.largest, ste);
@@ -448,34 +449,37 @@ void MovableTeethRows(double start) {
   movable_keys.erase(movable_keys.find(pair_damping), pair_damping.size());
   movable_keys += kDrivenPairFeTeeth;
 
-  fmt::print("\nmovable teeth: {} s simulated, the lag against the static transmission error over "
-             "one mesh period from {} s (k_t = {:.4g} N/m at the pitch point)\n",
-             kSettled + kMeshPeriod, kSettled, k_t);
+  fmt::print(
+      "\nmovable teeth: {} s simulated, the lag against the static transmission error over "
+      "one mesh period from {} s (k_t = {:.4g} N/m at the pitch point)\n",
+      kSettled + kMeshPeriod, kSettled, k_t);
   fmt::print("{:<26} {:>8} {:>7} {:>8} {:>8} {:>11} {:>11} {:>9} {:>11} {:>11}\n", "teeth",
              "method", "steps", "newton", "cpu s", "steps/s", "cpu/sim s", "cpu ratio",
              "lag-STE max", "lag-STE rms");
   const LagRun peer = LagAgainstStatic(start, quasi_keys, mbs::OdeMethod::kExplicit, law);
   const double simulated = kSettled + kMeshPeriod;
   const auto row = [&](const std::string& name, mbs::OdeMethod method, const LagRun& r) {
-    fmt::print("{:<26} {:>8} {:>7} {:>8} {:>8.3f} {:>11.4g} {:>11.4g} {:>9.2f} {:>11.3g} {:>11.3g}\n",
-               name, mbs::OdeMethodName(method), r.run.steps, r.run.newton, r.run.cpu,
-               r.run.steps / r.run.cpu, r.run.cpu / simulated, r.run.cpu / peer.run.cpu, r.worst,
-               r.rms);
+    fmt::print(
+        "{:<26} {:>8} {:>7} {:>8} {:>8.3f} {:>11.4g} {:>11.4g} {:>9.2f} {:>11.3g} {:>11.3g}\n",
+        name, mbs::OdeMethodName(method), r.run.steps, r.run.newton, r.run.cpu,
+        r.run.steps / r.run.cpu, r.run.cpu / simulated, r.run.cpu / peer.run.cpu, r.worst, r.rms);
   };
   row("quasi-static FE teeth", mbs::OdeMethod::kExplicit, peer);
   row("quasi-static FE teeth", mbs::OdeMethod::kImplicit,
       LagAgainstStatic(start, quasi_keys, mbs::OdeMethod::kImplicit, law));
   for (const double time_constant : {1e-6, 1e-5, 1e-4}) {
     const double damping = time_constant * k_t;
-    const std::string keys = movable_keys + fmt::format("      movable: {{damping: {:.6g}}}\n", damping);
+    const std::string keys =
+        movable_keys + fmt::format("      movable: {{damping: {:.6g}}}\n", damping);
     for (const mbs::OdeMethod method : {mbs::OdeMethod::kImplicit, mbs::OdeMethod::kExplicit}) {
       row(fmt::format("movable, c_t/k_t {:.0e} s", time_constant), method,
           LagAgainstStatic(start, keys, method, law));
     }
   }
-  fmt::print("largest static transmission error {:.4g} m over {} outputs; cpu ratio: cpu time over "
-             "the quasi-static FE teeth' explicit run's\n",
-             peer.largest, peer.samples);
+  fmt::print(
+      "largest static transmission error {:.4g} m over {} outputs; cpu ratio: cpu time over "
+      "the quasi-static FE teeth' explicit run's\n",
+      peer.largest, peer.samples);
 }
 
 int Main(const Settings& settings) {
@@ -499,8 +503,8 @@ int Main(const Settings& settings) {
   const Run corners = BestRun(settings, start, kDrivenPairGearKeys);
   const Run elastic = BestRun(settings, start, line_keys + testing::kDrivenPairFeTeeth);
   const Run coupled = BestRun(settings, start, line_keys + testing::kDrivenPairCoupledTeeth);
-  const Run at_load = BestRun(settings, start,
-                              line_keys + testing::kDrivenPairFeTeeth + "      flattening: at_load\n");
+  const Run at_load = BestRun(
+      settings, start, line_keys + testing::kDrivenPairFeTeeth + "      flattening: at_load\n");
   mbs::Scene brute = Load(DrivenGearPairScene(start, "", settings.end_time));
   brute.system->AddForceElement(std::make_unique<BruteForceMesh>(
       brute.system->Marker("pinion", "axis"), brute.system->Marker("wheel", "axis"), pair, law,
@@ -523,12 +527,13 @@ int Main(const Settings& settings) {
   row("  coupled through the rims", coupled);
   row("  flattening at load", at_load);
   row(fmt::format("brute force, {} samples per flank", settings.samples).c_str(), slow);
-  fmt::print("steps/s ratio closed form / brute force: {:.1f}; rigid / elastic teeth: {:.2f}; "
-             "elastic / coupled: {:.2f}; elastic / at load: {:.2f}\n",
-             (best.steps / best.cpu) / (slow.steps / slow.cpu),
-             (best.steps / best.cpu) / (elastic.steps / elastic.cpu),
-             (elastic.steps / elastic.cpu) / (coupled.steps / coupled.cpu),
-             (elastic.steps / elastic.cpu) / (at_load.steps / at_load.cpu));
+  fmt::print(
+      "steps/s ratio closed form / brute force: {:.1f}; rigid / elastic teeth: {:.2f}; "
+      "elastic / coupled: {:.2f}; elastic / at load: {:.2f}\n",
+      (best.steps / best.cpu) / (slow.steps / slow.cpu),
+      (best.steps / best.cpu) / (elastic.steps / elastic.cpu),
+      (elastic.steps / elastic.cpu) / (coupled.steps / coupled.cpu),
+      (elastic.steps / elastic.cpu) / (at_load.steps / at_load.cpu));
   fmt::print(
       "brute force over one mesh cycle 2 um deep ({} angles, {} pairs in contact): largest gap "
       "error {:.3g} m, contact point offset {:.3g} m; pairs in contact counted differently at {} "
