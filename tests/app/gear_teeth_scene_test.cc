@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/fe_tooth_table.h"
@@ -95,26 +98,37 @@ TEST(GearTeethScene, FeTeethAreTheTablesGearToothFeGivesForEachWheel) {
   EXPECT_EQ(teeth.tooth1.roll.size(), 5u);
 }
 
-/// Whether columns `a` and `b` hold the same numbers, NaN where the other has NaN.
-bool SameColumn(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return false;
+/// The largest |a_k / b_k - 1| over columns `a` and `b` (NaN where the other has NaN); infinite
+/// where their lengths or NaNs differ.
+double ColumnsApart(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
+  double apart = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k) {
-    if (!(a[k] == b[k] || (std::isnan(a[k]) && std::isnan(b[k])))) return false;
+    if (std::isnan(a[k]) != std::isnan(b[k])) return std::numeric_limits<double>::infinity();
+    if (!std::isnan(a[k])) apart = std::max(apart, std::abs(a[k] / b[k] - 1.0));
   }
-  return true;
+  return apart;
 }
 
-void ExpectSameRim(const std::optional<contact::RimCoupling>& scene,
-                   const contact::RimCoupling& fe) {
+/// Expects the scene's rim coupling and the FE's at the same rolls, their deflections within
+/// `tolerance` relative (0: to the bit).
+void ExpectSameRim(const std::optional<contact::RimCoupling>& scene, const contact::RimCoupling& fe,
+                   double tolerance = 0.0) {
   ASSERT_TRUE(scene.has_value());
   EXPECT_EQ(scene->roll, fe.roll);
-  EXPECT_TRUE(SameColumn(scene->ahead, fe.ahead));
-  EXPECT_TRUE(SameColumn(scene->behind, fe.behind));
+  EXPECT_LE(ColumnsApart(scene->ahead, fe.ahead), tolerance);
+  EXPECT_LE(ColumnsApart(scene->behind, fe.behind), tolerance);
 }
 
+/// Two runs of the same three-tooth segment (gear_tooth_fe::ToothCouplingFromFe) repeat to the bit
+/// in most runs, not all: measured 1.3e-15 relative in 1 of 20 (0 in the others), with the same
+/// 5443 and 6452 nodes (round-off of another order; not pinned down, gmsh's numbering likely).
+constexpr double kSegmentRepeats = 1e-14;
+
 // `fe: {..., rim: true}`: each wheel's tooth on its three-tooth segment, the scene's tables and
-// rims' coupling gear_tooth_fe::ToothCouplingFromFe's for the wheel and options, to the last bit;
-// the element's law then couples the pairs (its teeth carry both rims).
+// rims' coupling gear_tooth_fe::ToothCouplingFromFe's for the wheel and options (the rolls and
+// depths to the bit, the compliances as the FE segment repeats); the element's law then couples the
+// pairs (its teeth carry both rims).
 TEST(GearTeethScene, FeRimTeethAreTheSegmentsTablesAndCouplingGearToothFeGives) {
   TeethScene files;
   const mbs::Scene scene = mbs::LoadScene(
@@ -129,10 +143,14 @@ TEST(GearTeethScene, FeRimTeethAreTheSegmentsTablesAndCouplingGearToothFeGives) 
       contact::MakeSpurGear(Wheel(19, 0.3), "gear 1"), material, options);
   const gear_tooth_fe::ToothCoupling fe2 = gear_tooth_fe::ToothCouplingFromFe(
       contact::MakeSpurGear(Wheel(31, -0.1), "gear 2"), material, options);
-  ExpectSameTable(teeth.tooth1, fe1.compliance);
-  ExpectSameTable(teeth.tooth2, fe2.compliance);
-  ExpectSameRim(teeth.rim1, fe1.rim);
-  ExpectSameRim(teeth.rim2, fe2.rim);
+  for (const auto& [scene_tooth, fe_tooth] :
+       {std::pair{&teeth.tooth1, &fe1.compliance}, {&teeth.tooth2, &fe2.compliance}}) {
+    EXPECT_EQ(scene_tooth->roll, fe_tooth->roll);
+    EXPECT_EQ(scene_tooth->centre_depth, fe_tooth->centre_depth);
+    EXPECT_LE(ColumnsApart(scene_tooth->compliance, fe_tooth->compliance), kSegmentRepeats);
+  }
+  ExpectSameRim(teeth.rim1, fe1.rim, kSegmentRepeats);
+  ExpectSameRim(teeth.rim2, fe2.rim, kSegmentRepeats);
   // Not the one-tooth tables: the three-tooth segment's tooth is softer (the wider rim).
   EXPECT_GT(teeth.tooth1.compliance[3],
             gear_tooth_fe::ToothComplianceFromFe(contact::MakeSpurGear(Wheel(19, 0.3), "gear 1"),
