@@ -342,8 +342,8 @@ double RunsApart(const Series& a, const Series& b) {
 // coupling gear_tooth_fe::ToothCouplingFromFe gives directly; double contact is in the window, so
 // the coupled law is what both ran (measured once: the same segments' tables without the rims'
 // columns give a transmission error up to 3.8e-2 of its largest apart). The runs are equal to the
-// bit when the two FE segments are; a segment repeats only to 1.3e-15 in some runs
-// (tests/app/gear_teeth_scene_test.cc), and tables moved by +-1.3e-15 moved this explicit run
+// bit when the two FE segments are; a segment repeats only to 1.3e-15 in some runs (OpenMP,
+// tests/app/gear_teeth_scene_test.cc), and tables moved by +-1.3e-15 moved this explicit run
 // by up to 1.06e-6 of a series' largest (its adaptive steps), hence the tolerance.
 TEST(SimulateGears, TeethFeRimRunsAsTheCouplingGearToothFeGives) {
   ASSERT_TRUE(fs::exists(flexmbs::testing::kFlexmbsBinary)) << "flexmbs is not built";
