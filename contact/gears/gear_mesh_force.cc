@@ -276,12 +276,9 @@ std::vector<ToothPairDeflection> MeshLaw::Deflections(const std::vector<ToothPai
     const double w = forces[i] / face_width_;  // per face width
     const ToothComplianceAt q1 = InterpolateCompliance(teeth_->tooth1, t1);
     const ToothComplianceAt q2 = InterpolateCompliance(teeth_->tooth2, t2);
-    const auto flattening = [&](double load) {
-      return WeberFlattening(load, pair_.gear1.base_radius * t1, pair_.gear2.base_radius * t2,
-                             q1.centre_depth, q2.centre_depth, teeth_->material);
-    };
-    const double flat = !teeth_->flattening_at_load ? flattening(w_ref) * w / w_ref
-                        : w > 0.0                   ? flattening(w)
+    const Series series = PairSeries(pairs[i]);
+    const double flat = !teeth_->flattening_at_load ? series.Flattening(w_ref) * w / w_ref
+                        : w > 0.0                   ? series.Flattening(w)
                                                     : 0.0;
     out[i] = {q1.compliance * w, q2.compliance * w, flat};
   }
