@@ -66,6 +66,22 @@ contact::MeshLaw PairsAlone(const contact::GearPair& pair, const contact::MeshLa
   return contact::MeshLaw(pair, teeth, 8e3);
 }
 
+/// Two free wheels in mesh (AddFreeWheelsInMesh) under `law`, the element, and the same pair
+/// under each pair's own law (PairsAlone) as a second element outside the system.
+struct WheelsInMesh {
+  MultibodySystem system{Eigen::Vector3d::Zero()};
+  contact::GearPair pair;
+  const SpurGearContact* mesh = nullptr;
+  std::unique_ptr<SpurGearContact> alone;
+
+  explicit WheelsInMesh(const contact::MeshLaw& law)
+      : pair(AddFreeWheelsInMesh(system, [&](const contact::GearPair&) { return law; })),
+        mesh(&dynamic_cast<const SpurGearContact&>(system.force_element(0))),
+        alone(std::make_unique<SpurGearContact>("alone", system.Marker("pinion", "axis"),
+                                                system.Marker("wheel", "axis"), pair,
+                                                PairsAlone(pair, law))) {}
+};
+
 /// The number of tooth pairs in contact at y.
 int PairsInContact(const MultibodySystem& system, const SpurGearContact& mesh,
                    const Eigen::VectorXd& y) {
@@ -82,12 +98,10 @@ int PairsInContact(const MultibodySystem& system, const SpurGearContact& mesh,
 TEST(SpurGearJoint, JacobianCarriesTheCrossTermsOfThePairsInMesh) {
   for (const std::string& keys : {kCoupled, kAtLoad, kCoupledAtLoad}) {
     const contact::MeshLaw law = SceneLaw(keys);
-    MultibodySystem system(Eigen::Vector3d::Zero());
-    const contact::GearPair pair =
-        AddFreeWheelsInMesh(system, [&](const contact::GearPair&) { return law; });
-    const auto& mesh = dynamic_cast<const SpurGearContact&>(system.force_element(0));
-    const SpurGearContact alone("alone", system.Marker("pinion", "axis"),
-                                system.Marker("wheel", "axis"), pair, PairsAlone(pair, law));
+    const WheelsInMesh wheels(law);
+    const MultibodySystem& system = wheels.system;
+    const contact::GearPair& pair = wheels.pair;
+    const SpurGearContact &mesh = *wheels.mesh, &alone = *wheels.alone;
     const Eigen::VectorXd y = DoubleContactState(system, pair);
     ASSERT_EQ(PairsInContact(system, mesh, y), 2);
     const auto [joint_u, joint_x] = JacobianErrors(system, mesh, y);
@@ -110,13 +124,10 @@ TEST(SpurGearJoint, JacobianCarriesTheCrossTermsOfThePairsInMesh) {
 // teeth without the rims to the bit (and the linearised law's are what one CompliantContact per
 // pair gave before the joint law existed: the element's code path for them is unchanged).
 TEST(SpurGearJoint, SinglePairGivesItsOwnLawsForcesToTheBit) {
-  const contact::MeshLaw law = SceneLaw(kCoupled);
-  MultibodySystem system(Eigen::Vector3d::Zero());
-  const contact::GearPair pair =
-      AddFreeWheelsInMesh(system, [&](const contact::GearPair&) { return law; });
-  const auto& mesh = dynamic_cast<const SpurGearContact&>(system.force_element(0));
-  const SpurGearContact alone("alone", system.Marker("pinion", "axis"),
-                              system.Marker("wheel", "axis"), pair, PairsAlone(pair, law));
+  const WheelsInMesh wheels(SceneLaw(kCoupled));
+  const MultibodySystem& system = wheels.system;
+  const contact::GearPair& pair = wheels.pair;
+  const SpurGearContact &mesh = *wheels.mesh, &alone = *wheels.alone;
   Eigen::VectorXd y;
   for (double phi1 = 0.3; phi1 < 0.7; phi1 += 1e-3) {
     y = DoubleContactState(system, pair, phi1);
@@ -348,10 +359,10 @@ TEST(SpurGearJoint, CrossTermsSaveTheImplicitMethodNewtonIterations) {
 TEST(SpurGearJoint, ReadoutDeflectionsAddUpToThePenetrations) {
   for (const std::string& keys : {kCoupled, kAtLoad, kCoupledAtLoad}) {
     const contact::MeshLaw law = SceneLaw(keys);
-    MultibodySystem system(Eigen::Vector3d::Zero());
-    const contact::GearPair pair =
-        AddFreeWheelsInMesh(system, [&](const contact::GearPair&) { return law; });
-    const auto& mesh = dynamic_cast<const SpurGearContact&>(system.force_element(0));
+    const WheelsInMesh wheels(law);
+    const MultibodySystem& system = wheels.system;
+    const contact::GearPair& pair = wheels.pair;
+    const SpurGearContact& mesh = *wheels.mesh;
     Eigen::VectorXd y = DoubleContactState(system, pair);
     y.segment(system.num_positions(), system.num_velocities()).setZero();  // at rest
     const GearMeshElement::Readout r = mesh.Read(0.0, system, y);
