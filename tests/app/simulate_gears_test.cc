@@ -282,6 +282,33 @@ std::string SceneList(const std::vector<double>& numbers) {
   return fmt::format("[{}]", fmt::join(items, ", "));
 }
 
+// Movable teeth from the gear parameters alone: `teeth: {fe, movable}` has flexmbs simulate build
+// both FE teeth and run them movable (ISO 6336's c' is the pair's, teeth and flattening in one,
+// so it gives no tooth of its own to move). Settled, the mesh force carries T / r_b2.
+TEST(SimulateGears, MovableTeethFromTheFeStageAlone) {
+  ASSERT_TRUE(fs::exists(flexmbs::testing::kFlexmbsBinary)) << "flexmbs is not built";
+  const GearSeries s = RunDrivenPair(
+      "    gear1: {module: 2e-3, teeth: 19, profile_shift: 0.3, face_width: 0.02}\n"
+      "    gear2: {module: 2e-3, teeth: 31, profile_shift: -0.1, face_width: 0.02}\n"
+      "    centre_distance: 0.0505\n"
+      "    teeth: {fe: {mesh_size: 8e-4, loads: 5}, movable: {damping: 2e4}}\n",
+      0.12, true);
+  ASSERT_GT(s.time.size(), 1000);
+  double last_switch = 0.0;
+  SettledMesh settled;
+  for (Eigen::Index k = 1; k < s.time.size(); ++k) {
+    if (s.active(k) != s.active(k - 1)) last_switch = s.time(k);
+    if (s.time(k) >= 0.02) AddSettledSample(s, k, last_switch, &settled);
+  }
+  std::printf("[measured] movable FE teeth from the scene's gears: mesh force / (T/r_b2) - 1 <= %.3g; "
+              "teeth' share in single contact %.4f ... %.4f (%d samples)\n",
+              settled.worst_force, settled.lowest_share, settled.highest_share, settled.single);
+  EXPECT_GT(settled.single, 100);           // measured 171 of the outputs from 0.02 to 0.12 s
+  EXPECT_LT(settled.worst_force, 2.6e-3);   // measured 2.6e-4
+  EXPECT_GT(settled.lowest_share, 0.68);    // measured 0.6988 (the FE teeth' 0.690 ... 0.710)
+  EXPECT_LT(settled.highest_share, 0.72);   // measured 0.7063
+}
+
 /// One wheel's `teeth` table of gear_tooth_fe's FE tooth (edge 0.8 mm, `loads` load points) as
 /// scene text; with `rim` the tooth on its three-tooth segment (ToothCouplingFromFe): that
 /// segment's own table and its `rim` columns.
