@@ -34,8 +34,10 @@ MovableTeethGearContact::Mesh MovableTeethGearContact::Evaluate(double t, const 
     p.state1 = tp.tooth1;
     p.state2 = pair_.gear1.spec.teeth + tp.tooth2;
     p.pair.gap += p.levers.lever1 * d(p.state1) + p.levers.lever2 * d(p.state2);
-    p.stiffness = contact::FlatteningStiffness(teeth_, pair_, tp);
-    p.force = p.pair.gap < 0.0 ? -p.stiffness * p.pair.gap : 0.0;
+    if (p.pair.gap < 0.0) {  // Weber's logarithms only for the pairs in contact
+      p.stiffness = contact::FlatteningStiffness(teeth_, pair_, tp);
+      p.force = -p.stiffness * p.pair.gap;
+    }
     p.point = GearContactPoint(mesh.frame, p.pair, -p.pair.gap);
     mesh.pairs.push_back(std::move(p));
   }
@@ -125,7 +127,7 @@ MovableTeethGearContact::Readout MovableTeethGearContact::Read(double t, const M
   for (const MovedPair& p : mesh.pairs) {
     readout.pairs.push_back({p.pair, p.force});
     readout.deflections.push_back({p.levers.lever1 * d(p.state1), p.levers.lever2 * d(p.state2),
-                                   p.force / p.stiffness});
+                                   p.force > 0.0 ? p.force / p.stiffness : 0.0});
     if (p.force > 0.0) AddPairTorques(mesh.frame, p.point, p.force, &readout);
   }
   return readout;

@@ -60,7 +60,7 @@ class MovableTeethGearContact final : public GearMeshElement {
     contact::ToothPair pair;       ///< gap: the moved one
     contact::ToothLevers levers;
     Eigen::Index state1 = 0, state2 = 0;  ///< its teeth's states in s
-    double stiffness = 0.0;        ///< k_H [N/m]
+    double stiffness = 0.0;        ///< k_H [N/m] of a pair in contact (0 apart)
     double force = 0.0;            ///< F [N], 0 apart
     ContactPoint point;
   };
