@@ -46,14 +46,8 @@ ToothLevers PairLevers(const GearPair& pair, double centre_distance, const Tooth
 
 double FlatteningStiffness(const MovableTeeth& teeth, const GearPair& pair, const ToothPair& tp) {
   const ElasticTeeth& e = teeth.teeth;
-  const double t1 = std::max(tp.roll1, e.tooth1.roll.front());
-  const double t2 = std::max(tp.roll2, e.tooth2.roll.front());
-  const double w = e.reference_load;
-  const double approach = WeberFlattening(
-      w, pair.gear1.base_radius * t1, pair.gear2.base_radius * t2,
-      InterpolateCompliance(e.tooth1, t1).centre_depth,
-      InterpolateCompliance(e.tooth2, t2).centre_depth, e.material);
-  return FaceWidth(pair) * w / approach;
+  return FaceWidth(pair) / FlatteningCompliance(e, pair, std::max(tp.roll1, e.tooth1.roll.front()),
+                                                std::max(tp.roll2, e.tooth2.roll.front()));
 }
 
 double ToothStiffness(const MovableTeeth& teeth, const GearPair& pair, int wheel, double roll) {

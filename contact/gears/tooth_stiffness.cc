@@ -117,15 +117,20 @@ double RimCouplingAt(const std::vector<double>& roll, const std::vector<double>&
   return y[k] + (y[k + 1] - y[k]) * (t - x[k]) / (x[k + 1] - x[k]);
 }
 
+double FlatteningCompliance(const ElasticTeeth& teeth, const GearPair& pair, double roll1,
+                            double roll2) {
+  const double w = teeth.reference_load;
+  return WeberFlattening(w, pair.gear1.base_radius * roll1, pair.gear2.base_radius * roll2,
+                         InterpolateCompliance(teeth.tooth1, roll1).centre_depth,
+                         InterpolateCompliance(teeth.tooth2, roll2).centre_depth, teeth.material) /
+         w;
+}
+
 double TeethPairStiffness(const ElasticTeeth& teeth, const GearPair& pair, double roll1,
                           double roll2) {
-  const ToothComplianceAt q1 = InterpolateCompliance(teeth.tooth1, roll1);
-  const ToothComplianceAt q2 = InterpolateCompliance(teeth.tooth2, roll2);
-  const double w = teeth.reference_load;
-  const double flattening =
-      WeberFlattening(w, pair.gear1.base_radius * roll1, pair.gear2.base_radius * roll2,
-                      q1.centre_depth, q2.centre_depth, teeth.material);
-  return 1.0 / (q1.compliance + q2.compliance + flattening / w);
+  return 1.0 / (InterpolateCompliance(teeth.tooth1, roll1).compliance +
+                InterpolateCompliance(teeth.tooth2, roll2).compliance +
+                FlatteningCompliance(teeth, pair, roll1, roll2));
 }
 
 }  // namespace flexmbs::contact

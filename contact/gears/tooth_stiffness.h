@@ -104,9 +104,16 @@ void CheckToothMaterial(const ToothMaterial& material, double reference_load);
 /// CheckToothCompliance ("gear 1 tooth", "gear 2 tooth").
 void CheckElasticTeeth(const ElasticTeeth& teeth);
 
+/// The flanks' flattening compliance [m^2/N] of the tooth pair at roll angles t1, t2 of `pair`:
+/// Weber's approach at w_ref over w_ref, delta_H(w_ref, r_b1 t1, r_b2 t2, h1, h2) / w_ref. Roll
+/// angles > 0.
+double FlatteningCompliance(const ElasticTeeth& teeth, const GearPair& pair, double roll1,
+                            double roll2);
+
 /// The single-pair stiffness c(t1, t2) [N/m^2] (per face width) of the tooth pair at roll angles
 /// t1, t2 of `pair`: the two teeth's compliances and Weber's flattening at w_ref in series,
-///   1 / c = q1(t1) + q2(t2) + delta_H(w_ref, r_b1 t1, r_b2 t2, h1, h2) / w_ref.
+///   1 / c = q1(t1) + q2(t2) + delta_H(w_ref, r_b1 t1, r_b2 t2, h1, h2) / w_ref
+/// (FlatteningCompliance the last term).
 /// Roll angles > 0 (a flank point above the base circle).
 double TeethPairStiffness(const ElasticTeeth& teeth, const GearPair& pair, double roll1,
                           double roll2);
